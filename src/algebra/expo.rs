@@ -1,0 +1,307 @@
+//! Exponential polynomials $g(t) = \sum_j c_j\, t^{k_j} e^{-\beta_j t}$, exact.
+//!
+//! Coefficients $c_j$ are [`RatFunc`]s; rates $\beta_j$ are exact polynomials (in practice linear
+//! forms such as $0$, $\alpha$, $\gamma$, $\alpha+\gamma$, $2\alpha$). Parts with the same
+//! $(\beta, k)$ are merged and zero parts dropped, so the representation is canonical up to the
+//! canonical form of the coefficients.
+//!
+//! Operations are those of 000_92d54b11128ea1ec.txt, eqs. (9), (20), (21):
+//! $$\int_0^t s^k e^{-\beta s}\,ds = \frac{k!}{\beta^{k+1}} - e^{-\beta t}\sum_{i=0}^{k}
+//!   \frac{k!}{(k-i)!}\frac{t^{k-i}}{\beta^{i+1}}, \qquad \beta \ne 0,$$
+//! and $t^{k+1}/(k+1)$ for $\beta = 0$ (decided exactly); the operator
+//! $$\tilde L(\delta)[g](t) = e^{-\delta t}\int_0^t e^{\delta s} g(s)\,ds,$$
+//! which is the integral of $g\,e^{\delta t}$ shifted back, so the resonant case $\beta = \delta$
+//! (a part $t^k e^{-\delta t}$ becoming $t^{k+1} e^{-\delta t}/(k+1)$) needs no special code.
+
+use super::poly::{Poly, Q, qi};
+use super::ratfunc::RatFunc;
+use num_traits::{One, Zero};
+use std::collections::BTreeMap;
+
+/// Key of a part: `(rate, t_power)`.
+pub type PartKey = (Poly, u32);
+
+/// A finite sum of `coeff * t^k * exp(-rate * t)`.
+#[derive(Clone, Debug, Default)]
+pub struct Expo {
+    parts: BTreeMap<PartKey, RatFunc>,
+}
+
+impl PartialEq for Expo {
+    fn eq(&self, o: &Expo) -> bool {
+        (self - o).is_zero()
+    }
+}
+
+impl Expo {
+    /// Zero.
+    pub fn zero() -> Self {
+        Expo::default()
+    }
+
+    /// One part `c * t^k * exp(-rate t)`.
+    pub fn part(c: RatFunc, k: u32, rate: Poly) -> Self {
+        let mut e = Expo::zero();
+        e.add_part(rate, k, c);
+        e
+    }
+
+    /// `c * t^k`.
+    pub fn monomial(c: RatFunc, k: u32) -> Self {
+        Expo::part(c, k, Poly::zero())
+    }
+
+    /// Adds one part in place.
+    pub fn add_part(&mut self, rate: Poly, k: u32, c: RatFunc) {
+        if c.is_zero() {
+            return;
+        }
+        let key = (rate, k);
+        match self.parts.get_mut(&key) {
+            Some(v) => {
+                let s = &*v + &c;
+                if s.is_zero() {
+                    self.parts.remove(&key);
+                } else {
+                    *v = s;
+                }
+            }
+            None => {
+                self.parts.insert(key, c);
+            }
+        }
+    }
+
+    /// True if every part cancelled.
+    pub fn is_zero(&self) -> bool {
+        self.parts.is_empty()
+    }
+
+    /// The parts `((rate, k), coeff)` in canonical order.
+    pub fn parts(&self) -> impl Iterator<Item = (&PartKey, &RatFunc)> {
+        self.parts.iter()
+    }
+
+    /// Number of parts.
+    pub fn len(&self) -> usize {
+        self.parts.len()
+    }
+
+    /// True if there are no parts.
+    pub fn is_empty(&self) -> bool {
+        self.parts.is_empty()
+    }
+
+    /// Multiplies by a coefficient.
+    pub fn scale(&self, c: &RatFunc) -> Expo {
+        let mut out = Expo::zero();
+        for ((r, k), v) in &self.parts {
+            out.add_part(r.clone(), *k, v * c);
+        }
+        out
+    }
+
+    /// Multiplies by `exp(-shift t)`.
+    pub fn shift_rate(&self, shift: &Poly) -> Expo {
+        let mut out = Expo::zero();
+        for ((r, k), v) in &self.parts {
+            out.add_part(r + shift, *k, v.clone());
+        }
+        out
+    }
+
+    /// $d/dt$.
+    pub fn deriv(&self) -> Expo {
+        let mut out = Expo::zero();
+        for ((r, k), v) in &self.parts {
+            if *k > 0 {
+                out.add_part(r.clone(), k - 1, v.scale(&qi(*k as i64)));
+            }
+            if !r.is_zero() {
+                out.add_part(r.clone(), *k, -&(v * &RatFunc::from_poly(r.clone())));
+            }
+        }
+        out
+    }
+
+    /// $\int_0^t g(s)\,ds$.
+    pub fn integral(&self) -> Expo {
+        let mut out = Expo::zero();
+        for ((r, k), v) in &self.parts {
+            if r.is_zero() {
+                out.add_part(
+                    Poly::zero(),
+                    k + 1,
+                    v.scale(&(Q::one() / qi(*k as i64 + 1))),
+                );
+                continue;
+            }
+            let inv_r = RatFunc::from_poly(r.clone())
+                .inv()
+                .expect("non-zero rate has an inverse");
+            // falling factorial k!/(k-i)! and 1/r^{i+1}
+            let mut fall = Q::one();
+            let mut inv_pow = inv_r.clone();
+            for i in 0..=*k {
+                out.add_part(r.clone(), k - i, -&(v * &inv_pow.scale(&fall)));
+                fall *= qi((*k - i) as i64);
+                if i < *k {
+                    inv_pow = &inv_pow * &inv_r;
+                }
+            }
+            // constant k!/r^{k+1}; after the loop fall == 0, so recompute k!
+            let kfact = (1..=*k).fold(Q::one(), |a, j| a * qi(j as i64));
+            out.add_part(Poly::zero(), 0, v * &inv_pow.scale(&kfact));
+        }
+        out
+    }
+
+    /// The double integral $\int_0^t\int_0^{t'} g\,dt''\,dt'$ of (9) and (20).
+    pub fn double_integral(&self) -> Expo {
+        self.integral().integral()
+    }
+
+    /// The paper's operator $\tilde L(\delta)[g] = e^{-\delta t}\int_0^t e^{\delta s} g(s)\,ds$.
+    pub fn op_l(&self, delta: &Poly) -> Expo {
+        self.shift_rate(&-delta).integral().shift_rate(delta)
+    }
+
+    /// Exact Taylor coefficient of $t^n$ at $t = 0$.
+    pub fn taylor_coeff(&self, n: u32) -> RatFunc {
+        let mut acc = RatFunc::zero();
+        for ((r, k), v) in &self.parts {
+            if *k > n {
+                continue;
+            }
+            let j = n - k;
+            // (-r)^j / j!
+            let jf = (1..=j).fold(Q::one(), |a, i| a * qi(i as i64));
+            let rp = (-r).pow(j);
+            let term = v * &RatFunc::from_poly(rp.scale(&(Q::one() / jf)));
+            acc = &acc + &term;
+        }
+        acc
+    }
+
+    /// Substitutes a symbol by a value in every coefficient and rate.
+    pub fn subst(&self, s: super::poly::Sym, value: &Q) -> Option<Expo> {
+        let pv = Poly::constant(value.clone());
+        let rv = RatFunc::from_q(value.clone());
+        let mut out = Expo::zero();
+        for ((r, k), v) in &self.parts {
+            out.add_part(r.subst(s, &pv), *k, v.subst(s, &rv)?);
+        }
+        Some(out)
+    }
+
+    /// Plain text: `c*t^k*exp(-rate*t) + ...`.
+    pub fn to_text(&self) -> String {
+        if self.is_zero() {
+            return "0".into();
+        }
+        let parts: Vec<String> = self
+            .parts
+            .iter()
+            .map(|((r, k), v)| {
+                let mut s = format!("({})", v.to_text());
+                if *k > 0 {
+                    s.push_str(&if *k == 1 {
+                        "*t".to_string()
+                    } else {
+                        format!("*t^{k}")
+                    });
+                }
+                if !r.is_zero() {
+                    s.push_str(&format!("*exp(-({})*t)", r.to_text()));
+                }
+                s
+            })
+            .collect();
+        parts.join(" + ")
+    }
+
+    /// LaTeX.
+    pub fn to_latex(&self) -> String {
+        if self.is_zero() {
+            return "0".into();
+        }
+        let parts: Vec<String> = self
+            .parts
+            .iter()
+            .map(|((r, k), v)| {
+                let mut s = format!("\\left({}\\right)", v.to_latex());
+                if *k > 0 {
+                    s.push_str(&if *k == 1 {
+                        " t".to_string()
+                    } else {
+                        format!(" t^{{{k}}}")
+                    });
+                }
+                if !r.is_zero() {
+                    s.push_str(&format!(" e^{{-\\left({}\\right) t}}", r.to_latex()));
+                }
+                s
+            })
+            .collect();
+        parts.join(" + ")
+    }
+}
+
+impl std::ops::Add for &Expo {
+    type Output = Expo;
+    fn add(self, o: &Expo) -> Expo {
+        let mut out = self.clone();
+        for ((r, k), v) in &o.parts {
+            out.add_part(r.clone(), *k, v.clone());
+        }
+        out
+    }
+}
+
+impl std::ops::Sub for &Expo {
+    type Output = Expo;
+    fn sub(self, o: &Expo) -> Expo {
+        let mut out = self.clone();
+        for ((r, k), v) in &o.parts {
+            out.add_part(r.clone(), *k, -v);
+        }
+        out
+    }
+}
+
+impl std::ops::Neg for &Expo {
+    type Output = Expo;
+    fn neg(self) -> Expo {
+        &Expo::zero() - self
+    }
+}
+
+impl std::ops::Mul for &Expo {
+    type Output = Expo;
+    fn mul(self, o: &Expo) -> Expo {
+        let mut out = Expo::zero();
+        for ((r1, k1), v1) in &self.parts {
+            for ((r2, k2), v2) in &o.parts {
+                out.add_part(r1 + r2, k1 + k2, v1 * v2);
+            }
+        }
+        out
+    }
+}
+
+/// `Zero` for generic code and proptest.
+impl Zero for Expo {
+    fn zero() -> Self {
+        Expo::default()
+    }
+    fn is_zero(&self) -> bool {
+        self.parts.is_empty()
+    }
+}
+
+impl std::ops::Add for Expo {
+    type Output = Expo;
+    fn add(self, o: Expo) -> Expo {
+        &self + &o
+    }
+}

@@ -1,0 +1,304 @@
+//! The Adomian series of the cone equation, 000_92d54b11128ea1ec.txt eqs. (18)-(23).
+//!
+//! Equation (11) with the operator of section 2, integrated twice as in (9), is the integral
+//! equation (20):
+//! $$z(t) = V_0 t - A_8 \iint [\tilde L(\alpha) - \tilde L(\gamma)][z^2]
+//!               - A_9 \iint [\tilde L(\alpha) - \tilde L(\gamma)][B(z)],$$
+//! with $z = \sum_k a_k$ (19), $a_0 = V_0 t$ and
+//! $$a_{k+1} = -A_8 \iint [\tilde L(\alpha)-\tilde L(\gamma)][A_k]
+//!             -A_9 \iint [\tilde L(\alpha)-\tilde L(\gamma)][B_k],\qquad
+//!   A_k = \sum_{i+j=k} a_i a_j .$$
+//! The viscous term is read two ways: $B = d(z^2)/dt = 2 z \dot z$ (what $(\eta/E)\,d/dt$ acting
+//! on $z^2$ gives, so $B_k = \dot A_k$) and $B = z\dot z$ as printed in (18)
+//! ($B_k = \sum_{i+j=k} a_i \dot a_j$).
+//!
+//! [`printed_a1`] transcribes (22) literally; [`compare_parts`] sets it beside the derived term,
+//! part by part. [`taylor_reference`] is an independent check: the same equation as the ODE
+//! $(D+\alpha)(D+\gamma)\ddot z = -(\gamma-\alpha)[A_8 z^2 + A_9 B(z)]$ solved by a power-series
+//! recursion that shares no code with the Adomian construction.
+
+use super::AlgebraError;
+use super::expo::Expo;
+use super::poly::{Poly, Q, qi};
+use super::ratfunc::RatFunc;
+use num_traits::One;
+
+/// How the viscous term of (18) is read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Viscous {
+    /// $B = d(z^2)/dt = 2 z \dot z$, what the operator $(\eta/E)\,d/dt$ gives.
+    TwoZZ,
+    /// $B = z \dot z$, as printed in (18).
+    ZZ,
+}
+
+impl Viscous {
+    /// Command-line name (`2zz`, `zz`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Viscous::TwoZZ => "2zz",
+            Viscous::ZZ => "zz",
+        }
+    }
+}
+
+/// The series' parameters, each a symbol or an exact value.
+#[derive(Clone, Debug)]
+pub struct SeriesParams {
+    /// $\alpha$ (1/s), a rate of the operator.
+    pub alpha: Poly,
+    /// $\gamma$ (1/s), the other rate.
+    pub gamma: Poly,
+    /// $V_0$ (m/s), the impact velocity.
+    pub v0: Poly,
+    /// $A_8 = A_7 E\zeta/m_s$ as printed (the elastic coefficient of (20)).
+    pub a8: Poly,
+    /// $A_9 = A_7\eta\zeta/m_s$ as printed (the viscous coefficient of (20)).
+    pub a9: Poly,
+}
+
+impl SeriesParams {
+    /// All five symbolic.
+    pub fn symbolic() -> Self {
+        SeriesParams {
+            alpha: Poly::sym("alpha"),
+            gamma: Poly::sym("gamma"),
+            v0: Poly::sym("v0"),
+            a8: Poly::sym("a8"),
+            a9: Poly::sym("a9"),
+        }
+    }
+
+    /// Replaces the named parameter by an exact value; `Err` for an unknown name.
+    pub fn set(&mut self, name: &str, value: Q) -> Result<(), AlgebraError> {
+        let slot = match name {
+            "alpha" => &mut self.alpha,
+            "gamma" => &mut self.gamma,
+            "v0" => &mut self.v0,
+            "a8" => &mut self.a8,
+            "a9" => &mut self.a9,
+            _ => {
+                return Err(AlgebraError::UnknownSymbol {
+                    name: name.into(),
+                    allowed: "alpha, gamma, v0, a8, a9".into(),
+                });
+            }
+        };
+        *slot = Poly::constant(value);
+        Ok(())
+    }
+
+    fn rf(p: &Poly) -> RatFunc {
+        RatFunc::from_poly(p.clone())
+    }
+}
+
+/// $[\tilde L(\alpha) - \tilde L(\gamma)][g]$.
+pub fn op_diff(g: &Expo, p: &SeriesParams) -> Expo {
+    &g.op_l(&p.alpha) - &g.op_l(&p.gamma)
+}
+
+/// The Adomian terms $a_0, \dots, a_N$ of (19)-(20).
+pub fn adomian_terms(p: &SeriesParams, order: usize, visc: Viscous) -> Vec<Expo> {
+    let mut a: Vec<Expo> = vec![Expo::monomial(SeriesParams::rf(&p.v0), 1)];
+    let mut da: Vec<Expo> = vec![a[0].deriv()];
+    let a8 = SeriesParams::rf(&p.a8);
+    let a9 = SeriesParams::rf(&p.a9);
+    for k in 0..order {
+        let mut ak = Expo::zero();
+        let mut bk = Expo::zero();
+        for i in 0..=k {
+            ak = &ak + &(&a[i] * &a[k - i]);
+            if visc == Viscous::ZZ {
+                bk = &bk + &(&a[i] * &da[k - i]);
+            }
+        }
+        if visc == Viscous::TwoZZ {
+            bk = ak.deriv();
+        }
+        let elastic = op_diff(&ak, p).double_integral().scale(&a8);
+        let viscous = op_diff(&bk, p).double_integral().scale(&a9);
+        let next = &(-&elastic) - &viscous;
+        da.push(next.deriv());
+        a.push(next);
+    }
+    a
+}
+
+/// The sum $a_0 + \dots + a_N$.
+pub fn partial_sum(terms: &[Expo]) -> Expo {
+    terms.iter().fold(Expo::zero(), |acc, t| &acc + t)
+}
+
+/// $a_1$ exactly as printed in (22) of 000_92d54b11128ea1ec.txt.
+pub fn printed_a1(p: &SeriesParams) -> Result<Expo, AlgebraError> {
+    let al = SeriesParams::rf(&p.alpha);
+    let ga = SeriesParams::rf(&p.gamma);
+    let v2 = &SeriesParams::rf(&p.v0) * &SeriesParams::rf(&p.v0);
+    let a8 = SeriesParams::rf(&p.a8);
+    let a9 = SeriesParams::rf(&p.a9);
+    let inv = |x: &RatFunc, e: i32, what: &str| {
+        x.powi(-e).ok_or(AlgebraError::DivisionByZero {
+            what: format!("{what} in (22)"),
+        })
+    };
+    // d(j) = 1/alpha^j - 1/gamma^j
+    let d = |j: i32| -> Result<RatFunc, AlgebraError> {
+        Ok(&inv(&al, j, "alpha")? - &inv(&ga, j, "gamma")?)
+    };
+    let c = |x: i64, y: i64| RatFunc::from_q(Q::new(x.into(), y.into()));
+    let mut out = Expo::zero();
+    // -V0^2 A8/12 (1/a - 1/g) t^4
+    out = &out + &Expo::monomial(&(&(&v2 * &a8) * &d(1)?) * &c(-1, 12), 4);
+    // + V0^2 (A8/3 (1/a^2 - 1/g^2) - A9/3 (1/a - 1/g)) t^3
+    let t3 = &(&(&a8 * &d(2)?) * &c(1, 3)) - &(&(&a9 * &d(1)?) * &c(1, 3));
+    out = &out + &Expo::monomial(&v2 * &t3, 3);
+    // - V0^2 (A8 (1/a^3 - 1/g^3) + A9 (1/a^2 - 1/g^2)) t^2
+    let t2 = &(&a8 * &d(3)?) + &(&a9 * &d(2)?);
+    out = &out + &Expo::monomial(-&(&v2 * &t2), 2);
+    // + 6 A8 V0^2 (1/a^4 - 1/g^4) t - 4 A9 V0^2 (1/a^3 - 1/g^3) t
+    let t1 = &(&(&a8 * &d(4)?) * &c(6, 1)) - &(&(&a9 * &d(3)?) * &c(4, 1));
+    out = &out + &Expo::monomial(&v2 * &t1, 1);
+    // + 6 A8 V0^2 (e^{-a t}/a^5 - e^{-g t}/g^5) - 4 A9 V0^2 (e^{-a t}/a^4 - e^{-g t}/g^4)
+    let ea = &(&(&a8 * &inv(&al, 5, "alpha")?) * &c(6, 1))
+        - &(&(&a9 * &inv(&al, 4, "alpha")?) * &c(4, 1));
+    let eg = &(&(&a8 * &inv(&ga, 5, "gamma")?) * &c(-6, 1))
+        + &(&(&a9 * &inv(&ga, 4, "gamma")?) * &c(4, 1));
+    out = &out + &Expo::part(&v2 * &ea, 0, p.alpha.clone());
+    out = &out + &Expo::part(&v2 * &eg, 0, p.gamma.clone());
+    // - 6 A8 V0^2 (1/a^5 - 1/g^5) + 4 A9 V0^2 (1/a^4 - 1/g^4)
+    let t0 = &(&(&a8 * &d(5)?) * &c(-6, 1)) + &(&(&a9 * &d(4)?) * &c(4, 1));
+    out = &out + &Expo::monomial(&v2 * &t0, 0);
+    Ok(out)
+}
+
+/// One part of a term-by-term comparison.
+#[derive(Clone, Debug)]
+pub struct PartComparison {
+    /// Power of $t$.
+    pub t_power: u32,
+    /// Rate $\beta$ of $e^{-\beta t}$.
+    pub rate: Poly,
+    /// Derived coefficient (zero if the part is absent).
+    pub derived: RatFunc,
+    /// Printed coefficient (zero if absent).
+    pub printed: RatFunc,
+    /// Exact equality.
+    pub agrees: bool,
+}
+
+/// Compares two exponential polynomials part by part (each power of t, each exponential).
+pub fn compare_parts(derived: &Expo, printed: &Expo) -> Vec<PartComparison> {
+    let mut keys: Vec<(Poly, u32)> = derived
+        .parts()
+        .chain(printed.parts())
+        .map(|(k, _)| k.clone())
+        .collect();
+    keys.sort();
+    keys.dedup();
+    let find = |e: &Expo, key: &(Poly, u32)| {
+        e.parts()
+            .find(|(k, _)| *k == key)
+            .map_or(RatFunc::zero(), |(_, v)| v.clone())
+    };
+    keys.into_iter()
+        .map(|key| {
+            let d = find(derived, &key);
+            let p = find(printed, &key);
+            PartComparison {
+                t_power: key.1,
+                rate: key.0.clone(),
+                agrees: d == p,
+                derived: d,
+                printed: p,
+            }
+        })
+        .collect()
+}
+
+/// Taylor coefficients $c_0..c_n$ of the exact solution of the cone equation, from the ODE form
+/// $(D+\alpha)(D+\gamma)\ddot z = -(\gamma-\alpha)[A_8 z^2 + A_9 B(z)]$ with
+/// $z(0)=0$, $\dot z(0) = V_0$, $\ddot z(0) = \dddot z(0) = 0$: an independent second method.
+pub fn taylor_reference(p: &SeriesParams, n: usize, visc: Viscous) -> Vec<RatFunc> {
+    let rf = SeriesParams::rf;
+    let (al, ga) = (rf(&p.alpha), rf(&p.gamma));
+    let (a8, a9) = (rf(&p.a8), rf(&p.a9));
+    let sum_rates = &al + &ga;
+    let prod_rates = &al * &ga;
+    let gap = &ga - &al;
+    let mut c: Vec<RatFunc> = vec![RatFunc::zero(), rf(&p.v0), RatFunc::zero(), RatFunc::zero()];
+    let q = |x: usize| RatFunc::from_q(qi(x as i64));
+    // w = z'': w_j = (j+2)(j+1) c_{j+2}
+    let w = |c: &[RatFunc], j: usize| &c[j + 2] * &q((j + 2) * (j + 1));
+    let mut k = 0;
+    while c.len() <= n {
+        // order t^k of the equation gives c_{k+4}
+        let mut z2 = RatFunc::zero();
+        let mut b = RatFunc::zero();
+        for i in 0..=k {
+            z2 = &z2 + &(&c[i] * &c[k - i]);
+            // (z z')_k = sum_i c_i (k-i+1) c_{k-i+1}
+            b = &b + &(&(&c[i] * &c[k - i + 1]) * &q(k - i + 1));
+        }
+        if visc == Viscous::TwoZZ {
+            b = b.scale(&qi(2));
+        }
+        let rhs = -&(&gap * &(&(&a8 * &z2) + &(&a9 * &b)));
+        let lower = &(&(&sum_rates * &w(&c, k + 1)) * &q(k + 1)) + &(&prod_rates * &w(&c, k));
+        let top = &rhs - &lower;
+        let denom = Q::one() / qi(((k + 1) * (k + 2) * (k + 3) * (k + 4)) as i64);
+        c.push(top.scale(&denom));
+        k += 1;
+    }
+    c.truncate(n + 1);
+    c
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn numeric() -> SeriesParams {
+        let mut p = SeriesParams::symbolic();
+        p.set("alpha", Q::new((-3).into(), 1.into())).unwrap();
+        p.set("gamma", Q::new(5.into(), 2.into())).unwrap();
+        p.set("v0", Q::new(2.into(), 1.into())).unwrap();
+        p.set("a8", Q::new(7.into(), 1.into())).unwrap();
+        p.set("a9", Q::new(1.into(), 3.into())).unwrap();
+        p
+    }
+
+    #[test]
+    fn partial_sums_match_independent_taylor_recursion() {
+        // Reference: the power-series recursion of the ODE form, a second method.
+        for visc in [Viscous::TwoZZ, Viscous::ZZ] {
+            let p = numeric();
+            let terms = adomian_terms(&p, 2, visc);
+            let reference = taylor_reference(&p, 12, visc);
+            for n_terms in 1..=3 {
+                let s = partial_sum(&terms[..n_terms]);
+                let valid = 4 * (n_terms - 1) + 4;
+                for (j, r) in reference.iter().enumerate().take(valid + 1) {
+                    assert_eq!(
+                        s.taylor_coeff(j as u32),
+                        *r,
+                        "visc {visc:?} N={n_terms} t^{j}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn higher_terms_vanish_to_second_order_at_zero() {
+        let p = SeriesParams::symbolic();
+        for visc in [Viscous::TwoZZ, Viscous::ZZ] {
+            let terms = adomian_terms(&p, 2, visc);
+            for a in &terms[1..] {
+                for j in 0..=2 {
+                    assert!(a.taylor_coeff(j).is_zero());
+                }
+            }
+        }
+    }
+}

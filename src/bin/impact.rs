@@ -1,0 +1,123 @@
+//! `impact`: run one computation of impactcheck from the command line.
+
+use clap::{Parser, Subcommand, ValueEnum};
+use impactcheck::algebra::series::Viscous;
+use impactcheck::cli::{self, Format};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "impact",
+    version,
+    about = "Derive a paper's terms exactly, or run one scene",
+    long_about = "impact: the per-computation front end of impactcheck.\n\n\
+        `impact series` builds the Adomian terms a0..aN of the cone equation of \
+        000_92d54b11128ea1ec.txt (18)-(20) exactly; `impact galerkin` derives the plate \
+        coefficients A1..A7 of (16) for a mode (m, n) and sets each beside the printed one."
+)]
+struct Args {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Fmt {
+    Text,
+    Latex,
+    Json,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Visc {
+    /// B = d(z^2)/dt = 2 z z' (what the operator (eta/E) d/dt gives)
+    #[value(name = "2zz")]
+    TwoZZ,
+    /// B = z z' (as printed in (18))
+    #[value(name = "zz")]
+    ZZ,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Print the Adomian terms a0..aN of (19)-(20), exactly.
+    Series {
+        /// Highest term index N (0..=8).
+        #[arg(long, default_value_t = 2)]
+        order: usize,
+        /// How the viscous term of (18) is read.
+        #[arg(long, value_enum, default_value = "2zz")]
+        viscous: Visc,
+        /// Exact values, e.g. `alpha=-3,gamma=5/2,v0=1,a8=0.25,a9=1e-3`; symbols not given stay symbolic.
+        #[arg(long, default_value = "")]
+        at: String,
+        /// Times (s) at which to evaluate a0+...+aN stably in f64 (all symbols must be given).
+        #[arg(long, default_value = "")]
+        eval_t: String,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "text")]
+        format: Fmt,
+    },
+    /// Derive A1..A7 of (16) and the load sign for mode (m, n), m and n odd.
+    Galerkin {
+        /// Mode number along x (odd).
+        #[arg(long, default_value_t = 1)]
+        m: u32,
+        /// Mode number along y (odd).
+        #[arg(long, default_value_t = 1)]
+        n: u32,
+        /// Values for numbers beside the exact forms, e.g. `E=2e9,eta=1e6,nu=0.3,a=0.2,b=0.3,h=0.01,rho=1200,Kw=1e6,KG=1e3,CT=10,p1=0,p2=0,tan_theta=1`.
+        #[arg(long, default_value = "")]
+        at: String,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "text")]
+        format: Fmt,
+    },
+}
+
+fn fmt(f: Fmt) -> Format {
+    match f {
+        Fmt::Text => Format::Text,
+        Fmt::Latex => Format::Latex,
+        Fmt::Json => Format::Json,
+    }
+}
+
+fn run(args: Args) -> Result<String, cli::CliError> {
+    match args.command {
+        Command::Series {
+            order,
+            viscous,
+            at,
+            eval_t,
+            format,
+        } => {
+            let visc = match viscous {
+                Visc::TwoZZ => Viscous::TwoZZ,
+                Visc::ZZ => Viscous::ZZ,
+            };
+            let at = cli::parse_assignments("--at", &at)?;
+            let times = cli::parse_times(&eval_t)?;
+            cli::series(order, visc, &at, &times, fmt(format))
+        }
+        Command::Galerkin { m, n, at, format } => {
+            let at = cli::parse_assignments("--at", &at)?;
+            cli::galerkin(m, n, &at, fmt(format))
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    match run(Args::parse()) {
+        Ok(s) => {
+            print!("{s}");
+            if !s.ends_with('\n') {
+                println!();
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("impact: error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}

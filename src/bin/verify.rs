@@ -1,0 +1,2 @@
+//! `verify`: check every claim, write `reports/`.
+fn main() {}

@@ -1,0 +1,245 @@
+//! What the `impact` subcommands compute and print, reachable from tests.
+//!
+//! The binary parses arguments and calls these; each returns the text to print or an error that
+//! names the bad argument and what is allowed.
+
+use crate::algebra::AlgebraError;
+use crate::algebra::eval::{self, EvalError, Evaluator};
+use crate::algebra::expo::Expo;
+use crate::algebra::galerkin;
+use crate::algebra::poly::{Q, parse_q, rat_text};
+use crate::algebra::ratfunc::RatFunc;
+use crate::algebra::series::{self, SeriesParams, Viscous};
+use num_traits::Signed;
+use serde_json::{Value, json};
+use std::collections::BTreeMap;
+
+/// Output format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// Plain text.
+    Text,
+    /// LaTeX (series only).
+    Latex,
+    /// JSON.
+    Json,
+}
+
+/// Errors of the command layer.
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    /// From the exact algebra.
+    #[error(transparent)]
+    Algebra(#[from] AlgebraError),
+    /// From float evaluation.
+    #[error(transparent)]
+    Eval(#[from] EvalError),
+    /// A malformed argument.
+    #[error("{arg}: {message}")]
+    BadArgument {
+        /// The argument.
+        arg: String,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
+}
+
+/// Parses `NAME=VALUE,NAME=VALUE` into exact rationals, naming the bad item on error.
+pub fn parse_assignments(arg: &str, text: &str) -> Result<Vec<(String, Q)>, CliError> {
+    let mut out = Vec::new();
+    for item in text.split(',').filter(|s| !s.trim().is_empty()) {
+        let (name, value) = item.split_once('=').ok_or_else(|| CliError::BadArgument {
+            arg: arg.into(),
+            message: format!("`{item}` is not NAME=VALUE"),
+        })?;
+        let v = parse_q(value).ok_or_else(|| AlgebraError::BadRational {
+            text: value.trim().into(),
+        })?;
+        out.push((name.trim().to_string(), v));
+    }
+    Ok(out)
+}
+
+/// Parses a comma-separated list of times (s).
+pub fn parse_times(text: &str) -> Result<Vec<f64>, CliError> {
+    text.split(',')
+        .filter(|s| !s.trim().is_empty())
+        .map(|s| {
+            s.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|t| t.is_finite() && *t >= 0.0)
+                .ok_or_else(|| CliError::BadArgument {
+                    arg: "--eval-t".into(),
+                    message: format!("`{s}` is not a finite time >= 0 in seconds"),
+                })
+        })
+        .collect()
+}
+
+fn rf_json(r: &RatFunc) -> String {
+    match r.as_constant() {
+        Some(c) => q_text(&c),
+        None => r.to_text(),
+    }
+}
+
+/// An exact rational as `"-135232/2187"` or `"7"`.
+pub fn q_text(c: &Q) -> String {
+    let s = rat_text(&c.abs(), false);
+    if c.is_negative() { format!("-{s}") } else { s }
+}
+
+/// `impact series`.
+pub fn series(
+    order: usize,
+    viscous: Viscous,
+    at: &[(String, Q)],
+    eval_t: &[f64],
+    format: Format,
+) -> Result<String, CliError> {
+    if order > 8 {
+        return Err(CliError::BadArgument {
+            arg: "--order".into(),
+            message: format!("{order} is too large; allowed: 0..=8"),
+        });
+    }
+    let mut p = SeriesParams::symbolic();
+    for (name, v) in at {
+        p.set(name, v.clone())?;
+    }
+    let terms = series::adomian_terms(&p, order, viscous);
+    let values = if eval_t.is_empty() {
+        vec![]
+    } else {
+        let ev = Evaluator::new(&series::partial_sum(&terms))?;
+        eval_t
+            .iter()
+            .map(|t| Ok((*t, ev.eval(*t)?)))
+            .collect::<Result<Vec<_>, EvalError>>()?
+    };
+    Ok(match format {
+        Format::Json => {
+            let terms_json: Vec<Value> = terms
+                .iter()
+                .enumerate()
+                .map(|(k, e)| json!({"k": k, "parts": parts_json(e)}))
+                .collect();
+            let mut v = json!({"order": order, "viscous": viscous.name(), "terms": terms_json});
+            if !eval_t.is_empty() {
+                v["values"] = values
+                    .iter()
+                    .map(|(t, z)| json!({"t": t, "z": z}))
+                    .collect();
+            }
+            serde_json::to_string_pretty(&v).unwrap_or_default()
+        }
+        Format::Text => {
+            let mut s = String::new();
+            for (k, e) in terms.iter().enumerate() {
+                s.push_str(&format!("a{k}(t) = {}\n", e.to_text()));
+            }
+            for (t, z) in &values {
+                s.push_str(&format!("z({t}) = {z:.17e}\n"));
+            }
+            s
+        }
+        Format::Latex => {
+            let mut s = String::new();
+            for (k, e) in terms.iter().enumerate() {
+                s.push_str(&format!("a_{{{k}}}(t) = {}\n\n", e.to_latex()));
+            }
+            s
+        }
+    })
+}
+
+fn parts_json(e: &Expo) -> Vec<Value> {
+    e.parts()
+        .map(|((rate, k), c)| {
+            let rate = match rate.as_constant() {
+                Some(r) => q_text(&r),
+                None => rate.to_text(),
+            };
+            json!({"t_power": k, "rate": rate, "coeff": rf_json(c)})
+        })
+        .collect()
+}
+
+/// Fills `lambda = E/eta` and `zeta = (1-2 nu)/(4 lambda)` when not given, as (16) defines them.
+fn complete_values(values: &mut BTreeMap<String, f64>) {
+    if !values.contains_key("lambda")
+        && let (Some(e), Some(eta)) = (values.get("E"), values.get("eta"))
+    {
+        values.insert("lambda".into(), e / eta);
+    }
+    if !values.contains_key("zeta")
+        && let (Some(nu), Some(l)) = (values.get("nu"), values.get("lambda"))
+    {
+        values.insert("zeta".into(), (1.0 - 2.0 * nu) / (4.0 * l));
+    }
+}
+
+/// `impact galerkin`.
+pub fn galerkin(m: u32, n: u32, at: &[(String, Q)], format: Format) -> Result<String, CliError> {
+    let g = galerkin::derive(m, n)?;
+    let mut values: BTreeMap<String, f64> =
+        at.iter().map(|(k, v)| (k.clone(), eval_q(v))).collect();
+    complete_values(&mut values);
+    let with_values = !at.is_empty();
+    let verdict = |b: bool| if b { "agrees" } else { "differs" };
+    let mut coeffs = Vec::new();
+    for c in &g.coefficients {
+        let mut v = json!({
+            "name": c.name,
+            "derived": c.derived.to_text(),
+            "printed": c.printed.to_text(),
+            "verdict": verdict(c.agrees),
+            "derived_corrected_operator": c.derived_corrected_operator.to_text(),
+        });
+        if with_values {
+            v["derived_value"] = json!(eval::ratfunc_f64(&c.derived, &values)?);
+            v["printed_value"] = json!(eval::ratfunc_f64(&c.printed, &values)?);
+        }
+        coeffs.push(v);
+    }
+    let out = json!({
+        "m": m,
+        "n": n,
+        "coefficients": coeffs,
+        "load_sign": {"derived": g.load_sign, "printed": 1, "verdict": verdict(g.load_sign == 1)},
+    });
+    Ok(match format {
+        Format::Json => serde_json::to_string_pretty(&out).unwrap_or_default(),
+        _ => {
+            let mut s = format!("Galerkin coefficients of (16), mode (m, n) = ({m}, {n})\n");
+            for (c, v) in g.coefficients.iter().zip(&coeffs) {
+                s.push_str(&format!(
+                    "{}: {}\n  derived: {}\n  printed: {}\n",
+                    c.name,
+                    verdict(c.agrees),
+                    c.derived,
+                    c.printed
+                ));
+                if with_values {
+                    s.push_str(&format!(
+                        "  values: derived {:.6e}, printed {:.6e}\n",
+                        v["derived_value"].as_f64().unwrap_or(f64::NAN),
+                        v["printed_value"].as_f64().unwrap_or(f64::NAN)
+                    ));
+                }
+            }
+            s.push_str(&format!(
+                "load sign: derived {}, printed +1: {}\n",
+                g.load_sign,
+                verdict(g.load_sign == 1)
+            ));
+            s
+        }
+    })
+}
+
+fn eval_q(v: &Q) -> f64 {
+    use num_traits::ToPrimitive;
+    v.to_f64().unwrap_or(f64::NAN)
+}
