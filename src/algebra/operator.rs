@@ -57,10 +57,12 @@ pub fn printed_rates() -> (RatFunc, RatFunc, RatFunc) {
     let nu = RatFunc::sym("nu");
     let lam = RatFunc::sym("lambda");
     let one_m_2nu = &r(1) - &nu.scale(&qi(2));
-    let alpha = (&(&nu + &r(1)) * &lam).scale(&qi(-2))
+    let alpha = (&(&nu + &r(1)) * &lam)
+        .scale(&qi(-2))
         .div(&one_m_2nu)
         .expect("nz");
-    let gamma = (&(&nu - &r(1)) * &lam).scale(&qi(-2))
+    let gamma = (&(&nu - &r(1)) * &lam)
+        .scale(&qi(-2))
         .div(&one_m_2nu)
         .expect("nz");
     let zeta = one_m_2nu.div(&lam.scale(&qi(4))).expect("nz");

@@ -349,13 +349,35 @@ impl Poly {
     pub fn div_exact(&self, d: &Poly) -> Option<Poly> {
         let (dm, dc) = d.leading()?;
         let (dm, dc) = (dm.clone(), dc.clone());
-        let mut rem = self.clone();
+        // a single-symbol divisor `x` divides iff every monomial contains `x`
+        if d.len() == 1 {
+            let mut out = Poly::zero();
+            for (m, c) in &self.terms {
+                out.terms.insert(m.div(&dm)?, c / &dc);
+            }
+            return Some(out);
+        }
+        let mut rem = self.terms.clone();
         let mut quot = Poly::zero();
-        while let Some((m, c)) = rem.leading() {
+        while let Some((m, c)) = rem.iter().next_back() {
             let qm = m.div(&dm)?;
             let qc = c / &dc;
-            rem = &rem - &d.mul_monomial(&qm, &qc);
-            quot.add_term(qm, qc);
+            for (dm2, dc2) in &d.terms {
+                let key = dm2.mul(&qm);
+                let sub = dc2 * &qc;
+                match rem.get_mut(&key) {
+                    Some(v) => {
+                        *v -= sub;
+                        if v.is_zero() {
+                            rem.remove(&key);
+                        }
+                    }
+                    None => {
+                        rem.insert(key, -sub);
+                    }
+                }
+            }
+            quot.terms.insert(qm, qc);
         }
         Some(quot)
     }

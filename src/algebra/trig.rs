@@ -251,7 +251,8 @@ fn integral_1d(b: Basis, axis: Axis) -> RatFunc {
         Basis::Cos(0) => len,
         Basis::Cos(_) => RatFunc::zero(),
         Basis::Sin(k) if k % 2 == 0 => RatFunc::zero(),
-        Basis::Sin(k) => len.scale(&qi(2))
+        Basis::Sin(k) => len
+            .scale(&qi(2))
             .div(&RatFunc::sym("pi").scale(&qi(k as i64)))
             .expect("nz"),
         Basis::Pow(j) => len

@@ -1,1 +1,223 @@
-//! Markdown writers.
+//! Writers for `reports/`: Markdown per paper, a summary table, and `summary.json`. No physics.
+//!
+//! Files are rendered in memory, written to a temporary folder beside the target and only then
+//! moved into place, so a run that fails leaves the old reports untouched.
+
+use crate::verify::{Outcome, PaperClaims, Verdict};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// One claim in `summary.json`.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Eq)]
+pub struct SummaryClaim {
+    /// Claim id.
+    pub id: String,
+    /// Seed number ("000").
+    pub paper: String,
+    /// Equation as printed, "(22)".
+    pub equation: String,
+    /// Verdict.
+    pub verdict: Verdict,
+    /// Detail.
+    pub detail: String,
+}
+
+/// `summary.json`: sorted by id, no timestamps or timings.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Eq)]
+pub struct Summary {
+    /// Every claim.
+    pub claims: Vec<SummaryClaim>,
+    /// The version that wrote it.
+    pub generated_by: GeneratedBy,
+}
+
+/// Who wrote the summary.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Eq)]
+pub struct GeneratedBy {
+    /// Crate version.
+    pub version: String,
+}
+
+/// Builds the summary from outcomes.
+pub fn summary(outcomes: &[Outcome]) -> Summary {
+    let mut claims: Vec<SummaryClaim> = outcomes
+        .iter()
+        .map(|o| SummaryClaim {
+            id: o.id.clone(),
+            paper: o.paper.clone(),
+            equation: o.equation.clone(),
+            verdict: o.verdict,
+            detail: o.detail.clone(),
+        })
+        .collect();
+    claims.sort_by(|a, b| a.id.cmp(&b.id));
+    Summary {
+        claims,
+        generated_by: GeneratedBy {
+            version: env!("CARGO_PKG_VERSION").to_string(),
+        },
+    }
+}
+
+fn escape_cell(s: &str) -> String {
+    s.replace('|', "\\|").replace('\n', " ")
+}
+
+fn short(s: &str, n: usize) -> String {
+    if s.chars().count() <= n {
+        s.to_string()
+    } else {
+        format!("{}...", s.chars().take(n).collect::<String>())
+    }
+}
+
+fn anchor(id: &str) -> String {
+    id.replace('.', "").to_lowercase()
+}
+
+/// Renders every file of `reports/` as `(file name, contents)`.
+pub fn render(papers: &[PaperClaims], outcomes: &[Outcome]) -> Vec<(String, String)> {
+    let mut files = Vec::new();
+    let by_paper: BTreeMap<&str, Vec<&Outcome>> =
+        outcomes.iter().fold(BTreeMap::new(), |mut m, o| {
+            m.entry(o.paper.as_str()).or_insert_with(Vec::new).push(o);
+            m
+        });
+    // summary table
+    let mut readme = String::from(
+        "# impactcheck reports\n\nWritten by `cargo run --release --bin verify`; every verdict below is computed \
+         (exact algebra, or numerics with a stated error), none is typed in. Verdicts: `holds`, `fails`, \
+         `holds-with-correction`, `not-checkable`.\n\n",
+    );
+    let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
+    for o in outcomes {
+        *counts.entry(o.verdict.as_str()).or_default() += 1;
+    }
+    readme.push_str(&format!(
+        "{} claims: {}.\n\n",
+        outcomes.len(),
+        counts
+            .iter()
+            .map(|(k, v)| format!("{v} {k}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    ));
+    readme.push_str("| claim | paper | equation | verdict | detail |\n|---|---|---|---|---|\n");
+    for p in papers {
+        for o in by_paper.get(p.paper.as_str()).into_iter().flatten() {
+            readme.push_str(&format!(
+                "| [{}]({}#{}) | {} | {} | **{}** | {} |\n",
+                o.id,
+                p.report,
+                anchor(&o.id),
+                o.paper,
+                o.equation,
+                o.verdict.as_str(),
+                escape_cell(&short(&o.detail, 160))
+            ));
+        }
+    }
+    files.push(("README.md".to_string(), readme));
+    // one report per paper
+    for p in papers {
+        let mut md = format!(
+            "# {} — {}\n\nSource: `../shared/seeds/{}`. Each claim: what the paper states, what impactcheck \
+             computes, and the verdict.\n\n",
+            p.paper, p.title, p.file
+        );
+        md.push_str("| claim | equation | verdict |\n|---|---|---|\n");
+        let list = by_paper.get(p.paper.as_str()).cloned().unwrap_or_default();
+        for o in &list {
+            md.push_str(&format!(
+                "| [{}](#{}) | {} | **{}** |\n",
+                o.id,
+                anchor(&o.id),
+                o.equation,
+                o.verdict.as_str()
+            ));
+        }
+        md.push('\n');
+        for o in &list {
+            md.push_str(&format!(
+                "## {}\n\nEquation {}. The paper: `{}`\n\nVerdict: **{}**\n\n{}\n\n",
+                o.id,
+                o.equation,
+                o.quote,
+                o.verdict.as_str(),
+                o.detail
+            ));
+            if let Some(p) = &o.printed_latex {
+                md.push_str(&format!("Printed:\n\n$$\n{p}\n$$\n\n"));
+            }
+            if let Some(d) = &o.derived_latex {
+                md.push_str(&format!("Derived:\n\n$$\n{d}\n$$\n\n"));
+            }
+        }
+        files.push((p.report.clone(), md));
+    }
+    let json = serde_json::to_string_pretty(&summary(outcomes)).unwrap_or_default();
+    files.push(("summary.json".to_string(), json + "\n"));
+    files
+}
+
+/// Writes rendered files into `dir` through a temporary folder beside it.
+pub fn write_atomically(dir: &Path, files: &[(String, String)]) -> std::io::Result<()> {
+    let parent = dir.parent().unwrap_or(Path::new("."));
+    let name = dir
+        .file_name()
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_else(|| "reports".into());
+    let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
+    if tmp.exists() {
+        std::fs::remove_dir_all(&tmp)?;
+    }
+    std::fs::create_dir_all(&tmp)?;
+    let staged = (|| {
+        for (f, text) in files {
+            std::fs::write(tmp.join(f), text)?;
+        }
+        std::fs::create_dir_all(dir)?;
+        for (f, _) in files {
+            std::fs::rename(tmp.join(f), dir.join(f))?;
+        }
+        Ok(())
+    })();
+    let _ = std::fs::remove_dir_all(&tmp);
+    staged
+}
+
+/// Differences between a baseline summary and a fresh one: `(id, what changed)`.
+pub fn diff(baseline: &Summary, fresh: &Summary) -> Vec<(String, String)> {
+    let old: BTreeMap<&str, &SummaryClaim> =
+        baseline.claims.iter().map(|c| (c.id.as_str(), c)).collect();
+    let new: BTreeMap<&str, &SummaryClaim> =
+        fresh.claims.iter().map(|c| (c.id.as_str(), c)).collect();
+    let mut out = Vec::new();
+    for (id, n) in &new {
+        match old.get(id) {
+            None => out.push((
+                id.to_string(),
+                format!("new claim, verdict {}", n.verdict.as_str()),
+            )),
+            Some(o) if o.verdict != n.verdict => out.push((
+                id.to_string(),
+                format!("verdict {} -> {}", o.verdict.as_str(), n.verdict.as_str()),
+            )),
+            Some(o) if o.detail != n.detail || o.equation != n.equation => out.push((
+                id.to_string(),
+                format!(
+                    "detail changed:\n    was: {}\n    now: {}",
+                    o.detail, n.detail
+                ),
+            )),
+            _ => {}
+        }
+    }
+    for id in old.keys() {
+        if !new.contains_key(id) {
+            out.push((id.to_string(), "claim removed".into()));
+        }
+    }
+    out
+}

@@ -1,0 +1,416 @@
+//! Checks of 000_92d54b11128ea1ec.txt: the operator of section 2, (13), (15)-(18), (21)-(23).
+//!
+//! Every verdict is the outcome of an exact comparison in [`crate::algebra`]; the detail quotes
+//! the derived and printed expressions and their difference.
+
+use super::{ClaimSpec, Outcome, PaperClaims, Verdict, VerifyError};
+use crate::algebra::dims::{self, Dim};
+use crate::algebra::expo::Expo;
+use crate::algebra::galerkin::{self, Galerkin};
+use crate::algebra::identity21;
+use crate::algebra::operator::{self, OperatorCheck};
+use crate::algebra::poly::{Poly, Sym, q};
+use crate::algebra::ratfunc::RatFunc;
+use crate::algebra::series::{self, SeriesParams, Viscous};
+use std::collections::BTreeMap;
+
+/// Expensive exact results shared between claims.
+#[derive(Default)]
+pub struct Context {
+    operator: Option<OperatorCheck>,
+    galerkin: BTreeMap<(u32, u32), Galerkin>,
+    a1: Option<(Expo, Expo, Expo)>,
+}
+
+impl Context {
+    fn operator(&mut self) -> &OperatorCheck {
+        self.operator.get_or_insert_with(operator::check)
+    }
+
+    fn galerkin(&mut self, id: &str, m: u32, n: u32) -> Result<&Galerkin, VerifyError> {
+        if let std::collections::btree_map::Entry::Vacant(slot) = self.galerkin.entry((m, n)) {
+            let g = galerkin::derive(m, n).map_err(|source| VerifyError::Algebra {
+                id: id.into(),
+                source,
+            })?;
+            slot.insert(g);
+        }
+        Ok(&self.galerkin[&(m, n)])
+    }
+
+    /// (derived a1 with B = 2zz', derived a1 with B = zz', printed a1), all symbolic.
+    fn a1(&mut self, id: &str) -> Result<&(Expo, Expo, Expo), VerifyError> {
+        if self.a1.is_none() {
+            let p = SeriesParams::symbolic();
+            let two = series::adomian_terms(&p, 1, Viscous::TwoZZ).remove(1);
+            let one = series::adomian_terms(&p, 1, Viscous::ZZ).remove(1);
+            let printed = series::printed_a1(&p).map_err(|source| VerifyError::Algebra {
+                id: id.into(),
+                source,
+            })?;
+            self.a1 = Some((two, one, printed));
+        }
+        Ok(self.a1.as_ref().expect("just set"))
+    }
+}
+
+fn outcome(paper: &PaperClaims, c: &ClaimSpec, verdict: Verdict, detail: String) -> Outcome {
+    Outcome {
+        id: c.id.clone(),
+        paper: paper.paper.clone(),
+        equation: c.equation.clone(),
+        quote: c.quote.clone(),
+        verdict,
+        detail,
+        printed_latex: None,
+        derived_latex: None,
+    }
+}
+
+fn holds(b: bool) -> Verdict {
+    if b { Verdict::Holds } else { Verdict::Fails }
+}
+
+fn dim_text(d: &Result<Dim, dims::DimIssue>) -> String {
+    match d {
+        Ok(d) => d.to_string(),
+        Err(e) => format!("inconsistent ({e})"),
+    }
+}
+
+fn modes(c: &ClaimSpec) -> Vec<[u32; 2]> {
+    if c.modes.is_empty() {
+        vec![[1, 1]]
+    } else {
+        c.modes.clone()
+    }
+}
+
+/// Checks one claim of paper 000.
+pub fn check(
+    ctx: &mut Context,
+    paper: &PaperClaims,
+    c: &ClaimSpec,
+) -> Result<Outcome, VerifyError> {
+    let bad = |message: &str| VerifyError::BadClaim {
+        id: c.id.clone(),
+        message: message.into(),
+    };
+    Ok(match c.check.as_str() {
+        "operator-poles" => {
+            let op = ctx.operator();
+            let mut o = outcome(
+                paper,
+                c,
+                holds(op.poles_agree),
+                format!(
+                    "the derived operator's denominator {} vanishes at D = -alpha and D = -gamma: {}",
+                    op.derived.denom(),
+                    op.poles_agree
+                ),
+            );
+            o.derived_latex = Some(format!(
+                "\\frac{{\\tilde E}}{{1-\\tilde\\nu^2}} = {}",
+                op.derived.to_latex()
+            ));
+            o
+        }
+        "operator-constant" => {
+            let op = ctx.operator();
+            let agrees = op.derived_constant == op.printed_constant;
+            let mut o = outcome(
+                paper,
+                c,
+                holds(agrees),
+                format!(
+                    "with the printed alpha, gamma the operator is c [1 + D/lambda][L(alpha) - L(gamma)] with derived c = {}, printed c = E zeta = {}; derived/printed = {}",
+                    op.derived_constant, op.printed_constant, op.ratio
+                ),
+            );
+            o.printed_latex = Some(format!("c = E\\zeta = {}", op.printed_constant.to_latex()));
+            o.derived_latex = Some(format!("c = {}", op.derived_constant.to_latex()));
+            o
+        }
+        "operator-elastic-limit" => {
+            let op = ctx.operator();
+            let printed_ok = op.printed_elastic == op.elastic;
+            let derived_ok = op.derived_elastic == op.elastic;
+            let mut o = outcome(
+                paper,
+                c,
+                holds(printed_ok),
+                format!(
+                    "at D = 0: printed operator gives {}, derived gives {} (E/(1-nu^2) = {}: {}); printed/elastic = {}",
+                    op.printed_elastic,
+                    op.derived_elastic,
+                    op.elastic,
+                    if derived_ok {
+                        "derived agrees"
+                    } else {
+                        "derived differs"
+                    },
+                    op.printed_elastic
+                        .div(&op.elastic)
+                        .map(|r| r.to_text())
+                        .unwrap_or_default()
+                ),
+            );
+            o.printed_latex = Some(op.printed_elastic.to_latex());
+            o.derived_latex = Some(op.derived_elastic.to_latex());
+            o
+        }
+        "operator-dimension" => {
+            let op = ctx.operator();
+            let ok = op.printed_dim == Ok(Dim::PRESSURE);
+            outcome(
+                paper,
+                c,
+                holds(ok),
+                format!(
+                    "dimension of the printed operator: {}; of the derived one: {}; a modulus is {}",
+                    dim_text(&op.printed_dim),
+                    dim_text(&op.derived_dim),
+                    Dim::PRESSURE
+                ),
+            )
+        }
+        "operator-growing-mode" => {
+            // alpha as printed, as a function of nu at lambda = 1: its sign over nu in (-1, 1/2)
+            let op = ctx.operator();
+            let at = |nu: Poly| {
+                op.alpha
+                    .subst(Sym::new("nu"), &RatFunc::from_poly(nu))
+                    .and_then(|r| r.subst(Sym::new("lambda"), &RatFunc::one()))
+                    .and_then(|r| r.as_constant())
+            };
+            // alpha(nu) = -2(1+nu)/(1-2nu) * lambda has no zero or pole inside (-1, 1/2): its
+            // numerator vanishes only at nu = -1 and its denominator only at nu = 1/2, so the
+            // sign at one interior point is the sign everywhere.
+            let num_roots_outside = op
+                .alpha
+                .subst(Sym::new("nu"), &RatFunc::from_q(q(-1, 1)))
+                .is_some_and(|r| r.is_zero());
+            let sample = at(Poly::constant(q(3, 10)));
+            let negative = sample.as_ref().is_some_and(|v| *v < q(0, 1));
+            outcome(
+                paper,
+                c,
+                holds(!negative),
+                format!(
+                    "alpha = {} is {} for every nu in (-1, 1/2) (zero only at nu = -1: {num_roots_outside}; alpha = {} at nu = 3/10, lambda = 1), so L(alpha) contains exp(|alpha| t): the constant-bulk-modulus law as printed has a growing mode of rate |alpha| = 2(1+nu)lambda/(1-2nu)",
+                    op.alpha,
+                    if negative { "negative" } else { "not negative" },
+                    sample.map(|v| crate::cli::q_text(&v)).unwrap_or_default()
+                ),
+            )
+        }
+        "airy" => {
+            let mut lines = Vec::new();
+            let mut all = true;
+            for [m, n] in modes(c) {
+                let g = ctx.galerkin(&c.id, m, n)?;
+                let ok = g.airy_derived == g.airy_printed;
+                all &= ok;
+                lines.push(format!(
+                    "({m},{n}): {} (derived coefficients of E~ f^2 cos(2 m pi x/a), cos(2 n pi y/b): {}, {}; printed {}, {})",
+                    if ok { "agrees" } else { "differs" },
+                    g.airy_derived.0,
+                    g.airy_derived.1,
+                    g.airy_printed.0,
+                    g.airy_printed.1
+                ));
+            }
+            outcome(paper, c, holds(all), lines.join("; "))
+        }
+        "load-sign" => {
+            let mut lines = Vec::new();
+            let mut all = true;
+            for [m, n] in modes(c) {
+                let g = ctx.galerkin(&c.id, m, n)?;
+                all &= g.load_sign == 1;
+                lines.push(format!(
+                    "({m},{n}): sin(m pi/2) sin(n pi/2) = {}",
+                    g.load_sign
+                ));
+            }
+            outcome(paper, c, holds(all), lines.join("; "))
+        }
+        "galerkin" => {
+            let name = c
+                .coefficient
+                .clone()
+                .ok_or_else(|| bad("needs `coefficient`"))?;
+            let mut lines = Vec::new();
+            let mut all = true;
+            let mut latex = None;
+            for [m, n] in modes(c) {
+                let g = ctx.galerkin(&c.id, m, n)?;
+                let k = g
+                    .coefficients
+                    .iter()
+                    .find(|k| k.name == name)
+                    .ok_or_else(|| bad("unknown coefficient"))?;
+                all &= k.agrees;
+                let mut line = format!(
+                    "({m},{n}): {}; derived {}; printed {}",
+                    if k.agrees { "agrees" } else { "differs" },
+                    k.derived,
+                    k.printed
+                );
+                if !k.agrees
+                    && let Some(r) = k.derived.div(&k.printed)
+                {
+                    line.push_str(&format!("; derived/printed = {r}"));
+                }
+                if k.derived_corrected_operator != k.derived {
+                    line.push_str(&format!(
+                        "; with the derived operator constant: {} (term dimension {}, printed term {})",
+                        k.derived_corrected_operator,
+                        dim_text(&k.corrected_term_dim),
+                        dim_text(&k.printed_term_dim)
+                    ));
+                }
+                lines.push(line);
+                if latex.is_none() {
+                    latex = Some((k.printed.to_latex(), k.derived.to_latex(), m, n));
+                }
+            }
+            let mut o = outcome(paper, c, holds(all), lines.join("; "));
+            if let Some((p, d, m, n)) = latex {
+                o.printed_latex = Some(format!("{name}^{{({m},{n})}} = {p}"));
+                o.derived_latex = Some(format!("{name}^{{({m},{n})}} = {d}"));
+            }
+            o
+        }
+        "eq17-coefficient" => {
+            let printed = galerkin::printed_16(1, 1);
+            let (a4, a7) = (&printed[3], &printed[6]);
+            let same = a4 == a7;
+            let d4 = dims::dimension(a4);
+            let d7 = dims::dimension(a7);
+            outcome(
+                paper,
+                c,
+                holds(same),
+                format!(
+                    "(11) gives the coefficient A7 = {a7} (dimension {}); (17) prints A4 = {a4} (dimension {}); equal: {same}",
+                    dim_text(&d7),
+                    dim_text(&d4)
+                ),
+            )
+        }
+        "viscous-term" => {
+            // (eta/E) d/dt acting on z^2, for a generic z with z(0) = 0: compare with z z'
+            let z = &Expo::monomial(RatFunc::sym("v0"), 1)
+                + &Expo::part(RatFunc::sym("a8"), 2, Poly::sym("alpha"));
+            let b_true = (&z * &z).deriv();
+            let b_printed = &z * &z.deriv();
+            let ratio = (&b_true - &b_printed.scale(&RatFunc::from_q(q(2, 1)))).is_zero();
+            outcome(
+                paper,
+                c,
+                holds(b_true == b_printed),
+                format!(
+                    "the viscous part of E~ z^2 is (eta/E) d(z^2)/dt = 2 z z' (exactly twice the printed z z' for a test function z = {}: {ratio}); the printed M z z' halves the viscous term",
+                    z.to_text()
+                ),
+            )
+        }
+        "identity21" => {
+            let kmax = c.k_max.unwrap_or(12);
+            let results: Vec<_> = (0..=kmax).map(identity21::check).collect();
+            let ok = results.iter().all(|r| r.holds && r.solves_ode);
+            let failed: Vec<String> = results
+                .iter()
+                .filter(|r| !r.holds)
+                .map(|r| r.k.to_string())
+                .collect();
+            outcome(
+                paper,
+                c,
+                holds(ok),
+                if ok {
+                    format!(
+                        "both sides built independently agree exactly for k = 0..{kmax}, and the left side solves y' + alpha y = t^k, y(0) = 0"
+                    )
+                } else {
+                    format!("differs for k in {}", failed.join(", "))
+                },
+            )
+        }
+        "a1-part" => {
+            let part = c.part.clone().ok_or_else(|| bad("needs `part`"))?;
+            let (rate, k) = match part.as_str() {
+                "t4" => (Poly::zero(), 4),
+                "t3" => (Poly::zero(), 3),
+                "t2" => (Poly::zero(), 2),
+                "t1" => (Poly::zero(), 1),
+                "t0" => (Poly::zero(), 0),
+                "exp-alpha" => (Poly::sym("alpha"), 0),
+                "exp-gamma" => (Poly::sym("gamma"), 0),
+                _ => return Err(bad("part must be t0..t4, exp-alpha or exp-gamma")),
+            };
+            let (two, one, printed) = ctx.a1(&c.id)?.clone();
+            let pick = |e: &Expo| {
+                e.parts()
+                    .find(|((r, kk), _)| *r == rate && *kk == k)
+                    .map_or(RatFunc::zero(), |(_, v)| v.clone())
+            };
+            let (d2, d1, p) = (pick(&two), pick(&one), pick(&printed));
+            let ok = d2 == p;
+            let detail = if ok {
+                format!("derived (B = 2 z z') and printed agree: {p}")
+            } else {
+                format!(
+                    "derived with B = 2 z z': {d2}; with B = z z' as printed in (18): {d1}{}; printed: {p}; printed - derived(2zz) = {}",
+                    if d1 == p {
+                        " (the printed part matches this reading)"
+                    } else {
+                        ""
+                    },
+                    &p - &d2
+                )
+            };
+            let mut o = outcome(paper, c, holds(ok), detail);
+            o.printed_latex = Some(p.to_latex());
+            o.derived_latex = Some(d2.to_latex());
+            o
+        }
+        "a1-initial" => {
+            let (two, _, printed) = ctx.a1(&c.id)?.clone();
+            let derived_ok = (0..=2).all(|j| two.taylor_coeff(j).is_zero());
+            let vals: Vec<String> = (0..=2)
+                .map(|j| {
+                    let v = printed.taylor_coeff(j);
+                    let fact = [1, 1, 2][j as usize];
+                    format!("a1^({j})(0) = {}", v.scale(&q(fact, 1)))
+                })
+                .collect();
+            let ok = (0..=2).all(|j| printed.taylor_coeff(j).is_zero());
+            outcome(
+                paper,
+                c,
+                holds(ok),
+                format!(
+                    "printed (22): {}; the derived a1 meets all three: {derived_ok}",
+                    vals.join(", ")
+                ),
+            )
+        }
+        "eq23-sum" => {
+            let (two, _, printed) = ctx.a1(&c.id)?.clone();
+            let cmp = series::compare_parts(&two, &printed);
+            let differ = cmp.iter().filter(|x| !x.agrees).count();
+            outcome(
+                paper,
+                c,
+                holds(differ == 0),
+                format!(
+                    "(23) is a0 + a1 with a1 as printed in (22): {differ} of {} parts of a1 differ from the derived a1 (B = 2 z z'); see the (22) claims",
+                    cmp.len()
+                ),
+            )
+        }
+        other => return Err(bad(&format!("unknown check `{other}`"))),
+    })
+}

@@ -1,0 +1,187 @@
+//! The command-line contracts of `impact series`, `impact galerkin` and `verify`.
+
+use std::process::Command;
+
+fn impact(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args(args)
+        .output()
+        .expect("runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+#[test]
+fn series_json_with_every_symbol_is_exact_rationals() {
+    let (code, out, err) = impact(&[
+        "series",
+        "--order",
+        "2",
+        "--at",
+        "alpha=-3,gamma=5/2,v0=1,a8=0.25,a9=1e-3",
+        "--format",
+        "json",
+        "--eval-t",
+        "0.05,0.1",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("json");
+    let terms = v["terms"].as_array().expect("terms");
+    assert_eq!(terms.len(), 3);
+    assert_eq!(terms[0]["k"], 0);
+    // a0 = v0 t = 1 * t^1 * exp(0)
+    assert_eq!(
+        terms[0]["parts"][0],
+        serde_json::json!({"t_power": 1, "rate": "0", "coeff": "1"})
+    );
+    for t in terms {
+        for p in t["parts"].as_array().expect("parts") {
+            for key in ["coeff", "rate"] {
+                let s = p[key].as_str().expect("string");
+                assert!(
+                    impactcheck::algebra::poly::parse_q(s).is_some(),
+                    "{key} = {s} is not an exact rational"
+                );
+            }
+            assert_ne!(p["coeff"], "0", "zero coefficient not dropped");
+        }
+    }
+    let values = v["values"].as_array().expect("values");
+    assert_eq!(values.len(), 2);
+    // a0 + a1 + a2 at t = 0.05 is close to v0 t = 0.05 (the correction is O(t^5))
+    let z = values[0]["z"].as_f64().expect("number");
+    assert!((z - 0.05).abs() < 1e-3, "{z}");
+}
+
+#[test]
+fn series_parts_with_equal_key_are_merged() {
+    let (_, out, _) = impact(&[
+        "series",
+        "--order",
+        "3",
+        "--at",
+        "alpha=1,gamma=2,v0=1,a8=1,a9=1",
+        "--format",
+        "json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&out).expect("json");
+    for t in v["terms"].as_array().expect("terms") {
+        let mut keys: Vec<(i64, String)> = t["parts"]
+            .as_array()
+            .expect("parts")
+            .iter()
+            .map(|p| {
+                (
+                    p["t_power"].as_i64().expect("int"),
+                    p["rate"].as_str().expect("s").to_string(),
+                )
+            })
+            .collect();
+        let n = keys.len();
+        keys.sort();
+        keys.dedup();
+        assert_eq!(
+            keys.len(),
+            n,
+            "duplicate (t_power, rate) in term {}",
+            t["k"]
+        );
+    }
+}
+
+#[test]
+fn bad_rational_is_a_clear_error() {
+    let (code, _, err) = impact(&["series", "--at", "alpha=abc"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("abc") && err.contains("rational"), "{err}");
+    let (code, _, err) = impact(&["series", "--at", "beta=1"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("beta") && err.contains("alpha, gamma"),
+        "{err}"
+    );
+    let (code, _, err) = impact(&["series", "--eval-t", "0.1"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("no value"), "{err}");
+}
+
+#[test]
+fn galerkin_json_contract() {
+    let (code, out, err) = impact(&["galerkin", "--m", "1", "--n", "3", "--format", "json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("json");
+    assert_eq!(v["m"], 1);
+    assert_eq!(v["n"], 3);
+    let names: Vec<&str> = v["coefficients"]
+        .as_array()
+        .expect("array")
+        .iter()
+        .map(|c| c["name"].as_str().expect("name"))
+        .collect();
+    assert_eq!(names, ["A1", "A2", "A3", "A4", "A5", "A6", "A7"]);
+    // (1,3): the load enters with sin(pi/2) sin(3 pi/2) = -1 (by hand), the paper prints +1
+    assert_eq!(v["load_sign"]["derived"], -1);
+    assert_eq!(v["load_sign"]["printed"], 1);
+    assert_eq!(v["load_sign"]["verdict"], "differs");
+}
+
+#[test]
+fn galerkin_values() {
+    let (code, out, err) = impact(&[
+        "galerkin",
+        "--m",
+        "1",
+        "--n",
+        "1",
+        "--format",
+        "json",
+        "--at",
+        "E=2e9,eta=1e6,nu=0.3,a=0.2,b=0.3,h=0.01,rho=1200,Kw=1e6,KG=1e3,CT=10,p1=0,p2=0,tan_theta=1",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("json");
+    let a4 = &v["coefficients"][3];
+    // A4 = rho h a b / 4 = 1200 * 0.01 * 0.2 * 0.3 / 4 = 0.18 (by hand)
+    assert!((a4["derived_value"].as_f64().expect("num") - 0.18).abs() < 1e-12);
+    assert!((a4["printed_value"].as_f64().expect("num") - 0.18).abs() < 1e-12);
+}
+
+#[test]
+fn even_mode_is_rejected_with_range() {
+    let (code, _, err) = impact(&["galerkin", "--m", "2"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("m = 2") && err.contains("odd"), "{err}");
+}
+
+#[test]
+fn verify_writes_then_checks_clean_and_detects_a_change() {
+    let dir = std::env::temp_dir().join(format!("impactcheck-verify-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let claims = concat!(env!("CARGO_MANIFEST_DIR"), "/verify");
+    let run = |extra: &[&str]| {
+        let mut args = vec!["--claims", claims, "--out", dir.to_str().expect("utf8")];
+        args.extend_from_slice(extra);
+        Command::new(env!("CARGO_BIN_EXE_verify"))
+            .args(&args)
+            .output()
+            .expect("runs")
+    };
+    assert!(run(&[]).status.success());
+    for f in ["README.md", "summary.json", "000_cone_plate.md"] {
+        assert!(dir.join(f).exists(), "{f} missing");
+    }
+    assert!(run(&["--check"]).status.success());
+    // flip one verdict in the baseline: --check must fail and name the claim
+    let path = dir.join("summary.json");
+    let text = std::fs::read_to_string(&path).expect("read");
+    let changed = text.replacen("\"verdict\": \"holds\"", "\"verdict\": \"fails\"", 1);
+    assert_ne!(text, changed);
+    std::fs::write(&path, changed).expect("write");
+    let out = run(&["--check"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("verdict fails -> holds"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
