@@ -282,6 +282,47 @@ pub fn check(
             }
             o
         }
+        "eq15-dimensions" => {
+            let g = ctx.galerkin(&c.id, 1, 1)?;
+            let force = Ok(Dim::FORCE);
+            let mut bad_printed = Vec::new();
+            let mut bad_corrected = Vec::new();
+            for k in &g.coefficients {
+                if k.printed_term_dim != force {
+                    bad_printed.push(format!(
+                        "{} term: {}",
+                        k.name,
+                        dim_text(&k.printed_term_dim)
+                    ));
+                }
+                if k.corrected_term_dim != force {
+                    bad_corrected.push(format!(
+                        "{} term: {}",
+                        k.name,
+                        dim_text(&k.corrected_term_dim)
+                    ));
+                }
+            }
+            outcome(
+                paper,
+                c,
+                holds(bad_printed.is_empty()),
+                format!(
+                    "a force is {}; with the printed coefficients (16): {}; with the derived operator constant: {}",
+                    Dim::FORCE,
+                    if bad_printed.is_empty() {
+                        "every term is a force".to_string()
+                    } else {
+                        bad_printed.join(", ")
+                    },
+                    if bad_corrected.is_empty() {
+                        "every term is a force".to_string()
+                    } else {
+                        bad_corrected.join(", ")
+                    }
+                ),
+            )
+        }
         "eq17-coefficient" => {
             let printed = galerkin::printed_16(1, 1);
             let (a4, a7) = (&printed[3], &printed[6]);
