@@ -18,5 +18,6 @@
 
 pub mod algebra;
 pub mod cli;
+pub mod integrate;
 pub mod report;
 pub mod verify;

@@ -1,0 +1,283 @@
+//! DOP853: the explicit Runge-Kutta pair of Dormand and Prince, order 8 with the (5,3) error
+//! estimate and a 7th-order dense output (Hairer, Norsett, Wanner, Solving ODEs I, sec. II.10).
+//!
+//! Step control as in Hairer's code: with $e_5$ and $e_3$ the two error vectors scaled by
+//! $s_i = a + r\max(|y_i|, |\hat y_i|)$,
+//! $$\mathrm{err} = |h|\,\frac{\|e_5\|^2}{\sqrt{n(\|e_5\|^2 + 0.01\|e_3\|^2)}},\qquad
+//!   h_{new} = h / \max(1/6, \min(3, \mathrm{err}^{1/8}/0.9)),$$
+//! a rejected step shrinks by $\min(3, \mathrm{err}^{1/8}/0.9)$ and the step after a rejection
+//! may not grow. Stiffness: $h|\lambda| \approx |h|\,\|f(\hat y) - f(y_{12})\|/\|\hat y - y_{12}\|
+//! > 6.1$ on 15 consecutive tests.
+//!
+//! Evaluation counts: 2 at start (with the starting step), 12 per accepted and 11 per rejected
+//! step, 3 more per step whose dense output is used.
+
+use super::dop853_tableau::{A, C, D, E3, E5};
+use super::{IntegrateError, OdeSystem, Options, Stats, Stepper, initial_step};
+
+const SAFE: f64 = 0.9;
+const FACC1: f64 = 1.0 / 0.333;
+const FACC2: f64 = 1.0 / 6.0;
+const EXPO1: f64 = 1.0 / 8.0;
+
+/// The DOP853 stepper; all buffers are allocated in [`Dop853::new`].
+pub struct Dop853 {
+    n: usize,
+    t: f64,
+    t_old: f64,
+    h: f64,
+    h_old: f64,
+    hmax: f64,
+    rtol: f64,
+    atol: f64,
+    y: Vec<f64>,
+    y_old: Vec<f64>,
+    y_new: Vec<f64>,
+    y_stage: Vec<f64>,
+    y12: Vec<f64>,
+    k: Vec<Vec<f64>>,
+    cont: Vec<Vec<f64>>,
+    facold: f64,
+    reject: bool,
+    have_fsal: bool,
+    dense_ready: bool,
+    stats: Stats,
+    iasti: u32,
+    nonsti: u32,
+    stiff: bool,
+    fixed: Option<f64>,
+}
+
+impl Dop853 {
+    /// Prepares a solve from `(t0, y0)`: evaluates $f(t_0, y_0)$ and the starting step.
+    pub fn new<S: OdeSystem>(sys: &S, t0: f64, y0: &[f64], t_end: f64, opts: &Options) -> Self {
+        let n = y0.len();
+        let mut k = vec![vec![0.0; n]; 16];
+        sys.rhs(t0, y0, &mut k[0]);
+        let hmax = opts.hmax.unwrap_or(t_end - t0).abs();
+        let mut wy = vec![0.0; n];
+        let mut wf = vec![0.0; n];
+        let h = match opts.fixed_step.or(opts.h0) {
+            Some(h) => h,
+            None => initial_step(
+                sys, t0, y0, &k[0], 8, hmax, opts.rtol, opts.atol, &mut wy, &mut wf,
+            ),
+        };
+        Dop853 {
+            n,
+            t: t0,
+            t_old: t0,
+            h,
+            h_old: h,
+            hmax,
+            rtol: opts.rtol,
+            atol: opts.atol,
+            y: y0.to_vec(),
+            y_old: y0.to_vec(),
+            y_new: vec![0.0; n],
+            y_stage: wy,
+            y12: wf,
+            k,
+            cont: vec![vec![0.0; n]; 7],
+            facold: 1e-4,
+            reject: false,
+            have_fsal: false,
+            dense_ready: false,
+            stats: Stats {
+                rhs_evals: if opts.h0.is_some() { 1 } else { 2 },
+                ..Stats::default()
+            },
+            iasti: 0,
+            nonsti: 0,
+            stiff: false,
+            fixed: opts.fixed_step,
+        }
+    }
+
+    fn stage_state(&mut self, i: usize, h: f64) {
+        let (y, ys, k) = (&self.y, &mut self.y_stage, &self.k);
+        ys.copy_from_slice(y);
+        for &(j, a) in A[i] {
+            let kj = &k[j];
+            for m in 0..ys.len() {
+                ys[m] += h * a * kj[m];
+            }
+        }
+    }
+}
+
+impl Stepper for Dop853 {
+    fn step<S: OdeSystem>(&mut self, sys: &S, t_end: f64) -> Result<(), IntegrateError> {
+        if self.have_fsal {
+            let (head, tail) = self.k.split_at_mut(12);
+            head[0].copy_from_slice(&tail[0]);
+        }
+        let n = self.n;
+        let mut last = false;
+        loop {
+            let mut h = self.h;
+            if 0.1 * h.abs() <= self.t.abs() * f64::EPSILON {
+                return Err(IntegrateError::StepSizeTooSmall { t: self.t, h });
+            }
+            if self.t + 1.01 * h - t_end > 0.0 {
+                h = t_end - self.t;
+                last = true;
+            }
+            for (i, ci) in C.iter().enumerate().take(12).skip(1) {
+                self.stage_state(i, h);
+                let (ys, t) = (&self.y_stage, self.t + ci * h);
+                sys.rhs(t, ys, &mut self.k[i]);
+                if i == 11 {
+                    self.y12.copy_from_slice(ys);
+                }
+            }
+            self.stats.rhs_evals += 11;
+            // new solution: row 12 of A holds the weights b
+            self.y_new.copy_from_slice(&self.y);
+            for &(j, b) in A[12] {
+                for m in 0..n {
+                    self.y_new[m] += h * b * self.k[j][m];
+                }
+            }
+            if self.y_new.iter().any(|v| !v.is_finite()) {
+                return Err(IntegrateError::NonFinite { t: self.t + h });
+            }
+            // error estimate
+            let (mut err5, mut err3) = (0.0, 0.0);
+            for m in 0..n {
+                let sk = self.atol + self.rtol * self.y[m].abs().max(self.y_new[m].abs());
+                let e5: f64 = E5.iter().map(|&(j, e)| e * self.k[j][m]).sum();
+                let e3: f64 = E3.iter().map(|&(j, e)| e * self.k[j][m]).sum();
+                err5 += (e5 / sk) * (e5 / sk);
+                err3 += (e3 / sk) * (e3 / sk);
+            }
+            let mut deno = err5 + 0.01 * err3;
+            if deno <= 0.0 {
+                deno = 1.0;
+            }
+            let err = h.abs() * err5 * (1.0 / (n as f64 * deno)).sqrt();
+            let err = if self.fixed.is_some() { 0.0 } else { err };
+            let fac11 = err.powf(EXPO1);
+            let fac = (fac11 / SAFE).clamp(FACC2, FACC1);
+            let mut h_new = h / fac;
+            if err <= 1.0 {
+                self.facold = err.max(1e-4);
+                let (ynew, t_new) = (&self.y_new, self.t + h);
+                sys.rhs(t_new, ynew, &mut self.k[12]);
+                self.stats.rhs_evals += 1;
+                self.stats.steps += 1;
+                // stiffness test
+                let (mut stnum, mut stden) = (0.0, 0.0);
+                for m in 0..n {
+                    stnum += (self.k[12][m] - self.k[11][m]).powi(2);
+                    stden += (self.y_new[m] - self.y12[m]).powi(2);
+                }
+                if stden > 0.0 {
+                    let hlamb = h.abs() * (stnum / stden).sqrt();
+                    if hlamb > 6.1 {
+                        self.nonsti = 0;
+                        self.iasti += 1;
+                        if self.iasti >= 15 {
+                            self.stiff = true;
+                        }
+                    } else {
+                        self.nonsti += 1;
+                        if self.nonsti == 6 {
+                            self.iasti = 0;
+                        }
+                    }
+                }
+                self.y_old.copy_from_slice(&self.y);
+                self.y.copy_from_slice(&self.y_new);
+                self.t_old = self.t;
+                self.t = if last { t_end } else { self.t + h };
+                self.h_old = h;
+                if h_new.abs() > self.hmax {
+                    h_new = self.hmax;
+                }
+                if self.reject {
+                    h_new = h_new.min(h);
+                }
+                if let Some(hf) = self.fixed {
+                    h_new = hf;
+                }
+                self.reject = false;
+                self.have_fsal = true;
+                self.dense_ready = false;
+                self.h = h_new;
+                return Ok(());
+            }
+            h_new = h / FACC1.min(fac11 / SAFE);
+            self.reject = true;
+            if self.stats.steps >= 1 {
+                self.stats.rejected += 1;
+            }
+            last = false;
+            self.h = h_new;
+        }
+    }
+
+    fn t_old(&self) -> f64 {
+        self.t_old
+    }
+    fn t(&self) -> f64 {
+        self.t
+    }
+    fn y(&self) -> &[f64] {
+        &self.y
+    }
+    fn h(&self) -> f64 {
+        self.h
+    }
+
+    fn prepare_dense<S: OdeSystem>(&mut self, sys: &S) {
+        if self.dense_ready {
+            return;
+        }
+        let n = self.n;
+        let h = self.h_old;
+        // extra stages 13..15 from the old state
+        for i in 13..16 {
+            self.y_stage.copy_from_slice(&self.y_old);
+            for &(j, a) in A[i] {
+                for m in 0..n {
+                    self.y_stage[m] += h * a * self.k[j][m];
+                }
+            }
+            let t = self.t_old + C[i] * h;
+            sys.rhs(t, &self.y_stage, &mut self.k[i]);
+        }
+        self.stats.rhs_evals += 3;
+        for m in 0..n {
+            let dy = self.y[m] - self.y_old[m];
+            let bspl = h * self.k[0][m] - dy;
+            self.cont[0][m] = dy;
+            self.cont[1][m] = bspl;
+            self.cont[2][m] = dy - h * self.k[12][m] - bspl;
+            for (r, row) in D.iter().enumerate() {
+                self.cont[3 + r][m] = h * row.iter().map(|&(j, d)| d * self.k[j][m]).sum::<f64>();
+            }
+        }
+        self.dense_ready = true;
+    }
+
+    fn dense(&self, t: f64, out: &mut [f64]) {
+        let h = self.h_old;
+        let s = (t - self.t_old) / h;
+        let s1 = 1.0 - s;
+        for (m, o) in out.iter_mut().enumerate() {
+            let c = |r: usize| self.cont[r][m];
+            // y = y_old + s(c0 + s1(c1 + s(c2 + s1(c3 + s(c4 + s1(c5 + s c6))))))
+            let inner = c(3) + s * (c(4) + s1 * (c(5) + s * c(6)));
+            *o = self.y_old[m] + s * (c(0) + s1 * (c(1) + s * (c(2) + s1 * inner)));
+        }
+    }
+
+    fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    fn stiff(&self) -> bool {
+        self.stiff
+    }
+}

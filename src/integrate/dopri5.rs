@@ -1,0 +1,290 @@
+//! DOPRI5: the Dormand-Prince 5(4) pair with Shampine's 4th-order dense output (Hairer,
+//! Norsett, Wanner, Solving ODEs I, sec. II.5 and II.6).
+//!
+//! Step control as in Hairer's code, a PI controller with $\beta = 0.04$:
+//! $$\mathrm{err} = \sqrt{\tfrac1n\sum_i (e_i/s_i)^2},\quad
+//!   f = \frac{\mathrm{err}^{0.2 - 0.75\beta}}{\mathrm{err}_{old}^{\beta}},\quad
+//!   h_{new} = h/\max(1/10, \min(5, f/0.9)).$$
+//! Stiffness: $|h|\,\|k_7 - k_6\|/\|\hat y - y_6\| > 3.25$ on 15 consecutive tests. Evaluation
+//! counts: 2 at start, 6 per step (first same as last).
+
+use super::{IntegrateError, OdeSystem, Options, Stats, Stepper, initial_step};
+
+const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
+const A: [&[f64]; 7] = [
+    &[],
+    &[0.2],
+    &[3.0 / 40.0, 9.0 / 40.0],
+    &[44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0],
+    &[
+        19372.0 / 6561.0,
+        -25360.0 / 2187.0,
+        64448.0 / 6561.0,
+        -212.0 / 729.0,
+    ],
+    &[
+        9017.0 / 3168.0,
+        -355.0 / 33.0,
+        46732.0 / 5247.0,
+        49.0 / 176.0,
+        -5103.0 / 18656.0,
+    ],
+    &[
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ],
+];
+const E: [f64; 7] = [
+    71.0 / 57600.0,
+    0.0,
+    -71.0 / 16695.0,
+    71.0 / 1920.0,
+    -17253.0 / 339200.0,
+    22.0 / 525.0,
+    -1.0 / 40.0,
+];
+const DENSE: [f64; 7] = [
+    -12715105075.0 / 11282082432.0,
+    0.0,
+    87487479700.0 / 32700410799.0,
+    -10690763975.0 / 1880347072.0,
+    701980252875.0 / 199316789632.0,
+    -1453857185.0 / 822651844.0,
+    69997945.0 / 29380423.0,
+];
+const SAFE: f64 = 0.9;
+const FACC1: f64 = 1.0 / 0.2;
+const FACC2: f64 = 1.0 / 10.0;
+const BETA: f64 = 0.04;
+
+/// The DOPRI5 stepper.
+pub struct Dopri5 {
+    n: usize,
+    t: f64,
+    t_old: f64,
+    h: f64,
+    h_old: f64,
+    hmax: f64,
+    rtol: f64,
+    atol: f64,
+    y: Vec<f64>,
+    y_old: Vec<f64>,
+    y_new: Vec<f64>,
+    y_stage: Vec<f64>,
+    y6: Vec<f64>,
+    k: Vec<Vec<f64>>,
+    cont: Vec<Vec<f64>>,
+    facold: f64,
+    reject: bool,
+    have_fsal: bool,
+    dense_ready: bool,
+    stats: Stats,
+    iasti: u32,
+    nonsti: u32,
+    stiff: bool,
+    fixed: Option<f64>,
+}
+
+impl Dopri5 {
+    /// Prepares a solve.
+    pub fn new<S: OdeSystem>(sys: &S, t0: f64, y0: &[f64], t_end: f64, opts: &Options) -> Self {
+        let n = y0.len();
+        let mut k = vec![vec![0.0; n]; 7];
+        sys.rhs(t0, y0, &mut k[0]);
+        let hmax = opts.hmax.unwrap_or(t_end - t0).abs();
+        let mut wy = vec![0.0; n];
+        let mut wf = vec![0.0; n];
+        let h = match opts.fixed_step.or(opts.h0) {
+            Some(h) => h,
+            None => initial_step(
+                sys, t0, y0, &k[0], 5, hmax, opts.rtol, opts.atol, &mut wy, &mut wf,
+            ),
+        };
+        Dopri5 {
+            n,
+            t: t0,
+            t_old: t0,
+            h,
+            h_old: h,
+            hmax,
+            rtol: opts.rtol,
+            atol: opts.atol,
+            y: y0.to_vec(),
+            y_old: y0.to_vec(),
+            y_new: vec![0.0; n],
+            y_stage: wy,
+            y6: wf,
+            k,
+            cont: vec![vec![0.0; n]; 4],
+            facold: 1e-4,
+            reject: false,
+            have_fsal: false,
+            dense_ready: false,
+            stats: Stats {
+                rhs_evals: if opts.h0.is_some() { 1 } else { 2 },
+                ..Stats::default()
+            },
+            iasti: 0,
+            nonsti: 0,
+            stiff: false,
+            fixed: opts.fixed_step,
+        }
+    }
+}
+
+impl Stepper for Dopri5 {
+    fn step<S: OdeSystem>(&mut self, sys: &S, t_end: f64) -> Result<(), IntegrateError> {
+        if self.have_fsal {
+            let (head, tail) = self.k.split_at_mut(6);
+            head[0].copy_from_slice(&tail[0]);
+        }
+        let n = self.n;
+        let mut last = false;
+        loop {
+            let mut h = self.h;
+            if 0.1 * h.abs() <= self.t.abs() * f64::EPSILON {
+                return Err(IntegrateError::StepSizeTooSmall { t: self.t, h });
+            }
+            if self.t + 1.01 * h - t_end > 0.0 {
+                h = t_end - self.t;
+                last = true;
+            }
+            for i in 1..7 {
+                self.y_stage.copy_from_slice(&self.y);
+                for (j, a) in A[i].iter().enumerate() {
+                    for m in 0..n {
+                        self.y_stage[m] += h * a * self.k[j][m];
+                    }
+                }
+                let t = if i >= 5 {
+                    self.t + h
+                } else {
+                    self.t + C[i] * h
+                };
+                sys.rhs(t, &self.y_stage, &mut self.k[i]);
+                if i == 5 {
+                    self.y6.copy_from_slice(&self.y_stage);
+                }
+                if i == 6 {
+                    self.y_new.copy_from_slice(&self.y_stage);
+                }
+            }
+            self.stats.rhs_evals += 6;
+            if self.y_new.iter().any(|v| !v.is_finite()) {
+                return Err(IntegrateError::NonFinite { t: self.t + h });
+            }
+            let mut err = 0.0;
+            for m in 0..n {
+                let sk = self.atol + self.rtol * self.y[m].abs().max(self.y_new[m].abs());
+                let e: f64 = h * (0..7).map(|j| E[j] * self.k[j][m]).sum::<f64>();
+                err += (e / sk) * (e / sk);
+            }
+            let err = (err / n as f64).sqrt();
+            let err = if self.fixed.is_some() { 0.0 } else { err };
+            let fac11 = err.powf(0.2 - BETA * 0.75);
+            let fac = fac11 / self.facold.powf(BETA);
+            let fac = (fac / SAFE).clamp(FACC2, FACC1);
+            let mut h_new = h / fac;
+            if err <= 1.0 {
+                self.facold = err.max(1e-4);
+                self.stats.steps += 1;
+                let (mut stnum, mut stden) = (0.0, 0.0);
+                for m in 0..n {
+                    stnum += (self.k[6][m] - self.k[5][m]).powi(2);
+                    stden += (self.y_new[m] - self.y6[m]).powi(2);
+                }
+                if stden > 0.0 {
+                    let hlamb = h.abs() * (stnum / stden).sqrt();
+                    if hlamb > 3.25 {
+                        self.nonsti = 0;
+                        self.iasti += 1;
+                        if self.iasti >= 15 {
+                            self.stiff = true;
+                        }
+                    } else {
+                        self.nonsti += 1;
+                        if self.nonsti == 6 {
+                            self.iasti = 0;
+                        }
+                    }
+                }
+                self.y_old.copy_from_slice(&self.y);
+                self.y.copy_from_slice(&self.y_new);
+                self.t_old = self.t;
+                self.t = if last { t_end } else { self.t + h };
+                self.h_old = h;
+                if h_new.abs() > self.hmax {
+                    h_new = self.hmax;
+                }
+                if self.reject {
+                    h_new = h_new.min(h);
+                }
+                if let Some(hf) = self.fixed {
+                    h_new = hf;
+                }
+                self.reject = false;
+                self.have_fsal = true;
+                self.dense_ready = false;
+                self.h = h_new;
+                return Ok(());
+            }
+            h_new = h / FACC1.min(fac11 / SAFE);
+            self.reject = true;
+            if self.stats.steps >= 1 {
+                self.stats.rejected += 1;
+            }
+            last = false;
+            self.h = h_new;
+        }
+    }
+
+    fn t_old(&self) -> f64 {
+        self.t_old
+    }
+    fn t(&self) -> f64 {
+        self.t
+    }
+    fn y(&self) -> &[f64] {
+        &self.y
+    }
+    fn h(&self) -> f64 {
+        self.h
+    }
+
+    fn prepare_dense<S: OdeSystem>(&mut self, _sys: &S) {
+        if self.dense_ready {
+            return;
+        }
+        let h = self.h_old;
+        for m in 0..self.n {
+            let dy = self.y[m] - self.y_old[m];
+            let bspl = h * self.k[0][m] - dy;
+            self.cont[0][m] = dy;
+            self.cont[1][m] = bspl;
+            self.cont[2][m] = dy - h * self.k[6][m] - bspl;
+            self.cont[3][m] = h * (0..7).map(|j| DENSE[j] * self.k[j][m]).sum::<f64>();
+        }
+        self.dense_ready = true;
+    }
+
+    fn dense(&self, t: f64, out: &mut [f64]) {
+        let s = (t - self.t_old) / self.h_old;
+        let s1 = 1.0 - s;
+        for (m, o) in out.iter_mut().enumerate() {
+            let c = |r: usize| self.cont[r][m];
+            *o = self.y_old[m] + s * (c(0) + s1 * (c(1) + s * (c(2) + s1 * c(3))));
+        }
+    }
+
+    fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    fn stiff(&self) -> bool {
+        self.stiff
+    }
+}

@@ -1,0 +1,241 @@
+//! Events $g(t, y) = 0$, located by root finding on the dense output, not by overshoot.
+//!
+//! Each accepted step $[t_a, t_b]$ is sampled at 8 equal sub-intervals of the dense output (no
+//! extra right-hand-side evaluations), so two sign changes inside one step are both seen unless
+//! they are closer than $h/8$. A crossing is refined by the Illinois variant of regula falsi to
+//! the floating-point resolution of $t$. The sign of the last non-zero value is tracked per event:
+//! a root at $t_0$ (or at a previous event) does not fire again; an exact zero at a sample point
+//! fires once. A non-finite $g$ is an error, never an endless loop.
+
+use super::{IntegrateError, Stepper};
+
+/// Which crossings count.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Direction {
+    /// From negative to positive.
+    Rising,
+    /// From positive to negative.
+    Falling,
+    /// Either.
+    Both,
+}
+
+/// An event function with its direction and whether it stops the solve.
+pub struct Event<'a> {
+    /// Name for reports.
+    pub name: String,
+    /// $g(t, y)$.
+    pub g: &'a (dyn Fn(f64, &[f64]) -> f64 + 'a),
+    /// Which crossings count.
+    pub direction: Direction,
+    /// Stop the solve when it fires.
+    pub terminal: bool,
+}
+
+impl<'a> Event<'a> {
+    /// A new event.
+    pub fn new(
+        name: &str,
+        g: &'a (dyn Fn(f64, &[f64]) -> f64 + 'a),
+        direction: Direction,
+        terminal: bool,
+    ) -> Self {
+        Event {
+            name: name.into(),
+            g,
+            direction,
+            terminal,
+        }
+    }
+
+    pub(crate) fn reborrow(&self) -> Event<'a> {
+        Event {
+            name: self.name.clone(),
+            g: self.g,
+            direction: self.direction,
+            terminal: self.terminal,
+        }
+    }
+}
+
+/// A located event.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EventHit {
+    /// Time (s).
+    pub t: f64,
+    /// Which event.
+    pub index: usize,
+    /// State at `t` (dense output).
+    pub y: Vec<f64>,
+    /// Whether it stops the solve.
+    pub terminal: bool,
+}
+
+const SAMPLES: usize = 8;
+
+pub(crate) struct Tracker<'e, 'a> {
+    events: &'e [Event<'a>],
+    last_sign: Vec<i8>,
+    g_prev: Vec<f64>,
+    hits: Vec<EventHit>,
+    g_now: Vec<f64>,
+}
+
+fn sign(v: f64) -> i8 {
+    if v > 0.0 {
+        1
+    } else if v < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
+impl<'e, 'a> Tracker<'e, 'a> {
+    pub(crate) fn new(
+        events: &'e [Event<'a>],
+        t0: f64,
+        y0: &[f64],
+        _n: usize,
+    ) -> Result<Self, IntegrateError> {
+        let mut g_prev = Vec::with_capacity(events.len());
+        for (index, e) in events.iter().enumerate() {
+            let v = (e.g)(t0, y0);
+            if !v.is_finite() {
+                return Err(IntegrateError::EventNonFinite { t: t0, index });
+            }
+            g_prev.push(v);
+        }
+        Ok(Tracker {
+            events,
+            last_sign: g_prev.iter().map(|v| sign(*v)).collect(),
+            g_now: g_prev.clone(),
+            g_prev,
+            hits: Vec::new(),
+        })
+    }
+
+    pub(crate) fn take_hits(&mut self) -> Vec<EventHit> {
+        std::mem::take(&mut self.hits)
+    }
+
+    /// Scans one accepted step; returns the first terminal hit, if any (all hits, terminal or
+    /// not, up to it are kept for `take_hits`).
+    pub(crate) fn scan<St: Stepper>(
+        &mut self,
+        st: &St,
+        ta: f64,
+        tb: f64,
+        buf: &mut [f64],
+    ) -> Result<Option<EventHit>, IntegrateError> {
+        let mut t_left = ta;
+        for j in 1..=SAMPLES {
+            let t_right = if j == SAMPLES {
+                tb
+            } else {
+                ta + (tb - ta) * (j as f64) / (SAMPLES as f64)
+            };
+            if j == SAMPLES {
+                buf.copy_from_slice(st.y());
+            } else {
+                st.dense(t_right, buf);
+            }
+            let mut found: Vec<EventHit> = Vec::new();
+            for (index, e) in self.events.iter().enumerate() {
+                let v = (e.g)(t_right, buf);
+                if !v.is_finite() {
+                    return Err(IntegrateError::EventNonFinite { t: t_right, index });
+                }
+                self.g_now[index] = v;
+                let s0 = self.last_sign[index];
+                let s1 = sign(v);
+                let crossed = s0 != 0 && s1 != s0;
+                if crossed {
+                    let rising = s0 < 0;
+                    let wanted = match e.direction {
+                        super::Direction::Both => true,
+                        super::Direction::Rising => rising,
+                        super::Direction::Falling => !rising,
+                    };
+                    if wanted {
+                        let t = if s1 == 0 {
+                            t_right
+                        } else {
+                            locate(st, e, t_left, self.g_prev[index], t_right, v)?
+                        };
+                        let mut y = vec![0.0; buf.len()];
+                        st.dense(t, &mut y);
+                        found.push(EventHit {
+                            t,
+                            index,
+                            y,
+                            terminal: e.terminal,
+                        });
+                    }
+                }
+                if s1 != 0 || crossed {
+                    self.last_sign[index] = s1;
+                }
+                self.g_prev[index] = v;
+            }
+            found.sort_by(|a, b| a.t.total_cmp(&b.t));
+            if let Some(k) = found.iter().position(|h| h.terminal) {
+                found.truncate(k + 1);
+                let term = found[k].clone();
+                self.hits.extend(found);
+                return Ok(Some(term));
+            }
+            self.hits.extend(found);
+            t_left = t_right;
+        }
+        Ok(None)
+    }
+}
+
+/// Illinois regula falsi on $g(t, y(t))$ with $y$ from the dense output; returns the end of the
+/// final bracket on the far side of the crossing.
+fn locate<St: Stepper>(
+    st: &St,
+    e: &Event,
+    mut ta: f64,
+    mut ga: f64,
+    mut tb: f64,
+    mut gb: f64,
+) -> Result<f64, IntegrateError> {
+    let n = st.y().len();
+    let mut y = vec![0.0; n];
+    let mut side = 0i8;
+    for _ in 0..200 {
+        if (tb - ta).abs() <= 2.0 * f64::EPSILON * ta.abs().max(tb.abs()) + f64::MIN_POSITIVE {
+            break;
+        }
+        let mut t = (ta * gb - tb * ga) / (gb - ga);
+        if !(t > ta.min(tb) && t < ta.max(tb)) {
+            t = 0.5 * (ta + tb);
+        }
+        st.dense(t, &mut y);
+        let g = (e.g)(t, &y);
+        if !g.is_finite() {
+            return Err(IntegrateError::EventNonFinite { t, index: 0 });
+        }
+        if g == 0.0 {
+            return Ok(t);
+        }
+        if sign(g) == sign(gb) {
+            tb = t;
+            gb = g;
+            if side == 1 {
+                ga *= 0.5;
+            }
+            side = 1;
+        } else {
+            ta = t;
+            ga = g;
+            if side == -1 {
+                gb *= 0.5;
+            }
+            side = -1;
+        }
+    }
+    Ok(tb)
+}
