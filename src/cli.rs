@@ -243,3 +243,147 @@ fn eval_q(v: &Q) -> f64 {
     use num_traits::ToPrimitive;
     v.to_f64().unwrap_or(f64::NAN)
 }
+
+/// Errors of `impact run` and `impact sweep`.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// The scene is bad.
+    #[error(transparent)]
+    Scene(#[from] crate::scene::SceneError),
+    /// The solver could not meet its tolerance (with time and step size).
+    #[error("solver: {0}")]
+    Integrate(#[from] crate::integrate::IntegrateError),
+    /// A bad argument.
+    #[error("{arg}: {message}")]
+    BadArgument {
+        /// Argument.
+        arg: String,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+fn run_validated(scene: &crate::scene::Scene) -> Result<Value, RunError> {
+    match scene {
+        crate::scene::Scene::Hertz(s) => {
+            let model = crate::models::hertz::Hertz {
+                mass: s.mass,
+                k: s.k,
+                damping: s.damping,
+            };
+            let r = crate::models::hertz::run(
+                &model,
+                s.v0,
+                s.solve.rtol,
+                s.solve.atol,
+                s.solve.method,
+                s.solve.t_end,
+            )?;
+            Ok(json!({
+                "model": "hertz",
+                "method": s.solve.method.name(),
+                "state_size": 2,
+                "contact": {
+                    "ended": r.ended,
+                    "duration": r.duration,
+                    "peak_force": r.peak_force,
+                    "max_indentation": r.max_indentation,
+                },
+                "v_out": r.v_out,
+                "energy_lost": r.energy_lost,
+                "stats": r.stats,
+            }))
+        }
+    }
+}
+
+fn render_run(v: &Value, format: Format) -> String {
+    match format {
+        Format::Json => serde_json::to_string_pretty(v).unwrap_or_default(),
+        _ => {
+            let c = &v["contact"];
+            let s = &v["stats"];
+            format!(
+                "model {} ({}), state size {}\ncontact ended: {}\nduration: {} s\npeak force: {} N\nmax indentation: {} m\nv_out: {} m/s\nenergy lost: {} J\nwork: {} rhs evals, {} steps, {} rejected, {} events",
+                v["model"].as_str().unwrap_or(""),
+                v["method"].as_str().unwrap_or(""),
+                v["state_size"],
+                c["ended"],
+                c["duration"],
+                c["peak_force"],
+                c["max_indentation"],
+                v["v_out"],
+                v["energy_lost"],
+                s["rhs_evals"],
+                s["steps"],
+                s["rejected"],
+                s["events"]
+            )
+        }
+    }
+}
+
+/// `impact run SCENE.toml`.
+pub fn run_scene(path: &std::path::Path, format: Format) -> Result<String, RunError> {
+    let scene = crate::scene::load(path)?;
+    Ok(render_run(&run_validated(&scene)?, format))
+}
+
+/// `impact sweep SCENE.toml --param FIELD --values V1,V2,...`: one run per value, progress on
+/// stderr.
+pub fn sweep(
+    path: &std::path::Path,
+    param: &str,
+    values: &str,
+    format: Format,
+    progress: bool,
+) -> Result<String, RunError> {
+    let vals: Vec<f64> = values
+        .split(',')
+        .filter(|s| !s.trim().is_empty())
+        .map(|s| {
+            s.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| RunError::BadArgument {
+                    arg: "--values".into(),
+                    message: format!("`{s}` is not a finite number"),
+                })
+        })
+        .collect::<Result<_, _>>()?;
+    if vals.is_empty() {
+        return Err(RunError::BadArgument {
+            arg: "--values".into(),
+            message: "give at least one value, e.g. --values 0.1,1,10".into(),
+        });
+    }
+    let base = crate::scene::read_table(path)?;
+    let label = path.display().to_string();
+    let mut runs = Vec::new();
+    for (i, v) in vals.iter().enumerate() {
+        let mut t = base.clone();
+        crate::scene::set_field(&mut t, param, *v, &label)?;
+        let scene = crate::scene::parse_table(&t, &format!("{label} with {param} = {v}"))?;
+        let r = run_validated(&scene)?;
+        if progress {
+            eprintln!("sweep: {}/{} ({param} = {v})", i + 1, vals.len());
+        }
+        runs.push(json!({"value": v, "result": r}));
+    }
+    let out = json!({"param": param, "runs": runs});
+    Ok(match format {
+        Format::Json => serde_json::to_string_pretty(&out).unwrap_or_default(),
+        _ => runs
+            .iter()
+            .map(|r| {
+                format!(
+                    "{param} = {}\n{}\n",
+                    r["value"],
+                    render_run(&r["result"], Format::Text)
+                )
+            })
+            .collect::<Vec<_>>()
+            .join("\n"),
+    })
+}

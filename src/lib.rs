@@ -19,5 +19,7 @@
 pub mod algebra;
 pub mod cli;
 pub mod integrate;
+pub mod models;
 pub mod report;
+pub mod scene;
 pub mod verify;

@@ -39,6 +39,31 @@ enum Visc {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Run one scene (a TOML file naming a model, its parameters in SI units, how to solve).
+    Run {
+        /// The scene file.
+        scene: std::path::PathBuf,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "text")]
+        format: Fmt,
+    },
+    /// Run a scene once per value of one field, e.g. `--param impactor.v0 --values 0.1,1,10`.
+    Sweep {
+        /// The scene file.
+        scene: std::path::PathBuf,
+        /// Dotted field to vary.
+        #[arg(long)]
+        param: String,
+        /// Comma-separated values.
+        #[arg(long)]
+        values: String,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "text")]
+        format: Fmt,
+        /// No progress lines on stderr.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Print the Adomian terms a0..aN of (19)-(20), exactly.
     Series {
         /// Highest term index N (0..=8).
@@ -82,8 +107,16 @@ fn fmt(f: Fmt) -> Format {
     }
 }
 
-fn run(args: Args) -> Result<String, cli::CliError> {
+fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
     match args.command {
+        Command::Run { scene, format } => Ok(cli::run_scene(&scene, fmt(format))?),
+        Command::Sweep {
+            scene,
+            param,
+            values,
+            format,
+            quiet,
+        } => Ok(cli::sweep(&scene, &param, &values, fmt(format), !quiet)?),
         Command::Series {
             order,
             viscous,
@@ -97,11 +130,11 @@ fn run(args: Args) -> Result<String, cli::CliError> {
             };
             let at = cli::parse_assignments("--at", &at)?;
             let times = cli::parse_times(&eval_t)?;
-            cli::series(order, visc, &at, &times, fmt(format))
+            Ok(cli::series(order, visc, &at, &times, fmt(format))?)
         }
         Command::Galerkin { m, n, at, format } => {
             let at = cli::parse_assignments("--at", &at)?;
-            cli::galerkin(m, n, &at, fmt(format))
+            Ok(cli::galerkin(m, n, &at, fmt(format))?)
         }
     }
 }

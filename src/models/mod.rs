@@ -1,0 +1,3 @@
+//! Physical models, one per file, named by the physics. Models know nothing of reports.
+
+pub mod hertz;
