@@ -387,3 +387,40 @@ pub fn sweep(
             .join("\n"),
     })
 }
+
+/// `impact bench hertz`: times each method on $z'' = -\max(z,0)^{3/2}$, $z(0)=0$, $z'(0)=1$, from
+/// touch to $t = 3.218065459719043$ (the contact end), as the peer script compares against SciPy.
+/// Median of `repeats` solves per point; the error is the max-norm distance from the exact end
+/// state $(0, -1)$.
+pub fn bench_hertz(tols: &[f64], repeats: usize) -> Result<String, RunError> {
+    use crate::integrate::Method;
+    use crate::integrate::workprecision::work_precision;
+    let model = crate::models::hertz::Hertz {
+        mass: 1.0,
+        k: 1.0,
+        damping: 0.0,
+    };
+    let t_end = crate::models::hertz::TAU_UNDAMPED;
+    let points = work_precision(
+        &model,
+        0.0,
+        &[0.0, 1.0],
+        t_end,
+        &[0.0, -1.0],
+        &[Method::Dop853, Method::Dopri5, Method::Radau5],
+        tols,
+        repeats,
+    )?;
+    let out: Vec<Value> = points
+        .iter()
+        .map(|p| {
+            json!({"method": p.method.name(), "tol": p.tol, "rhs_evals": p.stats.rhs_evals,
+                   "steps": p.stats.steps, "rejected": p.stats.rejected, "seconds": p.seconds,
+                   "error": p.error})
+        })
+        .collect();
+    Ok(serde_json::to_string_pretty(
+        &json!({"problem": "hertz-unit", "t_end": t_end, "points": out}),
+    )
+    .unwrap_or_default())
+}

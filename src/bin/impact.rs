@@ -64,6 +64,17 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Time the integrators on a reference problem (used by benches/peers/peers.py).
+    Bench {
+        /// The problem: `hertz` (z'' = -max(z,0)^1.5 from touch to the end of contact).
+        problem: String,
+        /// Tolerances (rtol = atol).
+        #[arg(long, default_value = "1e-6,1e-9,1e-12")]
+        tols: String,
+        /// Solves per point (the median is reported).
+        #[arg(long, default_value_t = 301)]
+        repeats: usize,
+    },
     /// Print the Adomian terms a0..aN of (19)-(20), exactly.
     Series {
         /// Highest term index N (0..=8).
@@ -109,6 +120,17 @@ fn fmt(f: Fmt) -> Format {
 
 fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
     match args.command {
+        Command::Bench {
+            problem,
+            tols,
+            repeats,
+        } => {
+            if problem != "hertz" {
+                return Err(format!("unknown bench problem `{problem}`; allowed: hertz").into());
+            }
+            let tols = cli::parse_times(&tols)?;
+            Ok(cli::bench_hertz(&tols, repeats)?)
+        }
         Command::Run { scene, format } => Ok(cli::run_scene(&scene, fmt(format))?),
         Command::Sweep {
             scene,

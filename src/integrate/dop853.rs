@@ -35,8 +35,10 @@ pub struct Dop853 {
     y_new: Vec<f64>,
     y_stage: Vec<f64>,
     y12: Vec<f64>,
-    k: Vec<Vec<f64>>,
-    cont: Vec<Vec<f64>>,
+    /// Stage derivatives, stage `j` at `k[j*n..(j+1)*n]`.
+    k: Vec<f64>,
+    /// Dense-output coefficients, row `r` at `cont[r*n..(r+1)*n]`.
+    cont: Vec<f64>,
     facold: f64,
     reject: bool,
     have_fsal: bool,
@@ -52,15 +54,24 @@ impl Dop853 {
     /// Prepares a solve from `(t0, y0)`: evaluates $f(t_0, y_0)$ and the starting step.
     pub fn new<S: OdeSystem>(sys: &S, t0: f64, y0: &[f64], t_end: f64, opts: &Options) -> Self {
         let n = y0.len();
-        let mut k = vec![vec![0.0; n]; 16];
-        sys.rhs(t0, y0, &mut k[0]);
+        let mut k = vec![0.0; 16 * n];
+        sys.rhs(t0, y0, &mut k[..n]);
         let hmax = opts.hmax.unwrap_or(t_end - t0).abs();
         let mut wy = vec![0.0; n];
         let mut wf = vec![0.0; n];
         let h = match opts.fixed_step.or(opts.h0) {
             Some(h) => h,
             None => initial_step(
-                sys, t0, y0, &k[0], 8, hmax, opts.rtol, opts.atol, &mut wy, &mut wf,
+                sys,
+                t0,
+                y0,
+                &k[..n],
+                8,
+                hmax,
+                opts.rtol,
+                opts.atol,
+                &mut wy,
+                &mut wf,
             ),
         };
         Dop853 {
@@ -78,7 +89,7 @@ impl Dop853 {
             y_stage: wy,
             y12: wf,
             k,
-            cont: vec![vec![0.0; n]; 7],
+            cont: vec![0.0; 7 * n],
             facold: 1e-4,
             reject: false,
             have_fsal: false,
@@ -94,25 +105,24 @@ impl Dop853 {
         }
     }
 
-    fn stage_state(&mut self, i: usize, h: f64) {
-        let (y, ys, k) = (&self.y, &mut self.y_stage, &self.k);
-        ys.copy_from_slice(y);
-        for &(j, a) in A[i] {
-            let kj = &k[j];
-            for m in 0..ys.len() {
-                ys[m] += h * a * kj[m];
+    /// `out = base + h * sum_j A[i][j] k_j`.
+    fn combine(n: usize, k: &[f64], base: &[f64], row: &[(usize, f64)], h: f64, out: &mut [f64]) {
+        for m in 0..n {
+            let mut acc = 0.0;
+            for &(j, a) in row {
+                acc += a * k[j * n + m];
             }
+            out[m] = base[m] + h * acc;
         }
     }
 }
 
 impl Stepper for Dop853 {
     fn step<S: OdeSystem>(&mut self, sys: &S, t_end: f64) -> Result<(), IntegrateError> {
-        if self.have_fsal {
-            let (head, tail) = self.k.split_at_mut(12);
-            head[0].copy_from_slice(&tail[0]);
-        }
         let n = self.n;
+        if self.have_fsal {
+            self.k.copy_within(12 * n..13 * n, 0);
+        }
         let mut last = false;
         loop {
             let mut h = self.h;
@@ -124,21 +134,14 @@ impl Stepper for Dop853 {
                 last = true;
             }
             for (i, ci) in C.iter().enumerate().take(12).skip(1) {
-                self.stage_state(i, h);
-                let (ys, t) = (&self.y_stage, self.t + ci * h);
-                sys.rhs(t, ys, &mut self.k[i]);
-                if i == 11 {
-                    self.y12.copy_from_slice(ys);
-                }
+                Self::combine(n, &self.k, &self.y, A[i], h, &mut self.y_stage);
+                let t = self.t + ci * h;
+                sys.rhs(t, &self.y_stage, &mut self.k[i * n..(i + 1) * n]);
             }
+            self.y12.copy_from_slice(&self.y_stage);
             self.stats.rhs_evals += 11;
             // new solution: row 12 of A holds the weights b
-            self.y_new.copy_from_slice(&self.y);
-            for &(j, b) in A[12] {
-                for m in 0..n {
-                    self.y_new[m] += h * b * self.k[j][m];
-                }
-            }
+            Self::combine(n, &self.k, &self.y, A[12], h, &mut self.y_new);
             if self.y_new.iter().any(|v| !v.is_finite()) {
                 return Err(IntegrateError::NonFinite { t: self.t + h });
             }
@@ -146,8 +149,8 @@ impl Stepper for Dop853 {
             let (mut err5, mut err3) = (0.0, 0.0);
             for m in 0..n {
                 let sk = self.atol + self.rtol * self.y[m].abs().max(self.y_new[m].abs());
-                let e5: f64 = E5.iter().map(|&(j, e)| e * self.k[j][m]).sum();
-                let e3: f64 = E3.iter().map(|&(j, e)| e * self.k[j][m]).sum();
+                let e5: f64 = E5.iter().map(|&(j, e)| e * self.k[j * n + m]).sum();
+                let e3: f64 = E3.iter().map(|&(j, e)| e * self.k[j * n + m]).sum();
                 err5 += (e5 / sk) * (e5 / sk);
                 err3 += (e3 / sk) * (e3 / sk);
             }
@@ -163,13 +166,13 @@ impl Stepper for Dop853 {
             if err <= 1.0 {
                 self.facold = err.max(1e-4);
                 let (ynew, t_new) = (&self.y_new, self.t + h);
-                sys.rhs(t_new, ynew, &mut self.k[12]);
+                sys.rhs(t_new, ynew, &mut self.k[12 * n..13 * n]);
                 self.stats.rhs_evals += 1;
                 self.stats.steps += 1;
                 // stiffness test
                 let (mut stnum, mut stden) = (0.0, 0.0);
                 for m in 0..n {
-                    stnum += (self.k[12][m] - self.k[11][m]).powi(2);
+                    stnum += (self.k[12 * n + m] - self.k[11 * n + m]).powi(2);
                     stden += (self.y_new[m] - self.y12[m]).powi(2);
                 }
                 if stden > 0.0 {
@@ -238,24 +241,21 @@ impl Stepper for Dop853 {
         let h = self.h_old;
         // extra stages 13..15 from the old state
         for i in 13..16 {
-            self.y_stage.copy_from_slice(&self.y_old);
-            for &(j, a) in A[i] {
-                for m in 0..n {
-                    self.y_stage[m] += h * a * self.k[j][m];
-                }
-            }
+            Self::combine(n, &self.k, &self.y_old, A[i], h, &mut self.y_stage);
             let t = self.t_old + C[i] * h;
-            sys.rhs(t, &self.y_stage, &mut self.k[i]);
+            sys.rhs(t, &self.y_stage, &mut self.k[i * n..(i + 1) * n]);
         }
         self.stats.rhs_evals += 3;
+        let k = &self.k;
         for m in 0..n {
             let dy = self.y[m] - self.y_old[m];
-            let bspl = h * self.k[0][m] - dy;
-            self.cont[0][m] = dy;
-            self.cont[1][m] = bspl;
-            self.cont[2][m] = dy - h * self.k[12][m] - bspl;
+            let bspl = h * k[m] - dy;
+            self.cont[m] = dy;
+            self.cont[n + m] = bspl;
+            self.cont[2 * n + m] = dy - h * k[12 * n + m] - bspl;
             for (r, row) in D.iter().enumerate() {
-                self.cont[3 + r][m] = h * row.iter().map(|&(j, d)| d * self.k[j][m]).sum::<f64>();
+                self.cont[(3 + r) * n + m] =
+                    h * row.iter().map(|&(j, d)| d * k[j * n + m]).sum::<f64>();
             }
         }
         self.dense_ready = true;
@@ -266,7 +266,8 @@ impl Stepper for Dop853 {
         let s = (t - self.t_old) / h;
         let s1 = 1.0 - s;
         for (m, o) in out.iter_mut().enumerate() {
-            let c = |r: usize| self.cont[r][m];
+            let n = self.n;
+            let c = |r: usize| self.cont[r * n + m];
             // y = y_old + s(c0 + s1(c1 + s(c2 + s1(c3 + s(c4 + s1(c5 + s c6))))))
             let inner = c(3) + s * (c(4) + s1 * (c(5) + s * c(6)));
             *o = self.y_old[m] + s * (c(0) + s1 * (c(1) + s * (c(2) + s1 * inner)));
