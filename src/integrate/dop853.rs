@@ -18,7 +18,6 @@ use super::{IntegrateError, OdeSystem, Options, Stats, Stepper, initial_step};
 const SAFE: f64 = 0.9;
 const FACC1: f64 = 1.0 / 0.333;
 const FACC2: f64 = 1.0 / 6.0;
-const EXPO1: f64 = 1.0 / 8.0;
 
 /// The DOP853 stepper; all buffers are allocated in [`Dop853::new`].
 pub struct Dop853 {
@@ -160,7 +159,8 @@ impl Stepper for Dop853 {
             }
             let err = h.abs() * err5 * (1.0 / (n as f64 * deno)).sqrt();
             let err = if self.fixed.is_some() { 0.0 } else { err };
-            let fac11 = err.powf(EXPO1);
+            // err^(1/8) by three square roots: cheaper than powf, same value to an ulp
+            let fac11 = err.sqrt().sqrt().sqrt();
             let fac = (fac11 / SAFE).clamp(FACC2, FACC1);
             let mut h_new = h / fac;
             if err <= 1.0 {

@@ -477,17 +477,12 @@ pub(crate) fn initial_step<S: OdeSystem>(
     work_f: &mut [f64],
 ) -> f64 {
     // sums, not means, as in Hairer's HINIT
-    let sk: Vec<f64> = y.iter().map(|v| atol + rtol * v.abs()).collect();
-    let dnf: f64 = f0
-        .iter()
-        .zip(&sk)
-        .map(|(f, s)| (f / s) * (f / s))
-        .sum::<f64>();
-    let dny: f64 = y
-        .iter()
-        .zip(&sk)
-        .map(|(v, s)| (v / s) * (v / s))
-        .sum::<f64>();
+    let sk = |i: usize| atol + rtol * y[i].abs();
+    let (mut dnf, mut dny) = (0.0, 0.0);
+    for i in 0..y.len() {
+        dnf += (f0[i] / sk(i)).powi(2);
+        dny += (y[i] / sk(i)).powi(2);
+    }
     let mut h = if dnf <= 1e-10 || dny <= 1e-10 {
         1e-6
     } else {
@@ -498,13 +493,10 @@ pub(crate) fn initial_step<S: OdeSystem>(
         work_y[i] = y[i] + h * f0[i];
     }
     sys.rhs(t + h, work_y, work_f);
-    let der2 = (work_f
-        .iter()
-        .zip(f0)
-        .zip(&sk)
-        .map(|((a, b), s)| ((a - b) / s) * ((a - b) / s))
-        .sum::<f64>())
-    .sqrt()
+    let der2 = (0..y.len())
+        .map(|i| ((work_f[i] - f0[i]) / sk(i)).powi(2))
+        .sum::<f64>()
+        .sqrt()
         / h;
     let der12 = der2.abs().max(dnf.sqrt());
     let h1 = if der12 <= 1e-15 {
