@@ -263,8 +263,79 @@ pub enum RunError {
     },
 }
 
-fn run_validated(scene: &crate::scene::Scene) -> Result<Value, RunError> {
+/// Curves for `--plot`: `(name, points)`.
+type Curves = Vec<(String, Vec<(f64, f64)>)>;
+
+fn run_validated(scene: &crate::scene::Scene) -> Result<(Value, Curves), RunError> {
     match scene {
+        crate::scene::Scene::ConePlate(s) => {
+            use crate::models::cone_plate::{self, ConePlate, Variant};
+            let sys = ConePlate::new(s.params.clone(), s.effects.clone(), s.variant, s.law)
+                .map_err(|e| RunError::BadArgument {
+                    arg: "scene".into(),
+                    message: e.to_string(),
+                })?;
+            let r = cone_plate::run(
+                &sys,
+                s.solve.t_end,
+                &s.solve.samples,
+                s.solve.rtol,
+                s.solve.atol,
+                s.solve.method,
+            )?;
+            let v = json!({
+                "model": "cone-plate",
+                "variant": if s.variant == Variant::AsPrinted { "as-printed" } else { "corrected" },
+                "viscoelastic_law": if s.law == cone_plate::Law::ConstantBulk { "constant-bulk" } else { "constant-poisson" },
+                "effects": s.effects.names(),
+                "modes": s.effects.modes,
+                "state_dim": sys.state_dim(),
+                "method": s.solve.method.name(),
+                "samples": r.samples,
+                "contact": {
+                    "ended": r.ended,
+                    "duration": r.duration,
+                    "peak_force": r.peak_force,
+                    "max_indentation": r.max_indentation,
+                },
+                "energy": {
+                    "initial": r.energy_initial,
+                    "final": r.energy_final,
+                    "dissipated": r.dissipated,
+                    "operator_work": r.operator_work,
+                    "operator_work_min": r.operator_work_min,
+                    "injected": r.injected,
+                    "balance_error": r.balance_error,
+                },
+                "stats": r.stats,
+                "warnings": r.warnings,
+            });
+            let z: Vec<(f64, f64)> = r.trajectory.iter().map(|(t, y)| (*t, y[0])).collect();
+            let p: Vec<(f64, f64)> = r
+                .trajectory
+                .iter()
+                .map(|(t, y)| {
+                    (
+                        *t,
+                        sys.contact_force(y).max(0.0) / r.peak_force.max(f64::MIN_POSITIVE)
+                            * r.max_indentation,
+                    )
+                })
+                .collect();
+            let mut curves = vec![
+                ("z (m)".to_string(), z),
+                ("P scaled to max z".to_string(), p),
+            ];
+            if s.effects.plate {
+                let f: Vec<(f64, f64)> = r
+                    .trajectory
+                    .iter()
+                    .map(|(t, y)| (*t, sys.centre_deflection(y).unwrap_or(0.0)))
+                    .collect();
+                curves.push(("w(a/2, b/2) (m)".to_string(), f));
+            }
+            Ok((v, curves))
+        }
         crate::scene::Scene::Hertz(s) => {
             let model = crate::models::hertz::Hertz {
                 mass: s.mass,
@@ -279,7 +350,7 @@ fn run_validated(scene: &crate::scene::Scene) -> Result<Value, RunError> {
                 s.solve.method,
                 s.solve.t_end,
             )?;
-            Ok(json!({
+            let v = json!({
                 "model": "hertz",
                 "method": s.solve.method.name(),
                 "state_size": 2,
@@ -292,41 +363,75 @@ fn run_validated(scene: &crate::scene::Scene) -> Result<Value, RunError> {
                 "v_out": r.v_out,
                 "energy_lost": r.energy_lost,
                 "stats": r.stats,
-            }))
+            });
+            Ok((v, vec![]))
         }
     }
 }
 
 fn render_run(v: &Value, format: Format) -> String {
-    match format {
-        Format::Json => serde_json::to_string_pretty(v).unwrap_or_default(),
-        _ => {
-            let c = &v["contact"];
-            let s = &v["stats"];
-            format!(
-                "model {} ({}), state size {}\ncontact ended: {}\nduration: {} s\npeak force: {} N\nmax indentation: {} m\nv_out: {} m/s\nenergy lost: {} J\nwork: {} rhs evals, {} steps, {} rejected, {} events",
-                v["model"].as_str().unwrap_or(""),
-                v["method"].as_str().unwrap_or(""),
-                v["state_size"],
-                c["ended"],
-                c["duration"],
-                c["peak_force"],
-                c["max_indentation"],
-                v["v_out"],
-                v["energy_lost"],
-                s["rhs_evals"],
-                s["steps"],
-                s["rejected"],
-                s["events"]
-            )
+    if format == Format::Json {
+        return serde_json::to_string_pretty(v).unwrap_or_default();
+    }
+    let mut out = String::new();
+    let obj = v.as_object().cloned().unwrap_or_default();
+    for (k, val) in obj {
+        match val {
+            Value::Object(m) => {
+                out.push_str(&format!("{k}:\n"));
+                for (k2, v2) in m {
+                    out.push_str(&format!("  {k2}: {v2}\n"));
+                }
+            }
+            Value::Array(a) if a.iter().all(|x| x.is_object()) && !a.is_empty() => {
+                out.push_str(&format!("{k}:\n"));
+                for x in a {
+                    out.push_str(&format!("  {x}\n"));
+                }
+            }
+            Value::String(s) => out.push_str(&format!("{k}: {s}\n")),
+            other => out.push_str(&format!("{k}: {other}\n")),
         }
     }
+    out
 }
 
-/// `impact run SCENE.toml`.
-pub fn run_scene(path: &std::path::Path, format: Format) -> Result<String, RunError> {
+/// `impact run SCENE.toml [--plot out.svg]`.
+pub fn run_scene(
+    path: &std::path::Path,
+    format: Format,
+    plot: Option<&std::path::Path>,
+) -> Result<String, RunError> {
     let scene = crate::scene::load(path)?;
-    Ok(render_run(&run_validated(&scene)?, format))
+    let (v, curves) = run_validated(&scene)?;
+    if let Some(out) = plot {
+        if curves.is_empty() {
+            return Err(RunError::BadArgument {
+                arg: "--plot".into(),
+                message: "this model has no plot yet".into(),
+            });
+        }
+        let series: Vec<crate::report::svg::Series> = curves
+            .iter()
+            .map(|(n, p)| crate::report::svg::Series {
+                name: n,
+                points: p.clone(),
+            })
+            .collect();
+        let svg = crate::report::svg::plot(
+            &format!("{}", path.display()),
+            "t (s)",
+            "m",
+            crate::report::svg::Scale::Linear,
+            crate::report::svg::Scale::Linear,
+            &series,
+        );
+        std::fs::write(out, svg).map_err(|e| RunError::BadArgument {
+            arg: "--plot".into(),
+            message: format!("{}: {e}", out.display()),
+        })?;
+    }
+    Ok(render_run(&v, format))
 }
 
 /// `impact sweep SCENE.toml --param FIELD --values V1,V2,...`: one run per value, progress on
@@ -365,7 +470,7 @@ pub fn sweep(
         let mut t = base.clone();
         crate::scene::set_field(&mut t, param, *v, &label)?;
         let scene = crate::scene::parse_table(&t, &format!("{label} with {param} = {v}"))?;
-        let r = run_validated(&scene)?;
+        let (r, _) = run_validated(&scene)?;
         if progress {
             eprintln!("sweep: {}/{} ({param} = {v})", i + 1, vals.len());
         }

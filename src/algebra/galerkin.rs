@@ -60,6 +60,26 @@ pub struct Galerkin {
     pub airy_derived: (RatFunc, RatFunc),
     /// The same from (13).
     pub airy_printed: (RatFunc, RatFunc),
+    /// The projected terms before the operator constants are put in, for numerics: `bend`
+    /// multiplies $\tilde E/(1-\tilde\nu^2)[f]$, `a3` multiplies $f$ (with $K_w$, $K_G$, $p_1$,
+    /// $p_2$ inside), `ct` multiplies $\dot f$, `a4` multiplies $\ddot f$, `cubic` multiplies
+    /// $f\,\tilde E[f^2]$.
+    pub parts: GalerkinParts,
+}
+
+/// The projected coefficients of (2) for one mode, before the time operators are expanded.
+#[derive(Clone, Debug)]
+pub struct GalerkinParts {
+    /// Coefficient of $\tilde E/(1-\tilde\nu^2)[f]$ (m^2... from $h^3/12$ and the projection).
+    pub bend: RatFunc,
+    /// Coefficient of $f$.
+    pub a3: RatFunc,
+    /// Coefficient of $\dot f$.
+    pub ct: RatFunc,
+    /// Coefficient of $\ddot f$.
+    pub a4: RatFunc,
+    /// Coefficient of $f\,\tilde E[f^2]$.
+    pub cubic: RatFunc,
 }
 
 fn s(name: &str) -> RatFunc {
@@ -167,6 +187,13 @@ pub fn derive(m: u32, n: u32) -> Result<Galerkin, AlgebraError> {
     let ct = coeff([0, 1, 0, 0, 0]);
     let a4 = coeff([0, 0, 1, 0, 0]);
     let cubic = coeff([3, 0, 0, 1, 0]);
+    let parts = GalerkinParts {
+        bend: bend.clone(),
+        a3: a3.clone(),
+        ct: ct.clone(),
+        a4: a4.clone(),
+        cubic: cubic.clone(),
+    };
     // operator constants
     let (e, eta, zeta) = (s("E"), s("eta"), s("zeta"));
     let op = operator::check();
@@ -233,6 +260,7 @@ pub fn derive(m: u32, n: u32) -> Result<Galerkin, AlgebraError> {
         load_sign,
         airy_derived,
         airy_printed,
+        parts,
     })
 }
 

@@ -46,6 +46,9 @@ enum Command {
         /// Output format.
         #[arg(long, value_enum, default_value = "text")]
         format: Fmt,
+        /// Also draw the solution against time into this SVG file.
+        #[arg(long)]
+        plot: Option<std::path::PathBuf>,
     },
     /// Run a scene once per value of one field, e.g. `--param impactor.v0 --values 0.1,1,10`.
     Sweep {
@@ -131,7 +134,11 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
             let tols = cli::parse_times(&tols)?;
             Ok(cli::bench_hertz(&tols, repeats)?)
         }
-        Command::Run { scene, format } => Ok(cli::run_scene(&scene, fmt(format))?),
+        Command::Run {
+            scene,
+            format,
+            plot,
+        } => Ok(cli::run_scene(&scene, fmt(format), plot.as_deref())?),
         Command::Sweep {
             scene,
             param,

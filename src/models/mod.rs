@@ -1,3 +1,4 @@
 //! Physical models, one per file, named by the physics. Models know nothing of reports.
 
+pub mod cone_plate;
 pub mod hertz;

@@ -1,7 +1,10 @@
-//! Writers for `reports/`: Markdown per paper, a summary table, and `summary.json`. No physics.
+//! Writers for `reports/`: Markdown per paper, a summary table, `summary.json`, SVG plots
+//! ([`svg`]). No physics.
 //!
 //! Files are rendered in memory, written to a temporary folder beside the target and only then
 //! moved into place, so a run that fails leaves the old reports untouched.
+
+pub mod svg;
 
 use crate::verify::{Outcome, PaperClaims, Verdict};
 use serde::{Deserialize, Serialize};

@@ -73,6 +73,8 @@ pub struct SolveSpec {
     pub method: Method,
     /// End time (s); `None` for "until contact ends".
     pub t_end: Option<f64>,
+    /// Times at which to report the solution (s).
+    pub samples: Vec<f64>,
 }
 
 /// The `hertz` scene.
@@ -90,14 +92,42 @@ pub struct HertzScene {
     pub solve: SolveSpec,
 }
 
+/// The `cone-plate` scene of 000_92d54b11128ea1ec.txt.
+#[derive(Clone, Debug)]
+pub struct ConePlateScene {
+    /// Parameters (SI).
+    pub params: crate::models::cone_plate::Params,
+    /// Effects named.
+    pub effects: crate::models::cone_plate::Effects,
+    /// Variant.
+    pub variant: crate::models::cone_plate::Variant,
+    /// Viscoelastic law.
+    pub law: crate::models::cone_plate::Law,
+    /// Solver settings.
+    pub solve: SolveSpec,
+}
+
 /// A validated scene.
 #[derive(Clone, Debug)]
 pub enum Scene {
     /// Sphere on a rigid-backed half-space.
     Hertz(HertzScene),
+    /// Cone on a viscoelastic plate.
+    ConePlate(Box<ConePlateScene>),
 }
 
-const MODELS: &str = "hertz";
+const MODELS: &str = "hertz, cone-plate";
+const EFFECTS: &[&str] = &[
+    "viscoelastic",
+    "plate",
+    "winkler",
+    "pasternak",
+    "damper",
+    "membrane",
+    "inplane",
+    "modes",
+    "relative-indentation",
+];
 
 fn edit_distance(a: &str, b: &str) -> usize {
     let b: Vec<char> = b.chars().collect();
@@ -214,13 +244,46 @@ impl Reader<'_> {
         Ok(v)
     }
 
-    fn solve(&self, root: &toml::Table, default_end: &str) -> Result<SolveSpec, SceneError> {
+    fn solve(
+        &self,
+        root: &toml::Table,
+        default_end: &str,
+        with_samples: bool,
+    ) -> Result<SolveSpec, SceneError> {
         let empty = toml::Table::new();
         let t = match root.get("solve") {
             None => &empty,
             Some(_) => self.table(root, "solve")?,
         };
-        self.check_keys(t, "solve", &["rtol", "atol", "method", "t_end"])?;
+        let keys: &[&str] = if with_samples {
+            &["rtol", "atol", "method", "t_end", "samples"]
+        } else {
+            &["rtol", "atol", "method", "t_end"]
+        };
+        self.check_keys(t, "solve", keys)?;
+        let mut samples = Vec::new();
+        if let Some(v) = t.get("samples") {
+            let arr = v.as_array().ok_or_else(|| SceneError::OutOfRange {
+                path: self.path.into(),
+                field: "solve.samples".into(),
+                value: v.to_string(),
+                allowed: "a list of times >= 0 in s".into(),
+            })?;
+            for x in arr {
+                let val = x.as_float().or_else(|| x.as_integer().map(|i| i as f64));
+                match val {
+                    Some(f) if f.is_finite() && f >= 0.0 => samples.push(f),
+                    _ => {
+                        return Err(SceneError::OutOfRange {
+                            path: self.path.into(),
+                            field: "solve.samples".into(),
+                            value: x.to_string(),
+                            allowed: "times >= 0 in s".into(),
+                        });
+                    }
+                }
+            }
+        }
         let rtol = self.num(
             t,
             "solve.rtol",
@@ -264,6 +327,7 @@ impl Reader<'_> {
             atol,
             method,
             t_end,
+            samples,
         })
     }
 }
@@ -324,9 +388,10 @@ pub fn parse_table(root: &toml::Table, path: &str) -> Result<Scene, SceneError> 
                     |v| v >= 0.0,
                     "damping >= 0 (s/m)",
                 )?,
-                solve: r.solve(root, "contact-end")?,
+                solve: r.solve(root, "contact-end", false)?,
             }))
         }
+        "cone-plate" => cone_plate(&r, root),
         other => {
             let near = MODELS
                 .split(", ")
@@ -341,6 +406,290 @@ pub fn parse_table(root: &toml::Table, path: &str) -> Result<Scene, SceneError> 
             })
         }
     }
+}
+
+fn string_choice(
+    r: &Reader,
+    root: &toml::Table,
+    field: &str,
+    choices: &[&str],
+    default: &str,
+) -> Result<String, SceneError> {
+    match root.get(field) {
+        None => Ok(default.to_string()),
+        Some(toml::Value::String(s)) if choices.contains(&s.as_str()) => Ok(s.clone()),
+        Some(other) => Err(SceneError::OutOfRange {
+            path: r.path.into(),
+            field: field.into(),
+            value: other.to_string(),
+            allowed: choices
+                .iter()
+                .map(|c| format!("\"{c}\""))
+                .collect::<Vec<_>>()
+                .join(", "),
+        }),
+    }
+}
+
+fn cone_plate(r: &Reader, root: &toml::Table) -> Result<Scene, SceneError> {
+    use crate::models::cone_plate::{Effects, Law, Params, Variant};
+    r.check_keys(
+        root,
+        "",
+        &[
+            "model",
+            "variant",
+            "viscoelastic_law",
+            "effects",
+            "impactor",
+            "material",
+            "plate",
+            "foundation",
+            "inplane",
+            "solve",
+        ],
+    )?;
+    let variant = match string_choice(
+        r,
+        root,
+        "variant",
+        &["as-printed", "corrected"],
+        "corrected",
+    )?
+    .as_str()
+    {
+        "as-printed" => Variant::AsPrinted,
+        _ => Variant::Corrected,
+    };
+    let law = match string_choice(
+        r,
+        root,
+        "viscoelastic_law",
+        &["constant-bulk", "constant-poisson"],
+        "constant-bulk",
+    )?
+    .as_str()
+    {
+        "constant-poisson" => Law::ConstantPoisson,
+        _ => Law::ConstantBulk,
+    };
+    let mut fx = Effects::default();
+    let names: Vec<String> = match root.get("effects") {
+        None => vec![],
+        Some(toml::Value::Array(a)) => a
+            .iter()
+            .map(|v| {
+                v.as_str()
+                    .map(str::to_string)
+                    .ok_or_else(|| SceneError::OutOfRange {
+                        path: r.path.into(),
+                        field: "effects".into(),
+                        value: v.to_string(),
+                        allowed: format!("names from: {}", EFFECTS.join(", ")),
+                    })
+            })
+            .collect::<Result<_, _>>()?,
+        Some(other) => {
+            return Err(SceneError::OutOfRange {
+                path: r.path.into(),
+                field: "effects".into(),
+                value: other.to_string(),
+                allowed: format!("a list of names from: {}", EFFECTS.join(", ")),
+            });
+        }
+    };
+    for name in &names {
+        match name.as_str() {
+            "viscoelastic" => fx.viscoelastic = true,
+            "plate" => fx.plate = true,
+            "winkler" => fx.winkler = true,
+            "pasternak" => fx.pasternak = true,
+            "damper" => fx.damper = true,
+            "membrane" => fx.membrane = true,
+            "inplane" => fx.inplane = true,
+            "modes" => {}
+            "relative-indentation" => fx.relative_indentation = true,
+            other => {
+                let near = EFFECTS
+                    .iter()
+                    .find(|e| edit_distance(e, other) <= 2)
+                    .map(|e| format!(" (did you mean \"{e}\"?)"))
+                    .unwrap_or_default();
+                return Err(SceneError::OutOfRange {
+                    path: r.path.into(),
+                    field: "effects".into(),
+                    value: format!("\"{other}\"{near}"),
+                    allowed: format!("names from: {}", EFFECTS.join(", ")),
+                });
+            }
+        }
+    }
+    let needs_plate = fx.winkler
+        || fx.pasternak
+        || fx.damper
+        || fx.membrane
+        || fx.inplane
+        || fx.relative_indentation;
+    if needs_plate && !fx.plate {
+        return Err(SceneError::OutOfRange {
+            path: r.path.into(),
+            field: "effects".into(),
+            value: format!("{names:?}"),
+            allowed: "winkler, pasternak, damper, membrane, inplane and relative-indentation act on the plate: add \"plate\"".into(),
+        });
+    }
+    let imp = r.table(root, "impactor")?;
+    r.check_keys(imp, "impactor", &["mass", "theta_deg", "v0"])?;
+    let mat = r.table(root, "material")?;
+    r.check_keys(mat, "material", &["E", "nu", "eta"])?;
+    let empty = toml::Table::new();
+    let opt_table = |name: &str, on: bool, keys: &[&str]| -> Result<&toml::Table, SceneError> {
+        if on {
+            let t = r.table(root, name)?;
+            r.check_keys(t, name, keys)?;
+            Ok(t)
+        } else {
+            match root.get(name) {
+                Some(toml::Value::Table(t)) => {
+                    r.check_keys(t, name, keys)?;
+                    Ok(t)
+                }
+                _ => Ok(&empty),
+            }
+        }
+    };
+    let plate = opt_table("plate", fx.plate, &["a", "b", "h", "rho", "modes"])?;
+    let found = opt_table(
+        "foundation",
+        fx.winkler || fx.pasternak || fx.damper,
+        &["kw", "kg", "ct"],
+    )?;
+    let inpl = opt_table("inplane", fx.inplane, &["p1", "p2"])?;
+    let pos = |v: f64| v > 0.0;
+    let need = |on: bool,
+                t: &toml::Table,
+                field: &str,
+                ok: &dyn Fn(f64) -> bool,
+                allowed: &str|
+     -> Result<f64, SceneError> {
+        if on {
+            r.num(t, field, None, ok, allowed)
+        } else {
+            r.num(t, field, Some(0.0), |_| true, allowed)
+        }
+    };
+    if fx.plate {
+        if let Some(m) = plate.get("modes") {
+            let arr = m.as_array().ok_or_else(|| SceneError::OutOfRange {
+                path: r.path.into(),
+                field: "plate.modes".into(),
+                value: m.to_string(),
+                allowed: "a list of odd pairs, e.g. [[1, 1], [1, 3]]".into(),
+            })?;
+            for pair in arr {
+                let v: Vec<i64> = pair
+                    .as_array()
+                    .map(|p| p.iter().filter_map(|x| x.as_integer()).collect())
+                    .unwrap_or_default();
+                if v.len() != 2 || v.iter().any(|x| *x < 1 || x % 2 == 0 || *x > 99) {
+                    return Err(SceneError::OutOfRange {
+                        path: r.path.into(),
+                        field: "plate.modes".into(),
+                        value: pair.to_string(),
+                        allowed: "pairs [m, n] of odd integers 1..99".into(),
+                    });
+                }
+                fx.modes.push((v[0] as u32, v[1] as u32));
+            }
+        }
+        if fx.modes.is_empty() {
+            fx.modes.push((1, 1));
+        }
+    }
+    let params = Params {
+        mass: r.num(imp, "impactor.mass", None, pos, "mass > 0 (kg)")?,
+        theta_deg: r.num(
+            imp,
+            "impactor.theta_deg",
+            None,
+            |v| v > 0.0 && v < 90.0,
+            "0 < theta_deg < 90 (degrees)",
+        )?,
+        v0: r.num(
+            imp,
+            "impactor.v0",
+            None,
+            pos,
+            "v0 > 0 (m/s), toward the plate",
+        )?,
+        e: r.num(mat, "material.E", None, pos, "E > 0 (Pa)")?,
+        nu: r.num(
+            mat,
+            "material.nu",
+            None,
+            |v| v > -1.0 && v < 0.5,
+            "-1 < nu < 0.5",
+        )?,
+        eta: need(
+            fx.viscoelastic,
+            mat,
+            "material.eta",
+            &pos,
+            "eta > 0 (Pa s) with \"viscoelastic\"",
+        )?,
+        a: need(fx.plate, plate, "plate.a", &pos, "a > 0 (m) with \"plate\"")?,
+        b: need(fx.plate, plate, "plate.b", &pos, "b > 0 (m) with \"plate\"")?,
+        h: need(fx.plate, plate, "plate.h", &pos, "h > 0 (m) with \"plate\"")?,
+        rho: need(
+            fx.plate,
+            plate,
+            "plate.rho",
+            &pos,
+            "rho > 0 (kg/m^3) with \"plate\"",
+        )?,
+        kw: need(
+            fx.winkler,
+            found,
+            "foundation.kw",
+            &|v| v >= 0.0,
+            "kw >= 0 (N/m^3) with \"winkler\"",
+        )?,
+        kg: need(
+            fx.pasternak,
+            found,
+            "foundation.kg",
+            &|v| v >= 0.0,
+            "kg >= 0 (N/m) with \"pasternak\"",
+        )?,
+        ct: need(
+            fx.damper,
+            found,
+            "foundation.ct",
+            &|v| v >= 0.0,
+            "ct >= 0 (N s/m^3) with \"damper\"",
+        )?,
+        p1: need(
+            fx.inplane,
+            inpl,
+            "inplane.p1",
+            &|_| true,
+            "p1 (N/m) with \"inplane\"",
+        )?,
+        p2: need(
+            fx.inplane,
+            inpl,
+            "inplane.p2",
+            &|_| true,
+            "p2 (N/m) with \"inplane\"",
+        )?,
+    };
+    Ok(Scene::ConePlate(Box::new(ConePlateScene {
+        params,
+        effects: fx,
+        variant,
+        law,
+        solve: r.solve(root, "contact-end", true)?,
+    })))
 }
 
 /// Reads a scene file as a TOML table (for sweeps that override fields before validation).
