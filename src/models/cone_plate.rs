@@ -727,10 +727,16 @@ pub fn run(
     let mut peak: f64 = 0.0;
     let mut max_d: f64 = 0.0;
     let mut op_min: f64 = 0.0;
-    for (_, y) in &sol.trajectory {
+    let mut tension: Option<(f64, f64)> = None;
+    for (t, y) in &sol.trajectory {
         let (d, _) = sys.indentation(y);
         if d > 0.0 {
-            peak = peak.max(sys.contact_force(y));
+            let p = sys.contact_force(y);
+            peak = peak.max(p);
+            // the end point sits on the root of P: only earlier points count as tension
+            if p < 0.0 && *t < sol.t && tension.is_none() {
+                tension = Some((*t, p));
+            }
         }
         max_d = max_d.max(d);
         op_min = op_min.min(sys.booked(y).1);
@@ -740,6 +746,11 @@ pub fn run(
             max_d = max_d.max(sys.indentation(&e.y).0);
             peak = peak.max(sys.contact_force(&e.y));
         }
+    }
+    if let Some((t, p)) = tension {
+        warnings.push(format!(
+            "the contact law is tensile while indented (first at t = {t:.6e} s, P = {p:.6e} N): the material pulls the cone in instead of resisting it"
+        ));
     }
     let (alpha, _) = sys.rates();
     if sys.effects.viscoelastic
