@@ -50,7 +50,8 @@ fn build(names: &[&str], modes: &[(u32, u32)], law: Law) -> ConePlate {
 #[test]
 fn effects_that_are_off_cost_no_state() {
     // cone: z, z'. Each effect adds only its own states; energy books only what exists.
-    let cases: &[(&[&str], &[(u32, u32)], Law, usize)] = &[
+    type Case<'a> = (&'a [&'a str], &'a [(u32, u32)], Law, usize);
+    let cases: &[Case] = &[
         (&[], &[], Law::ConstantBulk, 2),
         (&["viscoelastic"], &[], Law::ConstantPoisson, 3), // + dissipation
         (&["viscoelastic"], &[], Law::ConstantBulk, 5),    // + u_alpha, u_gamma, operator work

@@ -52,7 +52,12 @@ fn run(args: Args) -> Result<bool> {
     let out_dir = args.out.unwrap_or_else(|| default_dir("reports"));
     let papers = verify::load_claims(&claims_dir)
         .with_context(|| format!("reading claims from {}", claims_dir.display()))?;
-    let outcomes = verify::run_all(&papers)?;
+    let root = claims_dir
+        .canonicalize()
+        .ok()
+        .and_then(|p| p.parent().map(|x| x.to_path_buf()))
+        .unwrap_or_else(|| PathBuf::from("."));
+    let outcomes = verify::run_all(&papers, &root)?;
     let fresh = report::summary(&outcomes);
     if args.json {
         println!("{}", serde_json::to_string_pretty(&fresh)?);

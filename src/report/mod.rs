@@ -156,6 +156,13 @@ pub fn render(papers: &[PaperClaims], outcomes: &[Outcome]) -> Vec<(String, Stri
             if let Some(d) = &o.derived_latex {
                 md.push_str(&format!("Derived:\n\n$$\n{d}\n$$\n\n"));
             }
+            if let Some(x) = &o.extra_md {
+                md.push_str(x);
+                md.push_str("\n\n");
+            }
+            for (name, text) in &o.files {
+                files.push((name.clone(), text.clone()));
+            }
         }
         files.push((p.report.clone(), md));
     }

@@ -6,6 +6,7 @@
 //! stated error.
 
 pub mod paper000;
+pub mod series_numeric;
 
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -50,6 +51,9 @@ pub struct ClaimSpec {
     /// Highest power for identity checks.
     #[serde(default)]
     pub k_max: Option<u32>,
+    /// Scene file used (relative to the repository root).
+    #[serde(default)]
+    pub scene: Option<String>,
 }
 
 /// What a check found.
@@ -97,6 +101,10 @@ pub struct Outcome {
     pub printed_latex: Option<String>,
     /// The derived expression in LaTeX, if any.
     pub derived_latex: Option<String>,
+    /// Extra Markdown (tables, plot links) for the paper's report.
+    pub extra_md: Option<String>,
+    /// Extra files (plots) to write beside the report: `(file name, contents)`.
+    pub files: Vec<(String, String)>,
 }
 
 /// Why verification could not run.
@@ -121,6 +129,14 @@ pub enum VerifyError {
     /// A claim names a check that does not exist or lacks a parameter.
     #[error("claim {id}: {message}")]
     BadClaim {
+        /// The claim.
+        id: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A scene named by a claim is bad.
+    #[error("claim {id}: {message}")]
+    Scene {
         /// The claim.
         id: String,
         /// What is wrong.
@@ -160,13 +176,13 @@ pub fn load_claims(dir: &Path) -> Result<Vec<PaperClaims>, VerifyError> {
         .collect()
 }
 
-/// Runs every claim of every paper.
-pub fn run_all(papers: &[PaperClaims]) -> Result<Vec<Outcome>, VerifyError> {
+/// Runs every claim of every paper; scenes named by claims are read relative to `root`.
+pub fn run_all(papers: &[PaperClaims], root: &Path) -> Result<Vec<Outcome>, VerifyError> {
     let mut out = Vec::new();
     for p in papers {
         match p.paper.as_str() {
             "000" => {
-                let mut ctx = paper000::Context::default();
+                let mut ctx = paper000::Context::new(root);
                 for c in &p.claim {
                     out.push(paper000::check(&mut ctx, p, c)?);
                 }
@@ -182,6 +198,8 @@ pub fn run_all(papers: &[PaperClaims]) -> Result<Vec<Outcome>, VerifyError> {
                         detail: format!("no checks are implemented yet for paper {other}"),
                         printed_latex: None,
                         derived_latex: None,
+                        extra_md: None,
+                        files: vec![],
                     });
                 }
             }

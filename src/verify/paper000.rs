@@ -15,14 +15,24 @@ use crate::algebra::series::{self, SeriesParams, Viscous};
 use std::collections::BTreeMap;
 
 /// Expensive exact results shared between claims.
-#[derive(Default)]
 pub struct Context {
+    root: std::path::PathBuf,
     operator: Option<OperatorCheck>,
     galerkin: BTreeMap<(u32, u32), Galerkin>,
     a1: Option<(Expo, Expo, Expo)>,
 }
 
 impl Context {
+    /// A context reading scenes relative to `root`.
+    pub fn new(root: &std::path::Path) -> Self {
+        Context {
+            root: root.to_path_buf(),
+            operator: None,
+            galerkin: BTreeMap::new(),
+            a1: None,
+        }
+    }
+
     fn operator(&mut self) -> &OperatorCheck {
         self.operator.get_or_insert_with(operator::check)
     }
@@ -64,6 +74,8 @@ fn outcome(paper: &PaperClaims, c: &ClaimSpec, verdict: Verdict, detail: String)
         detail,
         printed_latex: None,
         derived_latex: None,
+        extra_md: None,
+        files: vec![],
     }
 }
 
@@ -451,6 +463,10 @@ pub fn check(
                     cmp.len()
                 ),
             )
+        }
+        "series-vs-numerics" => {
+            let scene = c.scene.clone().ok_or_else(|| bad("needs `scene`"))?;
+            super::series_numeric::check(paper, c, &ctx.root.join(scene))?
         }
         other => return Err(bad(&format!("unknown check `{other}`"))),
     })
