@@ -253,6 +253,16 @@ pub enum RunError {
     /// The solver could not meet its tolerance (with time and step size).
     #[error("solver: {0}")]
     Integrate(#[from] crate::integrate::IntegrateError),
+    /// The solver stopped because a non-passive model's solution grows without bound.
+    #[error(
+        "solver: {source}; the model is not passive: its operator has the growing mode exp({rate:.4e} t), so the solution grows without bound (use viscoelastic_law = \"constant-poisson\" or a shorter t_end)"
+    )]
+    NotPassive {
+        /// What the solver said.
+        source: crate::integrate::IntegrateError,
+        /// Growth rate (1/s).
+        rate: f64,
+    },
     /// A bad argument.
     #[error("{arg}: {message}")]
     BadArgument {
@@ -282,7 +292,20 @@ fn run_validated(scene: &crate::scene::Scene) -> Result<(Value, Curves), RunErro
                 s.solve.rtol,
                 s.solve.atol,
                 s.solve.method,
-            )?;
+            )
+            .map_err(|e| {
+                let (alpha, _) = sys.rates();
+                let memory =
+                    s.law == cone_plate::Law::ConstantBulk || s.variant == Variant::AsPrinted;
+                if s.effects.viscoelastic && memory && alpha < 0.0 {
+                    RunError::NotPassive {
+                        source: e,
+                        rate: -alpha,
+                    }
+                } else {
+                    RunError::Integrate(e)
+                }
+            })?;
             let v = json!({
                 "model": "cone-plate",
                 "variant": if s.variant == Variant::AsPrinted { "as-printed" } else { "corrected" },

@@ -10,7 +10,9 @@
 //!   (no convolution is integrated by quadrature). With the constant-Poisson law it is the local
 //!   Kelvin-Voigt $E(1+\tau D)/(1-\nu^2)$. Without the effect the material is elastic,
 //!   $P = A_7 E z^2/(1-\nu^2)$;
-//! - `plate`: one pair $f, \dot f$ per mode, $A_4\ddot f = sP - \text{bending} - A_3 f - \dots$;
+//! - `plate`: one pair $f, \dot f$ per mode, $A_4\ddot f = sP - \text{bending} - A_3 f - \dots$
+//!   (with several modes each keeps its own cubic membrane term; the cross-mode membrane coupling
+//!   that a multi-mode (12) would bring is not in the paper and not modelled);
 //!   `winkler`, `pasternak`, `damper`, `inplane` switch $K_w$, $K_G$, $C_T$, $p_{1,2}$ on,
 //!   `membrane` the cubic terms $A_5 f^3 + A_6 f^2\dot f$; `relative-indentation` uses
 //!   $z - w(a/2, b/2)$ instead of the paper's $z$.
