@@ -185,3 +185,39 @@ fn verify_writes_then_checks_clean_and_detects_a_change() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("verdict fails -> holds"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn verify_only_runs_a_subset_and_writes_nothing() {
+    let dir = std::env::temp_dir().join(format!("impactcheck-only-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let claims = concat!(env!("CARGO_MANIFEST_DIR"), "/verify");
+    let out = Command::new(env!("CARGO_BIN_EXE_verify"))
+        .args([
+            "--claims",
+            claims,
+            "--out",
+            dir.to_str().expect("utf8"),
+            "--only",
+            "000.eq21",
+            "--format",
+            "json",
+        ])
+        .output()
+        .expect("runs");
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    let ids: Vec<&str> = v["claims"]
+        .as_array()
+        .expect("claims")
+        .iter()
+        .map(|c| c["id"].as_str().expect("id"))
+        .collect();
+    assert_eq!(ids, ["000.eq21"]);
+    assert_eq!(v["claims"][0]["verdict"], "holds");
+    assert!(!dir.exists(), "--only must not write reports");
+    let out = Command::new(env!("CARGO_BIN_EXE_verify"))
+        .args(["--claims", claims, "--only", "999"])
+        .output()
+        .expect("runs");
+    assert_eq!(out.status.code(), Some(2));
+}

@@ -2,10 +2,17 @@
 //! with the committed `reports/summary.json` and write nothing.
 
 use anyhow::{Context, Result, bail};
-use clap::Parser;
+use clap::{Parser, ValueEnum};
 use impactcheck::{report, verify};
+use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum Fmt {
+    Text,
+    Json,
+}
 
 #[derive(Parser)]
 #[command(
@@ -14,11 +21,14 @@ use std::process::ExitCode;
     about = "Check every claim of every paper; write reports/ (or compare with it: --check)",
     long_about = "verify: the main job of impactcheck.\n\n\
         Reads the claims in verify/*.toml, computes each verdict (exact algebra or numerics with a \
-        stated error) and writes reports/README.md, one Markdown report per paper and \
-        reports/summary.json. Reports are written to a temporary folder first, so a failed run \
-        leaves the old ones untouched.\n\n\
+        stated error) and writes reports/README.md, one Markdown report per paper, \
+        reports/accuracy_cost.md (work-precision of every model) and reports/summary.json. Reports \
+        are written to a temporary folder first, so a failed run leaves the old ones untouched.\n\n\
         With --check nothing is written: the fresh verdicts are compared with the committed \
-        summary (or --baseline PATH) and the exit status is 1 if any verdict or value changed."
+        summary (or --baseline PATH); a changed verdict, or a number in a detail that moved by more \
+        than 1e-6 relative, exits with status 1 and names the claim.\n\n\
+        With --only PAPER|PREFIX only those claims run (e.g. --only 002, --only 000.eq22); nothing \
+        is written unless --check compares them."
 )]
 struct Args {
     /// Compare with the committed summary instead of writing reports.
@@ -27,15 +37,21 @@ struct Args {
     /// Baseline summary for --check (default: <out>/summary.json).
     #[arg(long)]
     baseline: Option<PathBuf>,
+    /// Run only one paper ("000") or the claims whose id starts with this prefix.
+    #[arg(long)]
+    only: Option<String>,
     /// Folder of claim files.
     #[arg(long)]
     claims: Option<PathBuf>,
     /// Output folder for reports.
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Print the summary as JSON on stdout as well.
-    #[arg(long)]
-    json: bool,
+    /// Print the summary on stdout: text (a line per claim) or json.
+    #[arg(long, value_enum)]
+    format: Option<Fmt>,
+    /// Solves per work-precision point (median reported).
+    #[arg(long, default_value_t = 5)]
+    repeats: usize,
 }
 
 fn default_dir(name: &str) -> PathBuf {
@@ -50,18 +66,50 @@ fn default_dir(name: &str) -> PathBuf {
 fn run(args: Args) -> Result<bool> {
     let claims_dir = args.claims.unwrap_or_else(|| default_dir("verify"));
     let out_dir = args.out.unwrap_or_else(|| default_dir("reports"));
-    let papers = verify::load_claims(&claims_dir)
+    let all = verify::load_claims(&claims_dir)
         .with_context(|| format!("reading claims from {}", claims_dir.display()))?;
+    let papers = verify::select(&all, args.only.as_deref());
+    if papers.is_empty() {
+        bail!(
+            "no claims match --only {}; papers: {}",
+            args.only.unwrap_or_default(),
+            all.iter()
+                .map(|p| p.paper.clone())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
     let root = claims_dir
         .canonicalize()
         .ok()
         .and_then(|p| p.parent().map(|x| x.to_path_buf()))
         .unwrap_or_else(|| PathBuf::from("."));
-    let outcomes = verify::run_all(&papers, &root)?;
-    let fresh = report::summary(&outcomes);
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&fresh)?);
+    let progress = std::io::stderr().is_terminal();
+    let mut outcomes = Vec::new();
+    for p in &papers {
+        if progress {
+            eprintln!("verify: paper {} ({} claims) ...", p.paper, p.claim.len());
+        }
+        outcomes.extend(verify::run_all(std::slice::from_ref(p), &root)?);
     }
+    outcomes.sort_by(|a, b| a.id.cmp(&b.id));
+    let fresh = report::summary(&outcomes);
+    match args.format {
+        Some(Fmt::Json) => println!("{}", serde_json::to_string_pretty(&fresh)?),
+        Some(Fmt::Text) => {
+            for c in &fresh.claims {
+                println!(
+                    "{}  {}  {}  {}",
+                    c.id,
+                    c.equation,
+                    c.verdict.as_str(),
+                    c.detail
+                );
+            }
+        }
+        None => {}
+    }
+    let partial = args.only.is_some();
     if args.check {
         let path = args
             .baseline
@@ -70,7 +118,7 @@ fn run(args: Args) -> Result<bool> {
             .with_context(|| format!("reading baseline {}", path.display()))?;
         let baseline: report::Summary = serde_json::from_str(&text)
             .with_context(|| format!("parsing baseline {}", path.display()))?;
-        let changes = report::diff(&baseline, &fresh);
+        let changes = report::diff(&baseline, &fresh, partial);
         if changes.is_empty() {
             eprintln!(
                 "verify --check: {} claims, no verdict or value changed against {}",
@@ -92,7 +140,18 @@ fn run(args: Args) -> Result<bool> {
         );
         return Ok(false);
     }
-    let files = report::render(&papers, &outcomes);
+    if partial {
+        eprintln!(
+            "verify: --only ran {} claims; reports are written only by a full run",
+            outcomes.len()
+        );
+        return Ok(true);
+    }
+    if progress {
+        eprintln!("verify: work-precision diagrams ...");
+    }
+    let mut files = report::render(&papers, &outcomes);
+    files.extend(verify::accuracy::render(args.repeats.max(1)).context("work-precision runs")?);
     report::write_atomically(&out_dir, &files)
         .with_context(|| format!("writing {}", out_dir.display()))?;
     let mut counts = std::collections::BTreeMap::new();
@@ -109,9 +168,6 @@ fn run(args: Args) -> Result<bool> {
             .join(", "),
         out_dir.display()
     );
-    if outcomes.is_empty() {
-        bail!("no claims found in {}", claims_dir.display());
-    }
     Ok(true)
 }
 

@@ -93,6 +93,10 @@ pub fn render(papers: &[PaperClaims], outcomes: &[Outcome]) -> Vec<(String, Stri
          (exact algebra, or numerics with a stated error), none is typed in. Verdicts: `holds`, `fails`, \
          `holds-with-correction`, `not-checkable`.\n\n",
     );
+    readme.push_str(
+        "Also: [what accuracy costs in time](accuracy_cost.md) (work-precision of every model and method) and \
+         [performance against SciPy](performance.md).\n\n",
+    );
     let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
     for o in outcomes {
         *counts.entry(o.verdict.as_str()).or_default() += 1;
@@ -197,8 +201,39 @@ pub fn write_atomically(dir: &Path, files: &[(String, String)]) -> std::io::Resu
     staged
 }
 
-/// Differences between a baseline summary and a fresh one: `(id, what changed)`.
-pub fn diff(baseline: &Summary, fresh: &Summary) -> Vec<(String, String)> {
+/// Relative tolerance for numbers inside details: a value that moved less than this is the same.
+pub const VALUE_RTOL: f64 = 1e-6;
+
+/// Compares two details token by token; tokens that both parse as numbers are equal when they
+/// agree to [`VALUE_RTOL`].
+pub fn same_detail(a: &str, b: &str) -> bool {
+    let split = |s: &str| -> Vec<String> {
+        s.split(|c: char| {
+            c.is_whitespace() || matches!(c, ',' | ';' | '(' | ')' | '[' | ']' | ':' | '=')
+        })
+        .filter(|t| !t.is_empty())
+        .map(str::to_string)
+        .collect()
+    };
+    let (ta, tb) = (split(a), split(b));
+    ta.len() == tb.len()
+        && ta.iter().zip(&tb).all(|(x, y)| {
+            if x == y {
+                return true;
+            }
+            match (
+                x.trim_end_matches('.').parse::<f64>(),
+                y.trim_end_matches('.').parse::<f64>(),
+            ) {
+                (Ok(u), Ok(v)) => (u - v).abs() <= VALUE_RTOL * u.abs().max(v.abs()),
+                _ => false,
+            }
+        })
+}
+
+/// Differences between a baseline summary and a fresh one (only the claims present in `fresh`
+/// when `partial`): `(id, what changed)`.
+pub fn diff(baseline: &Summary, fresh: &Summary, partial: bool) -> Vec<(String, String)> {
     let old: BTreeMap<&str, &SummaryClaim> =
         baseline.claims.iter().map(|c| (c.id.as_str(), c)).collect();
     let new: BTreeMap<&str, &SummaryClaim> =
@@ -214,20 +249,38 @@ pub fn diff(baseline: &Summary, fresh: &Summary) -> Vec<(String, String)> {
                 id.to_string(),
                 format!("verdict {} -> {}", o.verdict.as_str(), n.verdict.as_str()),
             )),
-            Some(o) if o.detail != n.detail || o.equation != n.equation => out.push((
-                id.to_string(),
-                format!(
-                    "detail changed:\n    was: {}\n    now: {}",
-                    o.detail, n.detail
-                ),
-            )),
+            Some(o) if !same_detail(&o.detail, &n.detail) || o.equation != n.equation => {
+                out.push((
+                    id.to_string(),
+                    format!(
+                        "detail changed:\n    was: {}\n    now: {}",
+                        o.detail, n.detail
+                    ),
+                ))
+            }
             _ => {}
         }
     }
     for id in old.keys() {
-        if !new.contains_key(id) {
+        if !partial && !new.contains_key(id) {
             out.push((id.to_string(), "claim removed".into()));
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_in_details_compare_with_tolerance() {
+        assert!(same_detail(
+            "error up to 8.82e-1 at t = 1e-3",
+            "error up to 8.8200001e-1 at t = 1e-3"
+        ));
+        assert!(!same_detail("error up to 8.82e-1", "error up to 8.83e-1"));
+        assert!(!same_detail("derived 2/alpha", "derived 3/alpha"));
+        assert!(!same_detail("a b", "a b c"));
+    }
 }

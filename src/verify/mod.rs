@@ -5,6 +5,7 @@
 //! check, so a verdict of `fails` is always the output of exact algebra or of numerics with a
 //! stated error.
 
+pub mod accuracy;
 pub mod paper000;
 pub mod series_numeric;
 
@@ -172,6 +173,24 @@ pub fn load_claims(dir: &Path) -> Result<Vec<PaperClaims>, VerifyError> {
                 path: p.clone(),
                 message: e.to_string(),
             })
+        })
+        .collect()
+}
+
+/// Keeps the papers and claims selected by `only`: a paper number (`002`) or a claim-id prefix
+/// (`000.eq22`); `None` keeps everything.
+pub fn select(papers: &[PaperClaims], only: Option<&str>) -> Vec<PaperClaims> {
+    let Some(only) = only else {
+        return papers.to_vec();
+    };
+    papers
+        .iter()
+        .filter_map(|p| {
+            let mut q = p.clone();
+            if p.paper != only {
+                q.claim.retain(|c| c.id.starts_with(only));
+            }
+            (!q.claim.is_empty()).then_some(q)
         })
         .collect()
 }
