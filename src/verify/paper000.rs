@@ -468,6 +468,10 @@ pub fn check(
             let scene = c.scene.clone().ok_or_else(|| bad("needs `scene`"))?;
             super::series_numeric::check(paper, c, &ctx.root.join(scene))?
         }
+        "passivity" => {
+            let scene = c.scene.clone().ok_or_else(|| bad("needs `scene`"))?;
+            super::series_numeric::passivity(paper, c, &ctx.root.join(scene))?
+        }
         other => return Err(bad(&format!("unknown check `{other}`"))),
     })
 }

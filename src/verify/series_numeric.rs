@@ -289,3 +289,120 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outcome,
         files: vec![(svg_name, svg)],
     })
 }
+
+/// Passivity of the two viscoelastic laws on the cone of the scene at `path`: the work done on
+/// the material, integrated as a state, must never turn negative for a passive law. Plots the
+/// kinetic energy and that work against time for both laws.
+pub fn passivity(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outcome, VerifyError> {
+    use crate::models::cone_plate::Law;
+    let scene_err = |m: String| VerifyError::Scene {
+        id: c.id.clone(),
+        message: m,
+    };
+    let s = match crate::scene::load(path).map_err(|e| scene_err(e.to_string()))? {
+        Scene::ConePlate(s) => s,
+        _ => {
+            return Err(scene_err(
+                "the passivity claim needs a cone-plate scene".into(),
+            ));
+        }
+    };
+    let t_end = s.solve.t_end.unwrap_or(1e-3);
+    let mut lines = Vec::new();
+    let mut curves: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    let mut bulk_passive = true;
+    for (law, name) in [
+        (Law::ConstantBulk, "constant-bulk"),
+        (Law::ConstantPoisson, "constant-poisson"),
+    ] {
+        let mut effects = s.effects.clone();
+        effects.viscoelastic = true;
+        let sys = ConePlate::new(s.params.clone(), effects, Variant::Corrected, law)
+            .map_err(|e| scene_err(e.to_string()))?;
+        // stop before a blow-up: halve the window until the integration succeeds
+        let mut window = t_end;
+        let r = loop {
+            match cone_plate::run(
+                &sys,
+                Some(window),
+                &[],
+                s.solve.rtol,
+                s.solve.atol,
+                s.solve.method,
+            ) {
+                Ok(r) => break r,
+                Err(_) if window > 1e-7 => window *= 0.5,
+                Err(e) => return Err(scene_err(format!("integration failed: {e}"))),
+            }
+        };
+        let e0 = r.energy_initial;
+        // work done on the material: dissipated plus operator work plus stored contact energy
+        let work: Vec<(f64, f64)> = r
+            .trajectory
+            .iter()
+            .map(|(t, y)| {
+                let (d, o, _) = sys.booked(y);
+                (*t, (d + o + sys.stored(y)) / e0)
+            })
+            .collect();
+        let min_work = work.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);
+        let first_negative = work.iter().find(|x| x.1 < -1e-9).map(|x| x.0);
+        let passive = first_negative.is_none();
+        if law == Law::ConstantBulk {
+            bulk_passive = passive;
+        }
+        let (alpha, _) = sys.rates();
+        lines.push(format!(
+            "{name}: {} (work done on the material, relative to the impact energy, reaches {}{}; energy balance error {}; contact {})",
+            if passive { "passive" } else { "NOT passive" },
+            sig3(min_work),
+            first_negative.map_or(String::new(), |t| format!(", negative from t = {} s; growing mode rate |alpha| = {} 1/s", sig3(t), sig3(-alpha))),
+            sig3(r.balance_error),
+            if r.ended { format!("ended at {} s", sig3(r.duration)) } else { format!("still on at {} s", sig3(r.duration)) }
+        ));
+        curves.push((format!("{name}: work on material / E0"), work));
+        curves.push((
+            format!("{name}: kinetic energy / E0"),
+            r.trajectory
+                .iter()
+                .map(|(t, y)| (*t, sys.kinetic(y) / e0))
+                .collect(),
+        ));
+    }
+    let svg_name = "000_energy.svg".to_string();
+    let series: Vec<Series> = curves
+        .iter()
+        .map(|(n, p)| Series {
+            name: n,
+            points: p.clone(),
+        })
+        .collect();
+    let svg = plot(
+        "cone on the viscoelastic half-space: energy against time",
+        "t (s)",
+        "energy / impact energy",
+        Scale::Linear,
+        Scale::Linear,
+        &series,
+    );
+    Ok(Outcome {
+        id: c.id.clone(),
+        paper: paper.paper.clone(),
+        equation: c.equation.clone(),
+        quote: c.quote.clone(),
+        verdict: if bulk_passive {
+            Verdict::Holds
+        } else {
+            Verdict::Fails
+        },
+        detail: lines.join("; "),
+        printed_latex: None,
+        derived_latex: None,
+        extra_md: Some(format!(
+            "Energy booked as integrated states (dissipated work, operator work) plus stored energy; a passive law \
+             never has the work done on the material turn negative. Scene `{}`.\n\n![energy against time]({svg_name})",
+            c.scene.clone().unwrap_or_default()
+        )),
+        files: vec![(svg_name, svg)],
+    })
+}
