@@ -278,6 +278,50 @@ type Curves = Vec<(String, Vec<(f64, f64)>)>;
 
 fn run_validated(scene: &crate::scene::Scene) -> Result<(Value, Curves), RunError> {
     match scene {
+        crate::scene::Scene::RigidImpact(s) => {
+            let r = crate::models::rigid_impact::impact(
+                &s.bodies[0],
+                &s.bodies[1],
+                s.normal,
+                s.v_rel,
+                s.mu,
+                s.law,
+                s.e,
+                s.rtol,
+            )
+            .map_err(|e| RunError::BadArgument {
+                arg: "impact".into(),
+                message: e.to_string(),
+            })?;
+            let mut warnings = Vec::new();
+            let scale = 0.5 * s.v_rel.norm_squared() / r.lambda_min;
+            if r.energy_change > 1e-9 * scale {
+                warnings.push(format!(
+                    "kinetic energy grows by {:.6e} J: {} restitution with friction is not energetically consistent here",
+                    r.energy_change,
+                    s.law.name()
+                ));
+            }
+            let v = json!({
+                "model": "rigid-impact",
+                "law": s.law.name(),
+                "impulse": r.impulse,
+                "v_rel_after": r.v_rel_after,
+                "compression_impulse": r.compression_impulse,
+                "energy_change": r.energy_change,
+                "kelvin_energy_change": r.kelvin_energy_change,
+                "lambda_min": r.lambda_min,
+                "lambda_max": r.lambda_max,
+                "bound_upper": r.bound_upper,
+                "bound_lower": r.bound_lower,
+                "phases": r.phases,
+                "cut_off": r.cut_off,
+                "classification": Value::Null,
+                "stats": r.stats,
+                "warnings": warnings,
+            });
+            Ok((v, vec![]))
+        }
         crate::scene::Scene::ConePlate(s) => {
             use crate::models::cone_plate::{self, ConePlate, Variant};
             let sys = ConePlate::new(s.params.clone(), s.effects.clone(), s.variant, s.law)

@@ -2,3 +2,4 @@
 
 pub mod cone_plate;
 pub mod hertz;
+pub mod rigid_impact;

@@ -107,16 +107,37 @@ pub struct ConePlateScene {
     pub solve: SolveSpec,
 }
 
+/// The `rigid-impact` scene of 002_b53e4779673eb6ed.txt.
+#[derive(Clone, Debug)]
+pub struct RigidImpactScene {
+    /// The two bodies.
+    pub bodies: [crate::models::rigid_impact::Body; 2],
+    /// Contact normal, into the first body.
+    pub normal: nalgebra::Vector3<f64>,
+    /// Friction coefficient.
+    pub mu: f64,
+    /// Restitution law.
+    pub law: crate::models::rigid_impact::Law,
+    /// Coefficient of restitution.
+    pub e: f64,
+    /// Relative velocity at C before impact (m/s).
+    pub v_rel: nalgebra::Vector3<f64>,
+    /// Relative tolerance.
+    pub rtol: f64,
+}
+
 /// A validated scene.
 #[derive(Clone, Debug)]
 pub enum Scene {
+    /// Two rigid bodies, one contact, Coulomb friction.
+    RigidImpact(Box<RigidImpactScene>),
     /// Sphere on a rigid-backed half-space.
     Hertz(HertzScene),
     /// Cone on a viscoelastic plate.
     ConePlate(Box<ConePlateScene>),
 }
 
-const MODELS: &str = "hertz, cone-plate";
+const MODELS: &str = "hertz, cone-plate, rigid-impact";
 const EFFECTS: &[&str] = &[
     "viscoelastic",
     "plate",
@@ -392,6 +413,7 @@ pub fn parse_table(root: &toml::Table, path: &str) -> Result<Scene, SceneError> 
             }))
         }
         "cone-plate" => cone_plate(&r, root),
+        "rigid-impact" => rigid_impact(&r, root),
         other => {
             let near = MODELS
                 .split(", ")
@@ -689,6 +711,185 @@ fn cone_plate(r: &Reader, root: &toml::Table) -> Result<Scene, SceneError> {
         variant,
         law,
         solve: r.solve(root, "contact-end", true)?,
+    })))
+}
+
+fn vec3(r: &Reader, t: &toml::Table, field: &str) -> Result<nalgebra::Vector3<f64>, SceneError> {
+    let key = field.rsplit('.').next().unwrap_or(field);
+    let err = |v: String| SceneError::OutOfRange {
+        path: r.path.into(),
+        field: field.into(),
+        value: v,
+        allowed: "a 3-vector of finite numbers, e.g. [0.0, 0.0, 1.0]".into(),
+    };
+    let v = t.get(key).ok_or_else(|| SceneError::Missing {
+        path: r.path.into(),
+        field: field.into(),
+        allowed: "a 3-vector".into(),
+    })?;
+    let a = v.as_array().ok_or_else(|| err(v.to_string()))?;
+    let xs: Vec<f64> = a
+        .iter()
+        .filter_map(|x| x.as_float().or_else(|| x.as_integer().map(|i| i as f64)))
+        .collect();
+    if xs.len() != 3 || a.len() != 3 || xs.iter().any(|x| !x.is_finite()) {
+        return Err(err(v.to_string()));
+    }
+    Ok(nalgebra::Vector3::new(xs[0], xs[1], xs[2]))
+}
+
+fn rigid_impact(r: &Reader, root: &toml::Table) -> Result<Scene, SceneError> {
+    use crate::models::rigid_impact::{Body, Law};
+    r.check_keys(
+        root,
+        "",
+        &[
+            "model", "body", "contact", "initial", "solve", "support", "fixed",
+        ],
+    )?;
+    for not_yet in ["support", "fixed"] {
+        if root.contains_key(not_yet) {
+            return Err(SceneError::OutOfRange {
+                path: r.path.into(),
+                field: format!("[{not_yet}]"),
+                value: "present".into(),
+                allowed: "not supported yet by this version (free bodies only; see issue 5)".into(),
+            });
+        }
+    }
+    let bodies = match root.get("body") {
+        Some(toml::Value::Array(a)) if a.len() == 2 => a,
+        other => {
+            return Err(SceneError::OutOfRange {
+                path: r.path.into(),
+                field: "[[body]]".into(),
+                value: other.map_or("missing".into(), |v| {
+                    format!("{} tables", v.as_array().map_or(0, |a| a.len()))
+                }),
+                allowed: "exactly two [[body]] tables".into(),
+            });
+        }
+    };
+    let mut out = Vec::new();
+    for (k, b) in bodies.iter().enumerate() {
+        let name = format!("body[{k}]");
+        let t = b.as_table().ok_or_else(|| SceneError::OutOfRange {
+            path: r.path.into(),
+            field: name.clone(),
+            value: b.to_string(),
+            allowed: "a table".into(),
+        })?;
+        r.check_keys(t, &name, &["mass", "inertia", "contact_offset"])?;
+        let mass = match t.get("mass") {
+            Some(toml::Value::String(s)) if s == "inf" => None,
+            _ => Some(r.num(
+                t,
+                &format!("{name}.mass"),
+                None,
+                |v| v > 0.0,
+                "mass > 0 (kg), or \"inf\" for a fixed massive obstacle",
+            )?),
+        };
+        let inertia = match (mass, t.get("inertia")) {
+            (None, None) => nalgebra::Matrix3::identity(),
+            (_, v) => {
+                let err = |val: String| SceneError::OutOfRange {
+                    path: r.path.into(),
+                    field: format!("{name}.inertia"),
+                    value: val,
+                    allowed: "a symmetric positive-definite 3x3 array (kg m^2)".into(),
+                };
+                let v = v.ok_or_else(|| err("missing".into()))?;
+                let rows = v.as_array().ok_or_else(|| err(v.to_string()))?;
+                let mut m = nalgebra::Matrix3::zeros();
+                if rows.len() != 3 {
+                    return Err(err(v.to_string()));
+                }
+                for (i, row) in rows.iter().enumerate() {
+                    let cols = row.as_array().ok_or_else(|| err(v.to_string()))?;
+                    if cols.len() != 3 {
+                        return Err(err(v.to_string()));
+                    }
+                    for (j, c) in cols.iter().enumerate() {
+                        m[(i, j)] = c
+                            .as_float()
+                            .or_else(|| c.as_integer().map(|x| x as f64))
+                            .filter(|x| x.is_finite())
+                            .ok_or_else(|| err(v.to_string()))?;
+                    }
+                }
+                let asym = (m - m.transpose()).abs().max();
+                if asym > 1e-12 * m.abs().max() || m.cholesky().is_none() {
+                    return Err(err(format!("{v} (not symmetric positive-definite)")));
+                }
+                m
+            }
+        };
+        let offset = match (mass, t.get("contact_offset")) {
+            (None, None) => nalgebra::Vector3::zeros(),
+            _ => vec3(r, t, &format!("{name}.contact_offset"))?,
+        };
+        out.push(Body {
+            mass,
+            inertia,
+            offset,
+        });
+    }
+    if out.iter().all(|b| b.mass.is_none()) {
+        return Err(SceneError::OutOfRange {
+            path: r.path.into(),
+            field: "[[body]].mass".into(),
+            value: "\"inf\" twice".into(),
+            allowed: "at least one body with finite mass".into(),
+        });
+    }
+    let c = r.table(root, "contact")?;
+    r.check_keys(c, "contact", &["normal", "mu", "law", "e"])?;
+    let normal = vec3(r, c, "contact.normal")?;
+    if normal.norm() <= 0.0 || normal.norm().is_nan() {
+        return Err(SceneError::OutOfRange {
+            path: r.path.into(),
+            field: "contact.normal".into(),
+            value: format!("{normal:?}"),
+            allowed: "a non-zero vector pointing into the first body".into(),
+        });
+    }
+    let law = match string_choice(r, c, "law", &["newton", "poisson", "energetic"], "poisson")?
+        .as_str()
+    {
+        "newton" => Law::Newton,
+        "energetic" => Law::Energetic,
+        _ => Law::Poisson,
+    };
+    let mu = r.num(c, "contact.mu", Some(0.0), |v| v >= 0.0, "mu >= 0")?;
+    let e = r.num(
+        c,
+        "contact.e",
+        None,
+        |v| (0.0..=1.0).contains(&v),
+        "0 <= e <= 1",
+    )?;
+    let init = r.table(root, "initial")?;
+    r.check_keys(init, "initial", &["v_rel"])?;
+    let v_rel = vec3(r, init, "initial.v_rel")?;
+    let n = normal.normalize();
+    if v_rel.dot(&n) >= 0.0 || v_rel.dot(&n).is_nan() {
+        return Err(SceneError::OutOfRange {
+            path: r.path.into(),
+            field: "initial.v_rel".into(),
+            value: format!("[{}, {}, {}]", v_rel.x, v_rel.y, v_rel.z),
+            allowed: "(v_rel, normal) < 0: the bodies approach at C".into(),
+        });
+    }
+    let solve = r.solve(root, "impact-end", false)?;
+    Ok(Scene::RigidImpact(Box::new(RigidImpactScene {
+        bodies: [out[0].clone(), out[1].clone()],
+        normal,
+        mu,
+        law,
+        e,
+        v_rel,
+        rtol: solve.rtol,
     })))
 }
 
