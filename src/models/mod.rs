@@ -3,3 +3,4 @@
 pub mod cone_plate;
 pub mod hertz;
 pub mod rigid_impact;
+pub mod support;

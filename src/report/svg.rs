@@ -137,3 +137,31 @@ fn escape(s: &str) -> String {
         .replace('<', "&lt;")
         .replace('>', "&gt;")
 }
+
+/// A scatter plot: one marker per point, one colour per series (for classification maps).
+pub fn scatter(title: &str, xlabel: &str, ylabel: &str, series: &[Series]) -> String {
+    let lines = plot(title, xlabel, ylabel, Scale::Linear, Scale::Linear, series);
+    // re-draw the polylines as markers: replace each polyline by circles at its vertices
+    let mut out = String::new();
+    for line in lines.lines() {
+        if let Some(rest) = line.strip_prefix("<polyline points=\"") {
+            let pts = rest.split('"').next().unwrap_or("");
+            let color = line
+                .split("stroke=\"")
+                .nth(1)
+                .and_then(|s| s.split('"').next())
+                .unwrap_or("black");
+            for p in pts.split_whitespace() {
+                if let Some((x, y)) = p.split_once(',') {
+                    out.push_str(&format!(
+                        "<circle cx=\"{x}\" cy=\"{y}\" r=\"3\" fill=\"{color}\"/>\n"
+                    ));
+                }
+            }
+        } else {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    out
+}
