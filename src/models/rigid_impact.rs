@@ -110,6 +110,9 @@ pub struct ImpactResult {
     pub cut_off: bool,
     /// Work done.
     pub stats: crate::integrate::Stats,
+    /// The relative velocity along the impact: `(normal impulse, V)` at every accepted step.
+    #[serde(skip)]
+    pub path: Vec<(f64, [f64; 3])>,
 }
 
 /// Why an impact could not be computed.
@@ -144,7 +147,19 @@ enum Mode {
     Stick(Vector3<f64>),
 }
 
+/// A smooth support under the second body: $\tilde{\mathbf B}$, N and $\beta$ of (3.6).
+#[derive(Clone, Debug)]
+pub struct SmoothSupport {
+    /// $\tilde{\mathbf B}$ of (3.4).
+    pub b_tilde: Matrix3<f64>,
+    /// Unit normal N at A.
+    pub normal: Vector3<f64>,
+    /// $\beta = (\mathbf B_A\mathbf N, \mathbf N)$.
+    pub beta: f64,
+}
+
 struct Keller {
+    support: Option<SmoothSupport>,
     b: Matrix3<f64>,
     n: Vector3<f64>,
     mu: f64,
@@ -179,7 +194,12 @@ impl OdeSystem for Keller {
     fn rhs(&self, _chi: f64, y: &[f64], dy: &mut [f64]) {
         let v = Vector3::new(y[0], y[1], y[2]);
         let d = self.rate(&v);
-        let dv = self.b * d;
+        let mut dv = self.b * d;
+        if let Some(s) = &self.support {
+            // (3.7)-(3.8): F_N* = max(0, -alpha/beta), alpha = -(B~ F, N)
+            let fn_star = ((s.b_tilde * d).dot(&s.normal) / s.beta).max(0.0);
+            dv -= s.b_tilde.transpose() * s.normal * fn_star;
+        }
         dy[..3].copy_from_slice(dv.as_slice());
         dy[3..6].copy_from_slice(d.as_slice());
         dy[6] = v.dot(&self.n);
@@ -300,6 +320,22 @@ pub fn impact_with_matrix(
     e: f64,
     rtol: f64,
 ) -> Result<ImpactResult, ImpactError> {
+    impact_general(b, None, normal, v_minus, mu, law, e, rtol)
+}
+
+/// As [`impact_with_matrix`], with an optional smooth support under the second body (section
+/// 3): the support reacts only while $\alpha < 0$, so $\mathbf B$ switches to $\mathbf B^*$ (3.8).
+#[allow(clippy::too_many_arguments)]
+pub fn impact_general(
+    b: &Matrix3<f64>,
+    support: Option<SmoothSupport>,
+    normal: Vector3<f64>,
+    v_minus: Vector3<f64>,
+    mu: f64,
+    law: Law,
+    e: f64,
+    rtol: f64,
+) -> Result<ImpactResult, ImpactError> {
     let bad = |field: &str, value: String, allowed: &str| ImpactError::OutOfRange {
         field: field.into(),
         value,
@@ -341,6 +377,7 @@ pub fn impact_with_matrix(
     let chi_max = 20.0 * 2.0 * v_minus.norm() / lmin.max(lam_floor).max(lmax * 1e-6);
     let scale = v_minus.norm();
     let mut sys = Keller {
+        support,
         b,
         n,
         mu,
@@ -351,6 +388,7 @@ pub fn impact_with_matrix(
     let mut y = vec![v_minus.x, v_minus.y, v_minus.z, 0.0, 0.0, 0.0, 0.0];
     let mut chi = 0.0;
     let mut phases = Vec::new();
+    let mut path: Vec<(f64, [f64; 3])> = Vec::new();
     let mut stats = crate::integrate::Stats::default();
     // initial mode
     let vt0 = sys.tangential(&v_minus);
@@ -439,10 +477,12 @@ pub fn impact_with_matrix(
             atol: rtol * scale * 1e-3,
             method: Method::Dop853,
             events,
+            trajectory: true,
             ..Options::default()
         };
         let sol = solve(&sys, chi, &y, chi_max, &opts)?;
         stats = stats + sol.stats;
+        path.extend(sol.trajectory.iter().map(|(c, y)| (*c, [y[0], y[1], y[2]])));
         chi = sol.t;
         y = sol.y.clone();
         match sol.stop {
@@ -518,6 +558,7 @@ pub fn impact_with_matrix(
         bound_lower: vn0.abs() / lmax,
         phases,
         stats,
+        path,
     })
 }
 

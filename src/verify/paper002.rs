@@ -524,6 +524,74 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
             )
         }
         "plane-support" => plane_support(paper, c)?,
+        "billiard-general" => {
+            // the two balls with the second on a smooth table, integrated by the general model
+            use crate::models::rigid_impact::{SmoothSupport, impact_general};
+            use crate::models::support::{Support, matrices};
+            let (m, r) = (1.0, 1.0);
+            let rho2 = 0.4 * r * r;
+            let ball = |off: Vector3<f64>| Body {
+                mass: Some(m),
+                inertia: Matrix3::identity() * (m * rho2),
+                offset: off,
+            };
+            let (b1, b2) = (
+                ball(Vector3::new(r, 0.0, 0.0)),
+                ball(Vector3::new(-r, 0.0, 0.0)),
+            );
+            let b = b_matrix(&b1, &b2).ok_or_else(|| bad("singular"))?;
+            let sup = Support {
+                offset: Vector3::new(0.0, 0.0, -r),
+                normal: Vector3::z(),
+                mu: 0.0,
+            };
+            let sm = matrices(&b2, &sup).ok_or_else(|| bad("singular"))?;
+            let beta = (sm.b_a * Vector3::z()).dot(&Vector3::z());
+            let mut worst: f64 = 0.0;
+            let mut worst_v1: f64 = 0.0;
+            let mut points = 0;
+            for (phi0_deg, mu) in [(100.0f64, 0.3), (120.0, 0.1), (150.0, 0.03), (170.0, 0.2)] {
+                let phi0 = phi0_deg.to_radians();
+                let (r0, v1) = (0.5, -1.0);
+                let v = Vector3::new(v1, r0 * phi0.sin(), r0 * phi0.cos());
+                let support = SmoothSupport {
+                    b_tilde: sm.b_tilde,
+                    normal: Vector3::z(),
+                    beta,
+                };
+                let res = impact_general(
+                    &b,
+                    Some(support),
+                    Vector3::x(),
+                    v,
+                    mu,
+                    Law::Poisson,
+                    0.8,
+                    1e-12,
+                )
+                .map_err(|e| bad(&e.to_string()))?;
+                for (chi, vv) in &res.path {
+                    let rr = (vv[1] * vv[1] + vv[2] * vv[2]).sqrt();
+                    if rr < 1e-3 * r0 {
+                        continue;
+                    }
+                    let phi = vv[1].atan2(vv[2]);
+                    let closed =
+                        r0 * (phi.sin() / phi0.sin()).powi(6) * (phi.cos() / phi0.cos()).powi(-7);
+                    worst = worst.max((rr - closed).abs() / rr);
+                    worst_v1 = worst_v1.max((vv[0] - (v1 + 2.0 * chi / m)).abs());
+                    points += 1;
+                }
+            }
+            outcome(
+                paper,
+                c,
+                holds(worst <= 1e-7 && worst_v1 <= 1e-9),
+                format!(
+                    "two homogeneous balls (m = R = 1), the second on a smooth table, integrated by the general model (B of (1.7), the support reaction (3.7) switched on while alpha < 0) in the normal impulse, 4 impacts, {points} steps: max relative difference of r(phi) from (3.14) {worst:.2e}; V1 against V1- + 2 I_n/m: {worst_v1:.2e}"
+                ),
+            )
+        }
         other => return Err(bad(&format!("unknown check `{other}`"))),
     })
 }
