@@ -524,6 +524,65 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
             )
         }
         "plane-support" => plane_support(paper, c)?,
+        "proposition-2" => {
+            use crate::models::fixed_points::{Hold, b_star, line_meets_both, singular};
+            let mut rng = Rng(0x5EED_0022);
+            let mut agree = 0;
+            let mut total = 0;
+            let mut singular_count = 0;
+            let mut min_eig: f64 = f64::INFINITY;
+            let mut first_bad = String::new();
+            let spd = |rng: &mut Rng| {
+                let l = Matrix3::new(rng.range(0.2, 1.0), 0.0, 0.0, rng.range(-0.3, 0.3), rng.range(0.2, 1.0), 0.0, rng.range(-0.3, 0.3), rng.range(-0.3, 0.3), rng.range(0.2, 1.0));
+                l * l.transpose()
+            };
+            let rv = |rng: &mut Rng| Vector3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
+            for k in 0..600 {
+                // half of the cases are built to meet Proposition 2's condition on purpose
+                let kinds = [k % 4, (k / 4) % 4];
+                let shared = rv(&mut rng);
+                let special = k % 2 == 0;
+                let mut holds_ = Vec::new();
+                for (idx, kind) in kinds.iter().enumerate() {
+                    let h = match kind {
+                        0 => Hold::Free { mass: rng.range(0.5, 5.0), inertia: spd(&mut rng), gc: rv(&mut rng) },
+                        1 => Hold::Point {
+                            inertia_o: spd(&mut rng),
+                            oc: if special { shared * rng.range(0.3, 2.0) * if idx == 0 { 1.0 } else { -1.0 } } else { rv(&mut rng) },
+                        },
+                        2 => {
+                            let oc = rv(&mut rng);
+                            // an axis whose line meets the line C + t*shared when special
+                            // O = C - OC; the axis through O towards C + t*shared meets that line
+                            let e = if special { (oc + shared * rng.range(0.5, 2.0)).normalize() } else { rv(&mut rng).normalize() };
+                            Hold::Axis { j_axis: rng.range(0.2, 2.0), e, oc }
+                        }
+                        _ => Hold::Fixed,
+                    };
+                    holds_.push(h);
+                }
+                let b = b_star(&holds_[0], &holds_[1]);
+                let ev = SymmetricEigen::new(b).eigenvalues;
+                min_eig = min_eig.min(ev.min() / ev.max().abs().max(1e-300));
+                let s_num = singular(&b);
+                let s_geo = line_meets_both(&holds_[0], &holds_[1]);
+                total += 1;
+                singular_count += usize::from(s_num);
+                if s_num == s_geo {
+                    agree += 1;
+                } else if first_bad.is_empty() {
+                    first_bad = format!("; first disagreement: case {k}, kinds {kinds:?}");
+                }
+            }
+            outcome(
+                paper,
+                c,
+                holds(agree == total && min_eig >= -1e-12),
+                format!(
+                    "{total} seeded pairs of bodies (free, fixed point, fixed axis, immovable; half built to meet the condition): B* singular by its eigenvalues in {singular_count}; the geometric condition (a line through C meets both fixed sets) agrees in {agree}; smallest eigenvalue/largest {min_eig:.2e} (B* non-negative, (2.2)){first_bad}"
+                ),
+            )
+        }
         "billiard-general" => {
             // the two balls with the second on a smooth table, integrated by the general model
             use crate::models::rigid_impact::{SmoothSupport, impact_general};
