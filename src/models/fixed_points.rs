@@ -112,7 +112,8 @@ pub fn line_meets_both(h1: &Hold, h2: &Hold) -> bool {
         (Directions::None, _) | (_, Directions::None) => false,
         (Directions::All, _) | (_, Directions::All) => true,
         (Directions::Line(a), Directions::Line(b)) => a.cross(&b).norm() <= tol,
-        (Directions::Line(a), Directions::Plane(p)) | (Directions::Plane(p), Directions::Line(a)) => a.dot(&p).abs() <= tol,
+        (Directions::Line(a), Directions::Plane(p))
+        | (Directions::Plane(p), Directions::Line(a)) => a.dot(&p).abs() <= tol,
         (Directions::Plane(_), Directions::Plane(_)) => true,
     }
 }
