@@ -279,22 +279,23 @@ type Curves = Vec<(String, Vec<(f64, f64)>)>;
 fn run_validated(scene: &crate::scene::Scene) -> Result<(Value, Curves), RunError> {
     match scene {
         crate::scene::Scene::RigidImpact(s) => {
-            let r = crate::models::rigid_impact::impact(
-                &s.bodies[0],
-                &s.bodies[1],
-                s.normal,
-                s.v_rel,
-                s.mu,
-                s.law,
-                s.e,
-                s.rtol,
-            )
-            .map_err(|e| RunError::BadArgument {
-                arg: "impact".into(),
-                message: e.to_string(),
-            })?;
-            let mut warnings = Vec::new();
-            let scale = 0.5 * s.v_rel.norm_squared() / r.lambda_min;
+            let (r, classification, mut warnings) = crate::models::constrained::solve_scene(s)
+                .map_err(|e| RunError::BadArgument {
+                    arg: "impact".into(),
+                    message: e.to_string(),
+                })?;
+            let Some(r) = r else {
+                let v = json!({
+                    "model": "rigid-impact",
+                    "law": s.law.name(),
+                    "impulse": Value::Null,
+                    "classification": classification.as_ref().map(|c| c.kind.clone()),
+                    "support_analysis": classification,
+                    "warnings": warnings,
+                });
+                return Ok((v, vec![]));
+            };
+            let scale = 0.5 * s.v_rel.norm_squared() / r.lambda_min.max(1e-300);
             if r.energy_change > 1e-9 * scale {
                 warnings.push(format!(
                     "kinetic energy grows by {:.6e} J: {} restitution with friction is not energetically consistent here",
@@ -316,7 +317,8 @@ fn run_validated(scene: &crate::scene::Scene) -> Result<(Value, Curves), RunErro
                 "bound_lower": r.bound_lower,
                 "phases": r.phases,
                 "cut_off": r.cut_off,
-                "classification": Value::Null,
+                "classification": classification.as_ref().map(|c| c.kind.clone()),
+                "support_analysis": classification,
                 "stats": r.stats,
                 "warnings": warnings,
             });

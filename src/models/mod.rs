@@ -1,6 +1,7 @@
 //! Physical models, one per file, named by the physics. Models know nothing of reports.
 
 pub mod cone_plate;
+pub mod constrained;
 pub mod fixed_points;
 pub mod hertz;
 pub mod rigid_impact;

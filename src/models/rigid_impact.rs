@@ -110,6 +110,8 @@ pub struct ImpactResult {
     pub cut_off: bool,
     /// Work done.
     pub stats: crate::integrate::Stats,
+    /// Impulse of the support on the second body (N s), zero without a support.
+    pub support_impulse: [f64; 3],
     /// The relative velocity along the impact: `(normal impulse, V)` at every accepted step.
     #[serde(skip)]
     pub path: Vec<(f64, [f64; 3])>,
@@ -189,20 +191,23 @@ impl Keller {
 
 impl OdeSystem for Keller {
     fn dim(&self) -> usize {
-        7
+        10
     }
     fn rhs(&self, _chi: f64, y: &[f64], dy: &mut [f64]) {
         let v = Vector3::new(y[0], y[1], y[2]);
         let d = self.rate(&v);
         let mut dv = self.b * d;
+        let mut fs = Vector3::zeros();
         if let Some(s) = &self.support {
             // (3.7)-(3.8): F_N* = max(0, -alpha/beta), alpha = -(B~ F, N)
             let fn_star = ((s.b_tilde * d).dot(&s.normal) / s.beta).max(0.0);
-            dv -= s.b_tilde.transpose() * s.normal * fn_star;
+            fs = s.normal * fn_star;
+            dv -= s.b_tilde.transpose() * fs;
         }
         dy[..3].copy_from_slice(dv.as_slice());
         dy[3..6].copy_from_slice(d.as_slice());
         dy[6] = v.dot(&self.n);
+        dy[7..10].copy_from_slice(fs.as_slice());
     }
 }
 
@@ -385,7 +390,9 @@ pub fn impact_general(
         u_hint: Vector3::zeros(),
         floor: 1e-13 * scale,
     };
-    let mut y = vec![v_minus.x, v_minus.y, v_minus.z, 0.0, 0.0, 0.0, 0.0];
+    let mut y = vec![
+        v_minus.x, v_minus.y, v_minus.z, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    ];
     let mut chi = 0.0;
     let mut phases = Vec::new();
     let mut path: Vec<(f64, [f64; 3])> = Vec::new();
@@ -558,6 +565,7 @@ pub fn impact_general(
         bound_lower: vn0.abs() / lmax,
         phases,
         stats,
+        support_impulse: [y[7], y[8], y[9]],
         path,
     })
 }
@@ -565,6 +573,17 @@ pub fn impact_general(
 /// Kinetic energy change of the bodies computed from their velocities (1.2)-(1.3): body 1
 /// translating with the relative velocity, body 2 at rest (any split gives the same change).
 pub fn kinetic_change(b1: &Body, b2: &Body, v_minus: &Vector3<f64>, imp: &Vector3<f64>) -> f64 {
+    kinetic_change_supported(b1, b2, v_minus, imp, None)
+}
+
+/// As [`kinetic_change`], with the support impulse `(G2->A, I*)` on the second body (3.1).
+pub fn kinetic_change_supported(
+    b1: &Body,
+    b2: &Body,
+    v_minus: &Vector3<f64>,
+    imp: &Vector3<f64>,
+    support: Option<(Vector3<f64>, Vector3<f64>)>,
+) -> f64 {
     let ke = |body: &Body, v: &Vector3<f64>, w: &Vector3<f64>| -> f64 {
         body.mass.map_or(0.0, |m| {
             0.5 * m * v.norm_squared() + 0.5 * w.dot(&(body.inertia * w))

@@ -124,6 +124,16 @@ pub struct RigidImpactScene {
     pub v_rel: nalgebra::Vector3<f64>,
     /// Relative tolerance.
     pub rtol: f64,
+    /// The second body's support, if any.
+    pub support: Option<crate::models::support::Support>,
+    /// Velocity of the support point A before impact (m/s).
+    pub v_support: nalgebra::Vector3<f64>,
+    /// A fixed point or axis: (body index 0|1, G->O, optional axis).
+    pub fixed: Option<(
+        usize,
+        nalgebra::Vector3<f64>,
+        Option<nalgebra::Vector3<f64>>,
+    )>,
 }
 
 /// A validated scene.
@@ -747,16 +757,6 @@ fn rigid_impact(r: &Reader, root: &toml::Table) -> Result<Scene, SceneError> {
             "model", "body", "contact", "initial", "solve", "support", "fixed",
         ],
     )?;
-    for not_yet in ["support", "fixed"] {
-        if root.contains_key(not_yet) {
-            return Err(SceneError::OutOfRange {
-                path: r.path.into(),
-                field: format!("[{not_yet}]"),
-                value: "present".into(),
-                allowed: "not supported yet by this version (free bodies only; see issue 5)".into(),
-            });
-        }
-    }
     let bodies = match root.get("body") {
         Some(toml::Value::Array(a)) if a.len() == 2 => a,
         other => {
@@ -870,8 +870,94 @@ fn rigid_impact(r: &Reader, root: &toml::Table) -> Result<Scene, SceneError> {
         "0 <= e <= 1",
     )?;
     let init = r.table(root, "initial")?;
-    r.check_keys(init, "initial", &["v_rel"])?;
+    r.check_keys(init, "initial", &["v_rel", "v_support"])?;
     let v_rel = vec3(r, init, "initial.v_rel")?;
+    let v_support = if init.contains_key("v_support") {
+        vec3(r, init, "initial.v_support")?
+    } else {
+        nalgebra::Vector3::zeros()
+    };
+    let support = match root.get("support") {
+        None => None,
+        Some(_) => {
+            let t = r.table(root, "support")?;
+            r.check_keys(t, "support", &["offset", "normal", "mu"])?;
+            let normal = vec3(r, t, "support.normal")?;
+            if normal.norm() <= 0.0 {
+                return Err(SceneError::OutOfRange {
+                    path: r.path.into(),
+                    field: "support.normal".into(),
+                    value: format!("{normal:?}"),
+                    allowed: "a non-zero vector from the support into the second body".into(),
+                });
+            }
+            if out[1].mass.is_none() {
+                return Err(SceneError::OutOfRange {
+                    path: r.path.into(),
+                    field: "[support]".into(),
+                    value: "second body with mass \"inf\"".into(),
+                    allowed: "a support under a second body of finite mass".into(),
+                });
+            }
+            Some(crate::models::support::Support {
+                offset: vec3(r, t, "support.offset")?,
+                normal: normal.normalize(),
+                mu: r.num(t, "support.mu", Some(0.0), |v| v >= 0.0, "mu >= 0")?,
+            })
+        }
+    };
+    let fixed = match root.get("fixed") {
+        None => None,
+        Some(_) => {
+            let t = r.table(root, "fixed")?;
+            r.check_keys(t, "fixed", &["offset", "axis", "body"])?;
+            let body = match t.get("body") {
+                None => 0,
+                Some(toml::Value::Integer(1)) => 0,
+                Some(toml::Value::Integer(2)) => 1,
+                Some(other) => {
+                    return Err(SceneError::OutOfRange {
+                        path: r.path.into(),
+                        field: "fixed.body".into(),
+                        value: other.to_string(),
+                        allowed: "1 or 2".into(),
+                    });
+                }
+            };
+            if out[body].mass.is_none() {
+                return Err(SceneError::OutOfRange {
+                    path: r.path.into(),
+                    field: "fixed.body".into(),
+                    value: (body + 1).to_string(),
+                    allowed: "a body of finite mass (an immovable body needs no fixed point)"
+                        .into(),
+                });
+            }
+            let axis = if t.contains_key("axis") {
+                let a = vec3(r, t, "fixed.axis")?;
+                if a.norm() <= 0.0 {
+                    return Err(SceneError::OutOfRange {
+                        path: r.path.into(),
+                        field: "fixed.axis".into(),
+                        value: format!("{a:?}"),
+                        allowed: "a non-zero direction".into(),
+                    });
+                }
+                Some(a.normalize())
+            } else {
+                None
+            };
+            Some((body, vec3(r, t, "fixed.offset")?, axis))
+        }
+    };
+    if support.is_some() && fixed.is_some() {
+        return Err(SceneError::OutOfRange {
+            path: r.path.into(),
+            field: "[support] and [fixed]".into(),
+            value: "both present".into(),
+            allowed: "one of them".into(),
+        });
+    }
     let n = normal.normalize();
     if v_rel.dot(&n) >= 0.0 || v_rel.dot(&n).is_nan() {
         return Err(SceneError::OutOfRange {
@@ -890,6 +976,9 @@ fn rigid_impact(r: &Reader, root: &toml::Table) -> Result<Scene, SceneError> {
         e,
         v_rel,
         rtol: solve.rtol,
+        support,
+        v_support,
+        fixed,
     })))
 }
 
