@@ -155,7 +155,7 @@ pub fn solve_scene(s: &RigidImpactScene) -> Result<SceneOutcome, ImpactError> {
             normal: nn,
             beta,
         };
-        let r = impact_general(
+        let mut r = impact_general(
             &b,
             Some(support),
             s.normal,
@@ -165,6 +165,20 @@ pub fn solve_scene(s: &RigidImpactScene) -> Result<SceneOutcome, ImpactError> {
             s.e,
             s.rtol,
         )?;
+        // the kinetic energy change from the bodies' velocities, support impulse included
+        r.energy_change = super::rigid_impact::kinetic_change_supported(
+            &s.bodies[0],
+            &s.bodies[1],
+            &s.v_rel,
+            &Vector3::from(r.impulse),
+            Some((sup.offset, Vector3::from(r.support_impulse))),
+        );
+        let gap = r.energy_change - r.kelvin_energy_change;
+        if gap.abs() > 1e-9 * r.energy_change.abs().max(1e-300) {
+            warnings.push(format!(
+                "with the support, Kelvin's (1.10) over the contact at C misses the support's term (V_A- + V_A+, I*)/2 = {gap:.6e} J (the second body leaves the table with a normal velocity at A)"
+            ));
+        }
         return Ok((Some(r), Some(cl), warnings));
     }
     if cl.kind != "unique" {

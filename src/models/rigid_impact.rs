@@ -601,9 +601,13 @@ pub fn kinetic_change_supported(
             _ => Vector3::zeros(),
         };
         let w0 = Vector3::zeros();
-        let dv = imp * (sign / m);
+        let (extra_f, extra_m) = match (k, support) {
+            (1, Some((g2a, istar))) => (istar, g2a.cross(&istar)),
+            _ => (Vector3::zeros(), Vector3::zeros()),
+        };
+        let dv = (imp * sign + extra_f) / m;
         let dw = body.inertia.try_inverse().unwrap_or_else(Matrix3::zeros)
-            * body.offset.cross(&(imp * sign));
+            * (body.offset.cross(&(imp * sign)) + extra_m);
         before += ke(body, &v0, &w0);
         after += ke(body, &(v0 + dv), &(w0 + dw));
     }
