@@ -221,3 +221,91 @@ fn verify_only_runs_a_subset_and_writes_nothing() {
         .expect("runs");
     assert_eq!(out.status.code(), Some(2));
 }
+
+fn run_json(scene: &str) -> serde_json::Value {
+    let (code, out, err) = impact(&["run", scene, "--format", "json"]);
+    assert_eq!(code, 0, "{err}");
+    serde_json::from_str(&out).expect("json")
+}
+
+#[test]
+fn rigid_impact_json_contract_and_constrained_scenes() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let v = run_json(&format!("{root}/scenes/rigid_impact.toml"));
+    for key in [
+        "impulse",
+        "v_rel_after",
+        "energy_change",
+        "kelvin_energy_change",
+        "lambda_min",
+        "lambda_max",
+        "bound_upper",
+        "bound_lower",
+        "phases",
+        "classification",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key}");
+    }
+    assert!(v["classification"].is_null());
+    // Kelvin (1.10) against the bodies' kinetic energy (computed from their velocities)
+    let (a, b) = (
+        v["energy_change"].as_f64().expect("num"),
+        v["kelvin_energy_change"].as_f64().expect("num"),
+    );
+    assert!((a - b).abs() <= 1e-9 * a.abs());
+    // the pendulum with mu >= |alpha3|/|alpha_t| = 1.25 wedges (cut-off impact)
+    let p = run_json(&format!("{root}/scenes/pendulum_wall.toml"));
+    assert_eq!(p["cut_off"], true);
+    let vr: Vec<f64> = p["v_rel_after"]
+        .as_array()
+        .expect("arr")
+        .iter()
+        .map(|x| x.as_f64().expect("num"))
+        .collect();
+    assert!(vr.iter().all(|x| x.abs() < 1e-9));
+    // the billiard balls on a smooth table: unique, energy from the bodies equals Kelvin
+    let bt = run_json(&format!("{root}/scenes/billiard_table.toml"));
+    assert_eq!(bt["classification"], "unique");
+    let (a, b) = (
+        bt["energy_change"].as_f64().expect("num"),
+        bt["kelvin_energy_change"].as_f64().expect("num"),
+    );
+    assert!((a - b).abs() <= 1e-9 * a.abs(), "{a} vs {b}");
+}
+
+#[test]
+fn rigid_impact_bad_input_names_the_field() {
+    let dir = std::env::temp_dir().join(format!("impactcheck-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let base = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/rigid_impact.toml"
+    ))
+    .expect("read");
+    for (from, to, field) in [
+        ("e = 0.6", "e = 1.5", "contact.e"),
+        ("mu = 0.3", "mu = -1", "contact.mu"),
+        (
+            "v_rel = [0.8, 0.2, -1.0]",
+            "v_rel = [0.8, 0.2, 1.0]",
+            "initial.v_rel",
+        ),
+        (
+            "[[0.002, 0.0, 0.0], [0.0, 0.003, 0.0001], [0.0, 0.0001, 0.0025]]",
+            "[[0.002, 0.1, 0.0], [0.0, 0.003, 0.0], [0.0, 0.0, 0.0025]]",
+            "body[0].inertia",
+        ),
+        ("mass = 0.5", "mass = 0", "body[0].mass"),
+        ("law = \"poisson\"", "law = \"hooke\"", "law"),
+    ] {
+        let path = dir.join("s.toml");
+        let text = base.replace(from, to);
+        assert_ne!(text, base, "{from}");
+        std::fs::write(&path, text).expect("write");
+        let (code, _, err) = impact(&["run", path.to_str().expect("utf8")]);
+        assert_eq!(code, 2, "{field}");
+        assert!(err.contains(field), "{field}: {err}");
+        assert!(!err.contains("panicked"));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -381,6 +381,15 @@ pub fn impact_general(
     let lam_floor = lmax * 1e-12;
     let chi_max = 20.0 * 2.0 * v_minus.norm() / lmin.max(lam_floor).max(lmax * 1e-6);
     let scale = v_minus.norm();
+    // the matrix that governs V_C near the stick/slip switch: B*, while the support pushes
+    // ((B~ n, N) > 0 means alpha < 0 for F along n), else B
+    let b_stick = match &support {
+        Some(s) if (s.b_tilde * n).dot(&s.normal) > 0.0 => {
+            let w = s.b_tilde.transpose() * s.normal;
+            b - w * w.transpose() / s.beta
+        }
+        _ => b,
+    };
     let mut sys = Keller {
         support,
         b,
@@ -400,7 +409,7 @@ pub fn impact_general(
     // initial mode
     let vt0 = sys.tangential(&v_minus);
     if vt0.norm() <= sys.floor || mu == 0.0 {
-        match (mu > 0.0).then(|| stick_or_slide(&b, &n, mu)) {
+        match (mu > 0.0).then(|| stick_or_slide(&b_stick, &n, mu)) {
             Some(Ok(tau)) => {
                 sys.mode = Mode::Stick(tau);
                 phases.push(Phase {
@@ -442,7 +451,7 @@ pub fn impact_general(
             });
         }
         if let Mode::Stick(tau) = sys.mode
-            && (b * (n + tau)).norm() <= 1e-10 * lmax
+            && (b_stick * (n + tau)).norm() <= 1e-10 * lmax
         {
             // the velocity no longer changes while the reaction grows: a cut-off impact
             cut_off = true;
@@ -516,7 +525,7 @@ pub fn impact_general(
             }
             Stop::Event { .. } => {
                 // slip stopped: stick or slide again
-                match stick_or_slide(&b, &n, mu) {
+                match stick_or_slide(&b_stick, &n, mu) {
                     Ok(tau) => {
                         sys.mode = Mode::Stick(tau);
                         phases.push(Phase {
