@@ -4,5 +4,6 @@ pub mod cone_plate;
 pub mod constrained;
 pub mod fixed_points;
 pub mod hertz;
+pub mod pendulum_wall;
 pub mod rigid_impact;
 pub mod support;
