@@ -1,5 +1,6 @@
 //! Physical models, one per file, named by the physics. Models know nothing of reports.
 
+pub mod balls_wall;
 pub mod cone_plate;
 pub mod constrained;
 pub mod fixed_points;

@@ -526,6 +526,37 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
         "plane-support" => plane_support(paper, c)?,
         "rolling-ball" => rolling_ball(paper, c)?,
         "pendulum-wall" => pendulum_wall(paper, c)?,
+        "balls-wall" => {
+            use crate::models::balls_wall::rebound;
+            let mut lines = Vec::new();
+            let mut best = (f64::INFINITY, String::new());
+            for (p, name) in [(1.5, "Hertz"), (1.0, "linear")] {
+                let mut row = Vec::new();
+                for kappa in [1.0, 10.0, 100.0, 1e3, 1e4] {
+                    let (v1, v2) = rebound(kappa, p, 1e-10).map_err(|e| bad(&e.to_string()))?;
+                    let dist = ((-v1 - 0.96).powi(2) + (-v2 - 0.28).powi(2)).sqrt();
+                    if dist < best.0 {
+                        best = (dist, format!("{name}, wall {kappa:e} times stiffer"));
+                    }
+                    row.push(format!("{kappa:e}: {:.3} V, {:.3} V", -v1, -v2));
+                }
+                lines.push(format!(
+                    "{name} elements (striking ball, ball at the wall), by stiffness ratio: {}",
+                    row.join("; ")
+                ));
+            }
+            outcome(
+                paper,
+                c,
+                holds(best.0 <= 0.02),
+                format!(
+                    "{}; closest to the printed (0.96 V, 0.28 V): {} (distance {:.3})",
+                    lines.join(". "),
+                    best.1,
+                    best.0
+                ),
+            )
+        }
         "proposition-3" => {
             use crate::models::rigid_impact::{SmoothSupport, impact_general};
             use crate::models::support::{Support, b_star, matrices};
