@@ -215,3 +215,28 @@ fn constant_bulk_law_is_reported_not_passive() {
     );
     assert!(r.operator_work_min < 0.0);
 }
+
+#[test]
+fn elliptic_integrals_near_k_one_match_asymptotics() {
+    // Independent reference: K = ln(4/k') + (k'^2/4)(ln(4/k') - 1) + O(k'^4 ln k'),
+    // E = 1 + (k'^2/2)(ln(4/k') - 1/2) + O(k'^4 ln k'), k' = sqrt((1-k)(1+k)).
+    use impactcheck::models::disk_friction::k_e;
+    for kp in [1e-4f64, 1e-6, 1e-7] {
+        let k = (1.0 - kp * kp).sqrt();
+        let l = (4.0 / kp).ln();
+        let (kk, ee) = k_e(k);
+        let kref = l + kp * kp / 4.0 * (l - 1.0);
+        let eref = 1.0 + kp * kp / 2.0 * (l - 0.5);
+        // k is rounded to a double: compare with the k' the double actually has
+        let kp_actual = ((1.0 - k) * (1.0 + k)).sqrt();
+        let la = (4.0 / kp_actual).ln();
+        let kref_a = la + kp_actual * kp_actual / 4.0 * (la - 1.0);
+        assert!(
+            (kk - kref_a).abs() < 1e-12 * kref,
+            "K at k' = {kp}: {kk} vs {kref_a}"
+        );
+        assert!((ee - eref).abs() < 1e-12, "E at k' = {kp}: {ee} vs {eref}");
+    }
+    // K(1/2) = 1.685750354812596 (tables)
+    assert!((k_e(0.5).0 - 1.685_750_354_812_596).abs() < 1e-14);
+}

@@ -7,6 +7,7 @@
 
 pub mod accuracy;
 pub mod paper000;
+pub mod paper001;
 pub mod paper002;
 pub mod series_numeric;
 
@@ -205,6 +206,11 @@ pub fn run_all(papers: &[PaperClaims], root: &Path) -> Result<Vec<Outcome>, Veri
                 let mut ctx = paper000::Context::new(root);
                 for c in &p.claim {
                     out.push(paper000::check(&mut ctx, p, c)?);
+                }
+            }
+            "001" => {
+                for c in &p.claim {
+                    out.push(paper001::check(p, c)?);
                 }
             }
             "002" => {

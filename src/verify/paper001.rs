@@ -1,0 +1,65 @@
+//! Checks of 001_989b2e860c39ca83.txt (Sinitsyn's disk, middle part): the friction force and
+//! moment of a sliding and spinning disk by direct quadrature against (2.3).
+
+use super::{ClaimSpec, Outcome, PaperClaims, Verdict, VerifyError};
+use crate::models::disk_friction::{f123, quadrature};
+
+/// Checks one claim of paper 001.
+pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+    let (verdict, detail) = match c.check.as_str() {
+        "disk-friction" => {
+            // F/M from the quadrature (two resolutions give its error) against (3/a) k f1/f3 and
+            // (3/a) f1(k1)/f2(k1), a = 1
+            let mut worst: f64 = 0.0;
+            let mut quad_err: f64 = 0.0;
+            let ks: Vec<f64> = (1..=19)
+                .map(|i| 0.05 * i as f64)
+                .chain([0.99, 0.999_999])
+                .collect();
+            for &k in &ks {
+                for spin_dominant in [true, false] {
+                    let (v, w) = if spin_dominant { (k, 1.0) } else { (1.0, k) };
+                    let (f, m) = quadrature(v, w, 160, 1600);
+                    let (f2_, m2_) = quadrature(v, w, 80, 800);
+                    let (a1, a2, a3) = f123(k);
+                    let closed = if spin_dominant {
+                        3.0 * k * a1 / a3
+                    } else {
+                        3.0 * a1 / a2
+                    };
+                    quad_err = quad_err.max(((f / m) - (f2_ / m2_)).abs() / (f / m).abs());
+                    worst = worst.max(((f / m) - closed).abs() / closed.abs());
+                }
+            }
+            (
+                // agreement counts within the quadrature's own error (estimated by halving the grid)
+                if worst <= (10.0 * quad_err).max(1e-9) {
+                    Verdict::Holds
+                } else {
+                    Verdict::Fails
+                },
+                format!(
+                    "F/M of a disk under uniform pressure (a = 1, f = 1) by Gauss-Legendre x midpoint quadrature against (3/a) k f1(k)/f3(k) (V <= Omega) and (3/a) f1(k1)/f2(k1) (Omega <= V), K and E from Carlson's R_F, R_D with m_c = (1-k)(1+k), k = 0.05..0.95, 0.99, 1 - 1e-6: max relative difference {worst:.2e}, within the quadrature's error estimate (change on halving the grid: {quad_err:.2e})"
+                ),
+            )
+        }
+        other => {
+            return Err(VerifyError::BadClaim {
+                id: c.id.clone(),
+                message: format!("unknown check `{other}`"),
+            });
+        }
+    };
+    Ok(Outcome {
+        id: c.id.clone(),
+        paper: paper.paper.clone(),
+        equation: c.equation.clone(),
+        quote: c.quote.clone(),
+        verdict,
+        detail,
+        printed_latex: None,
+        derived_latex: None,
+        extra_md: None,
+        files: vec![],
+    })
+}
