@@ -282,6 +282,14 @@ fn stick_or_slide(
     Err(best.map_or(t1, |x| x.1))
 }
 
+fn out_of_range(field: &str, value: String, allowed: &str) -> ImpactError {
+    ImpactError::OutOfRange {
+        field: field.into(),
+        value,
+        allowed: allowed.into(),
+    }
+}
+
 /// Solves one impact. `v_minus` is the relative velocity at C before impact (m/s), with
 /// $(\mathbf V^-, \mathbf n) < 0$ (approaching).
 #[allow(clippy::too_many_arguments)]
@@ -295,11 +303,7 @@ pub fn impact(
     e: f64,
     rtol: f64,
 ) -> Result<ImpactResult, ImpactError> {
-    let bad = |field: &str, value: String, allowed: &str| ImpactError::OutOfRange {
-        field: field.into(),
-        value,
-        allowed: allowed.into(),
-    };
+    let bad = out_of_range;
     let b = b_matrix(b1, b2).ok_or_else(|| {
         bad(
             "body.inertia",
@@ -341,11 +345,7 @@ pub fn impact_general(
     e: f64,
     rtol: f64,
 ) -> Result<ImpactResult, ImpactError> {
-    let bad = |field: &str, value: String, allowed: &str| ImpactError::OutOfRange {
-        field: field.into(),
-        value,
-        allowed: allowed.into(),
-    };
+    let bad = out_of_range;
     if normal.norm() <= 0.0 || normal.norm().is_nan() {
         return Err(bad(
             "contact.normal",

@@ -155,6 +155,32 @@ pub enum VerifyError {
     },
 }
 
+/// An outcome with no LaTeX, extra Markdown or files.
+pub(crate) fn outcome(
+    paper: &PaperClaims,
+    c: &ClaimSpec,
+    verdict: Verdict,
+    detail: String,
+) -> Outcome {
+    Outcome {
+        id: c.id.clone(),
+        paper: paper.paper.clone(),
+        equation: c.equation.clone(),
+        quote: c.quote.clone(),
+        verdict,
+        detail,
+        printed_latex: None,
+        derived_latex: None,
+        extra_md: None,
+        files: vec![],
+    }
+}
+
+/// `Holds` or `Fails`.
+pub(crate) fn holds(b: bool) -> Verdict {
+    if b { Verdict::Holds } else { Verdict::Fails }
+}
+
 /// Reads every `*.toml` claim file in `dir`, sorted by file name.
 pub fn load_claims(dir: &Path) -> Result<Vec<PaperClaims>, VerifyError> {
     let io = |path: &Path, source| VerifyError::Io {

@@ -3,7 +3,7 @@
 //! Every verdict is the outcome of an exact comparison in [`crate::algebra`]; the detail quotes
 //! the derived and printed expressions and their difference.
 
-use super::{ClaimSpec, Outcome, PaperClaims, Verdict, VerifyError};
+use super::{ClaimSpec, Outcome, PaperClaims, VerifyError, holds, outcome};
 use crate::algebra::dims::{self, Dim};
 use crate::algebra::expo::Expo;
 use crate::algebra::galerkin::{self, Galerkin};
@@ -62,25 +62,6 @@ impl Context {
         }
         Ok(self.a1.as_ref().expect("just set"))
     }
-}
-
-fn outcome(paper: &PaperClaims, c: &ClaimSpec, verdict: Verdict, detail: String) -> Outcome {
-    Outcome {
-        id: c.id.clone(),
-        paper: paper.paper.clone(),
-        equation: c.equation.clone(),
-        quote: c.quote.clone(),
-        verdict,
-        detail,
-        printed_latex: None,
-        derived_latex: None,
-        extra_md: None,
-        files: vec![],
-    }
-}
-
-fn holds(b: bool) -> Verdict {
-    if b { Verdict::Holds } else { Verdict::Fails }
 }
 
 fn dim_text(d: &Result<Dim, dims::DimIssue>) -> String {

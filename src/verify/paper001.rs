@@ -1,7 +1,7 @@
 //! Checks of 001_989b2e860c39ca83.txt (Sinitsyn's disk, middle part): the friction force and
 //! moment of a sliding and spinning disk by direct quadrature against (2.3).
 
-use super::{ClaimSpec, Outcome, PaperClaims, Verdict, VerifyError};
+use super::{ClaimSpec, Outcome, PaperClaims, Verdict, VerifyError, outcome};
 use crate::models::disk_friction::{f123, quadrature};
 
 /// Checks one claim of paper 001.
@@ -50,16 +50,5 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
             });
         }
     };
-    Ok(Outcome {
-        id: c.id.clone(),
-        paper: paper.paper.clone(),
-        equation: c.equation.clone(),
-        quote: c.quote.clone(),
-        verdict,
-        detail,
-        printed_latex: None,
-        derived_latex: None,
-        extra_md: None,
-        files: vec![],
-    })
+    Ok(outcome(paper, c, verdict, detail))
 }

@@ -2,7 +2,7 @@
 //! the pendulum's B* (2.5) and its cut-off condition, and the Coriolis billiard problem
 //! (3.9)-(3.14).
 
-use super::{ClaimSpec, Outcome, PaperClaims, Verdict, VerifyError};
+use super::{ClaimSpec, Outcome, PaperClaims, VerifyError, holds, outcome};
 use crate::integrate::{Method, OdeSystem, Options, solve};
 use crate::models::rigid_impact::{Body, ImpactResult, Law, b_matrix, impact, impact_with_matrix};
 use crate::report::svg::{Scale, Series, plot};
@@ -71,25 +71,6 @@ fn configs(seed: u64) -> Vec<Config> {
 
 fn run(c: &Config, law: Law) -> Option<ImpactResult> {
     impact(&c.b1, &c.b2, Vector3::z(), c.v, c.mu, law, c.e, 1e-10).ok()
-}
-
-fn outcome(paper: &PaperClaims, c: &ClaimSpec, verdict: Verdict, detail: String) -> Outcome {
-    Outcome {
-        id: c.id.clone(),
-        paper: paper.paper.clone(),
-        equation: c.equation.clone(),
-        quote: c.quote.clone(),
-        verdict,
-        detail,
-        printed_latex: None,
-        derived_latex: None,
-        extra_md: None,
-        files: vec![],
-    }
-}
-
-fn holds(b: bool) -> Verdict {
-    if b { Verdict::Holds } else { Verdict::Fails }
 }
 
 fn law_of(c: &ClaimSpec) -> Law {
