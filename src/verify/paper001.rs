@@ -43,6 +43,36 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
                 ),
             )
         }
+        "disk-linear" => {
+            // the small-k limits of force and moment (f = 1, a = 1, unit normal load) by quadrature
+            let eps = 1e-3;
+            match c.part.as_deref() {
+                Some("a") => {
+                    // (2.4): V << a omega: m V' = -f V/Omega, J omega' = -2 a f/3
+                    let (f, m) = quadrature(eps, 1.0, 160, 1600);
+                    let (rf, rm) = (f.abs() / eps, m.abs() / (2.0 / 3.0));
+                    let ok = (rf - 1.0).abs() < 1e-4 && (rm - 1.0).abs() < 1e-4;
+                    (
+                        if ok { Verdict::Holds } else { Verdict::Fails },
+                        format!(
+                            "at V/Omega = {eps:e}: |F|/(f V/Omega) = {rf:.6}, |M|/(2 f a/3) = {rm:.6}; so dV/dOmega = (mu/2) V/Omega and V = V-(omega/omega-)^(mu/2) as printed"
+                        ),
+                    )
+                }
+                _ => {
+                    // (2.5): V >> a omega: m V' = -f, J omega' = -(5/6) f a Omega/V (printed)
+                    let (f, m) = quadrature(1.0, eps, 160, 1600);
+                    let (rf, coef) = (f.abs(), m.abs() / eps);
+                    let ok = (rf - 1.0).abs() < 1e-4 && (coef - 5.0 / 6.0).abs() < 1e-4;
+                    (
+                        if ok { Verdict::Holds } else { Verdict::Fails },
+                        format!(
+                            "at Omega/V = {eps:e}: |F|/f = {rf:.6}; |M|/(f a Omega/V) = {coef:.6} against the printed 5/6 = 0.833333 (the first-order expansion of the direction field gives 1/4: M = -f a (Omega/V) int x^2 dA/(pi a^4) = -f a Omega/(4V)); with 1/4, dV/dOmega = (4 mu/3) V/Omega and V = V-(omega/omega-)^(4 mu/3), where the printed (2.5) has exponent 'mu/s'"
+                        ),
+                    )
+                }
+            }
+        }
         other => {
             return Err(VerifyError::BadClaim {
                 id: c.id.clone(),
