@@ -94,3 +94,59 @@ fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
     }
     (xs, ws)
 }
+
+/// The impulsive motion (2.2) with c = 0 integrated in the normal impulse S: $m\,dV/dS = -F$,
+/// $J\,d\omega/dS = -M$, with F and M (per unit normal load, friction f, radius a) from the
+/// quadrature; until $u$ has gone from $-u_0$ to $\varepsilon u_0$. Returns $(V^+, \omega^+)$.
+#[allow(clippy::too_many_arguments)]
+pub fn impulsive_motion(
+    m: f64,
+    rho: f64,
+    a: f64,
+    f: f64,
+    v0: f64,
+    w0: f64,
+    u0: f64,
+    restitution: f64,
+) -> Result<(f64, f64), crate::integrate::IntegrateError> {
+    use crate::integrate::{Method, OdeSystem, Options, solve};
+    struct Disk {
+        m: f64,
+        j: f64,
+        a: f64,
+        f: f64,
+    }
+    impl OdeSystem for Disk {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&self, _s: f64, y: &[f64], dy: &mut [f64]) {
+            let (v, w) = (y[0].max(0.0), y[1].max(0.0));
+            if v + w * self.a <= 0.0 {
+                dy[0] = 0.0;
+                dy[1] = 0.0;
+                return;
+            }
+            // dimensionless: velocities in units of the larger of V and a omega
+            let scale = v.max(w * self.a);
+            let (fq, mq) = quadrature(v / scale, w * self.a / scale, 48, 480);
+            dy[0] = self.f * fq / self.m;
+            dy[1] = self.f * self.a * mq / self.j;
+        }
+    }
+    let sys = Disk {
+        m,
+        j: m * rho * rho,
+        a,
+        f,
+    };
+    let s_end = m * u0 * (1.0 + restitution);
+    let o = Options {
+        rtol: 1e-8,
+        atol: 1e-12,
+        method: Method::Dop853,
+        ..Options::default()
+    };
+    let sol = solve(&sys, 0.0, &[v0, w0], s_end, &o)?;
+    Ok((sol.y[0], sol.y[1]))
+}

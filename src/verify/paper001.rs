@@ -43,6 +43,43 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
                 ),
             )
         }
+        "disk-closed-forms" => {
+            // case a): omega+ = omega- - 2 a f u0/(3 rho^2), V+ = V-(1 - (2f/mu) u0/(a omega-))^(mu/2)
+            let (m, rho, a, f, u0) = (1.0, 0.7, 1.0, 0.3, 0.5);
+            let mu = 3.0 * rho * rho / (a * a);
+            let mut worst: f64 = 0.0;
+            let mut rows = Vec::new();
+            for k in [0.003, 0.01, 0.03] {
+                let (v0, w0) = (k, 1.0);
+                let (vp, wp) =
+                    crate::models::disk_friction::impulsive_motion(m, rho, a, f, v0, w0, u0, 0.0)
+                        .map_err(|e| VerifyError::BadClaim {
+                        id: c.id.clone(),
+                        message: e.to_string(),
+                    })?;
+                let w_closed = w0 - 2.0 * a * f * u0 / (3.0 * rho * rho);
+                let v_closed = v0 * (1.0 - 2.0 * f / mu * u0 / (a * w0)).powf(mu / 2.0);
+                let (ew, ev) = (
+                    (wp - w_closed).abs() / w_closed,
+                    (vp - v_closed).abs() / v_closed,
+                );
+                worst = worst.max((ew.max(ev)) / (k * k));
+                rows.push(format!(
+                    "V-/(a omega-) = {k}: omega+ off by {ew:.1e}, V+ by {ev:.1e}"
+                ));
+            }
+            (
+                if worst <= 10.0 {
+                    Verdict::Holds
+                } else {
+                    Verdict::Fails
+                },
+                format!(
+                    "(2.2) with c = 0 integrated in the normal impulse (friction force and moment by quadrature, inelastic, m = a = 1, rho = 0.7, f = 0.3, u0 = 0.5) against the closed forms of case a): {}; relative errors / k^2 at most {worst:.2} (a linearisation in k = V/(a omega) must be O(k^2))",
+                    rows.join("; ")
+                ),
+            )
+        }
         "disk-linear" => {
             // the small-k limits of force and moment (f = 1, a = 1, unit normal load) by quadrature
             let eps = 1e-3;
