@@ -7,5 +7,6 @@ pub mod disk_friction;
 pub mod fixed_points;
 pub mod hertz;
 pub mod pendulum_wall;
+pub mod relaxation;
 pub mod rigid_impact;
 pub mod support;
