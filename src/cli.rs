@@ -411,16 +411,31 @@ fn run_validated(scene: &crate::scene::Scene) -> Result<(Value, Curves), RunErro
                 k: s.k,
                 damping: s.damping,
             };
+            // an absolute tolerance above rtol times the indentation scale would make a grazing
+            // impact silently inaccurate: tighten it to that scale and say so
+            let z_scale = (5.0 * s.mass * s.v0 * s.v0 / (4.0 * s.k))
+                .powf(0.4)
+                .min(s.v0.abs().max(f64::MIN_POSITIVE));
+            let atol = s.solve.atol.min(s.solve.rtol * z_scale);
+            let mut warnings = Vec::new();
+            if atol < s.solve.atol {
+                warnings.push(format!(
+                    "atol tightened from {:e} to {atol:e} = rtol x the indentation scale {z_scale:e} m, so that the tolerance is relative to the motion",
+                    s.solve.atol
+                ));
+            }
             let r = crate::models::hertz::run(
                 &model,
                 s.v0,
                 s.solve.rtol,
-                s.solve.atol,
+                atol,
                 s.solve.method,
                 s.solve.t_end,
             )?;
             let v = json!({
                 "model": "hertz",
+                "atol_used": atol,
+                "warnings": warnings,
                 "method": s.solve.method.name(),
                 "state_size": 2,
                 "contact": {

@@ -309,3 +309,23 @@ fn rigid_impact_bad_input_names_the_field() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn grazing_hertz_impact_is_not_silently_inaccurate() {
+    // v0 = 1e-9 m/s, k = 1e12: indentations of 1e-12 m, below the default atol. Closed form:
+    // t_c = 3.218065459719043 (m/k)^(2/5) v0^(-1/5).
+    let dir = std::env::temp_dir().join(format!("impactcheck-graze-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let path = dir.join("g.toml");
+    std::fs::write(
+        &path,
+        "model = \"hertz\"\n[impactor]\nmass = 1.0\nv0 = 1e-9\n[contact]\nk = 1e12\n",
+    )
+    .expect("write");
+    let v = run_json(path.to_str().expect("utf8"));
+    let tc = 3.218_065_459_719_043 * 1e-12f64.powf(0.4) * 1e-9f64.powf(-0.2);
+    let d = v["contact"]["duration"].as_f64().expect("num");
+    assert!((d - tc).abs() < 1e-7 * tc, "{d} vs {tc}");
+    assert!(!v["warnings"].as_array().expect("warnings").is_empty());
+    let _ = std::fs::remove_dir_all(&dir);
+}
