@@ -176,6 +176,15 @@ pub(crate) fn outcome(
     }
 }
 
+impl Outcome {
+    /// Attaches a plot written beside the report, shown under `caption`.
+    pub(crate) fn with_plot(mut self, caption: &str, name: String, svg: String) -> Outcome {
+        self.extra_md = Some(format!("![{caption}]({name})"));
+        self.files = vec![(name, svg)];
+        self
+    }
+}
+
 /// `Holds` or `Fails`.
 pub(crate) fn holds(b: bool) -> Verdict {
     if b { Verdict::Holds } else { Verdict::Fails }

@@ -450,17 +450,15 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
                 Scale::Linear,
                 &s,
             );
-            let mut o = outcome(
+            outcome(
                 paper,
                 c,
                 holds(worst <= 1e-8),
                 format!(
                     "(3.13) integrated by DOP853 (rtol 1e-12) from r0 = 1, phi0 = 100..170 deg, mu = 0.3, until r = 1e-3: max relative difference from (3.14) {worst:.2e}; |phi| increases along every curve: {monotone}"
                 ),
-            );
-            o.extra_md = Some(format!("![integral curves of (3.13)]({svg_name})"));
-            o.files = vec![(svg_name, svg)];
-            o
+            )
+            .with_plot("integral curves of (3.13)", svg_name, svg)
         }
         "billiard-fixed-angles" => {
             // zeros of sin(2 phi) on (-pi, pi]: where (3.13) keeps phi constant
@@ -924,17 +922,15 @@ fn plane_support(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyEr
                 "a3 (G2A, horizontal)",
                 &series,
             );
-            let mut o = outcome(
+            outcome(
                 paper,
                 c,
                 holds(disagreements == 0 && total > 0),
                 format!(
                     "plane configurations on a 41 x 41 grid of (mu*, a3) with b3 = -0.6, rho2 = 0.5, b2 = +-0.5: {total} have beta < 0; the computed classification disagrees with 'two solutions if b2 > 0, none if b2 < 0' in {disagreements}"
                 ),
-            );
-            o.extra_md = Some(format!("![classification map]({svg_name})"));
-            o.files = vec![(svg_name, svg)];
-            o
+            )
+            .with_plot("classification map", svg_name, svg)
         }
         _ => return Err(bad("part must be beta, btilde or classification".into())),
     })
@@ -1102,17 +1098,15 @@ fn rolling_ball(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyErr
                 Scale::Linear,
                 &s,
             );
-            let mut o = outcome(
+            outcome(
                 paper,
                 c,
                 holds(worst <= 1e-9),
                 format!(
                     "with mu = mu*, xi = phi and cos phi = -2/(7 mu) (mu = 0.3, 0.5, 1, 2) the derived phi' and xi' vanish (max {worst:.2e}, including phi along an integrated trajectory from phi* for mu = 0.5); this uses only the second and fourth equations of (4.6), which the derivation confirms"
                 ),
-            );
-            o.extra_md = Some(format!("![integral curves of (4.6)]({svg_name})"));
-            o.files = vec![(svg_name, svg)];
-            o
+            )
+            .with_plot("integral curves of (4.6)", svg_name, svg)
         }
         _ => {
             return Err(VerifyError::BadClaim {
@@ -1221,7 +1215,7 @@ fn pendulum_wall(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyEr
                 Scale::Linear,
                 &series,
             );
-            let mut o = outcome(
+            outcome(
                 paper,
                 c,
                 holds(ok),
@@ -1229,10 +1223,8 @@ fn pendulum_wall(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyEr
                     "(2.15) integrated to the unloading of the contact element, (2.13) with V_Ot = 0, (GO, n) = 0, rho_O^2 = rho^2 + 1, relative to the pendulum's kinetic energy before impact T0 = (1 + rho^2)/8 (|V_Cn-| = 1, |(OC, t)| = 2): {}",
                     lines.join("; ")
                 ),
-            );
-            o.extra_md = Some(format!("![Fig. 2 recomputed]({svg_name})"));
-            o.files = vec![(svg_name, svg)];
-            o
+            )
+            .with_plot("Fig. 2 recomputed", svg_name, svg)
         }
         "fifteen" => {
             let mut worst: Vec<String> = Vec::new();
