@@ -13,7 +13,7 @@
 //! step, 3 more per step whose dense output is used.
 
 use super::dop853_tableau::{A, C, D, E3, E5};
-use super::{IntegrateError, OdeSystem, Options, Stats, Stepper, initial_step};
+use super::{IntegrateError, OdeSystem, Options, Stats, Stepper, StiffnessTest, initial_step};
 
 const SAFE: f64 = 0.9;
 const FACC1: f64 = 1.0 / 0.333;
@@ -43,9 +43,7 @@ pub struct Dop853 {
     have_fsal: bool,
     dense_ready: bool,
     stats: Stats,
-    iasti: u32,
-    nonsti: u32,
-    stiff: bool,
+    stiffness: StiffnessTest,
     fixed: Option<f64>,
 }
 
@@ -97,9 +95,7 @@ impl Dop853 {
                 rhs_evals: if opts.h0.is_some() { 1 } else { 2 },
                 ..Stats::default()
             },
-            iasti: 0,
-            nonsti: 0,
-            stiff: false,
+            stiffness: StiffnessTest::default(),
             fixed: opts.fixed_step,
         }
     }
@@ -175,21 +171,7 @@ impl Stepper for Dop853 {
                     stnum += (self.k[12 * n + m] - self.k[11 * n + m]).powi(2);
                     stden += (self.y_new[m] - self.y12[m]).powi(2);
                 }
-                if stden > 0.0 {
-                    let hlamb = h.abs() * (stnum / stden).sqrt();
-                    if hlamb > 6.1 {
-                        self.nonsti = 0;
-                        self.iasti += 1;
-                        if self.iasti >= 15 {
-                            self.stiff = true;
-                        }
-                    } else {
-                        self.nonsti += 1;
-                        if self.nonsti == 6 {
-                            self.iasti = 0;
-                        }
-                    }
-                }
+                self.stiffness.update(stnum, stden, h, 6.1);
                 self.y_old.copy_from_slice(&self.y);
                 self.y.copy_from_slice(&self.y_new);
                 self.t_old = self.t;
@@ -279,6 +261,6 @@ impl Stepper for Dop853 {
     }
 
     fn stiff(&self) -> bool {
-        self.stiff
+        self.stiffness.stiff
     }
 }

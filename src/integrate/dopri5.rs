@@ -8,7 +8,7 @@
 //! Stiffness: $|h|\,\|k_7 - k_6\|/\|\hat y - y_6\| > 3.25$ on 15 consecutive tests. Evaluation
 //! counts: 2 at start, 6 per step (first same as last).
 
-use super::{IntegrateError, OdeSystem, Options, Stats, Stepper, initial_step};
+use super::{IntegrateError, OdeSystem, Options, Stats, Stepper, StiffnessTest, initial_step};
 
 const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
 const A: [&[f64]; 7] = [
@@ -83,9 +83,7 @@ pub struct Dopri5 {
     have_fsal: bool,
     dense_ready: bool,
     stats: Stats,
-    iasti: u32,
-    nonsti: u32,
-    stiff: bool,
+    stiffness: StiffnessTest,
     fixed: Option<f64>,
 }
 
@@ -128,9 +126,7 @@ impl Dopri5 {
                 rhs_evals: if opts.h0.is_some() { 1 } else { 2 },
                 ..Stats::default()
             },
-            iasti: 0,
-            nonsti: 0,
-            stiff: false,
+            stiffness: StiffnessTest::default(),
             fixed: opts.fixed_step,
         }
     }
@@ -197,21 +193,7 @@ impl Stepper for Dopri5 {
                     stnum += (self.k[6][m] - self.k[5][m]).powi(2);
                     stden += (self.y_new[m] - self.y6[m]).powi(2);
                 }
-                if stden > 0.0 {
-                    let hlamb = h.abs() * (stnum / stden).sqrt();
-                    if hlamb > 3.25 {
-                        self.nonsti = 0;
-                        self.iasti += 1;
-                        if self.iasti >= 15 {
-                            self.stiff = true;
-                        }
-                    } else {
-                        self.nonsti += 1;
-                        if self.nonsti == 6 {
-                            self.iasti = 0;
-                        }
-                    }
-                }
+                self.stiffness.update(stnum, stden, h, 3.25);
                 self.y_old.copy_from_slice(&self.y);
                 self.y.copy_from_slice(&self.y_new);
                 self.t_old = self.t;
@@ -285,6 +267,6 @@ impl Stepper for Dopri5 {
     }
 
     fn stiff(&self) -> bool {
-        self.stiff
+        self.stiffness.stiff
     }
 }

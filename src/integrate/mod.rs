@@ -451,6 +451,37 @@ fn drive<S: OdeSystem, St: Stepper>(
     Ok(sol)
 }
 
+/// Hairer's stiffness test for the explicit pairs: $h|\lambda|$ estimated from the last stage,
+/// stiff after 15 consecutive estimates above the stability boundary, reset after 6 below it.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct StiffnessTest {
+    iasti: u32,
+    nonsti: u32,
+    /// The test has fired.
+    pub stiff: bool,
+}
+
+impl StiffnessTest {
+    /// One test: `hlamb` $= |h|\,\|f(\hat y) - f(y_s)\|/\|\hat y - y_s\|$ against `boundary`.
+    pub fn update(&mut self, stnum: f64, stden: f64, h: f64, boundary: f64) {
+        if stden <= 0.0 {
+            return;
+        }
+        if h.abs() * (stnum / stden).sqrt() > boundary {
+            self.nonsti = 0;
+            self.iasti += 1;
+            if self.iasti >= 15 {
+                self.stiff = true;
+            }
+        } else {
+            self.nonsti += 1;
+            if self.nonsti == 6 {
+                self.iasti = 0;
+            }
+        }
+    }
+}
+
 /// Weighted RMS norm used by all methods: $\sqrt{\frac1n\sum (e_i/s_i)^2}$.
 pub(crate) fn rms(e: &[f64], scale: &[f64]) -> f64 {
     let n = e.len().max(1) as f64;

@@ -48,6 +48,19 @@ pub type SceneOutcome = (Option<ImpactResult>, Option<Classification>, Vec<Strin
 /// Solves the scene.
 pub fn solve_scene(s: &RigidImpactScene) -> Result<SceneOutcome, ImpactError> {
     let mut warnings = Vec::new();
+    // the two bodies as if no support or fixed point held them
+    let free_impact = || {
+        impact(
+            &s.bodies[0],
+            &s.bodies[1],
+            s.normal,
+            s.v_rel,
+            s.mu,
+            s.law,
+            s.e,
+            s.rtol,
+        )
+    };
     let bad = |m: String| ImpactError::OutOfRange {
         field: "body".into(),
         value: m,
@@ -102,20 +115,7 @@ pub fn solve_scene(s: &RigidImpactScene) -> Result<SceneOutcome, ImpactError> {
         return Ok((Some(r), None, warnings));
     }
     let Some(sup) = &s.support else {
-        return Ok((
-            Some(impact(
-                &s.bodies[0],
-                &s.bodies[1],
-                s.normal,
-                s.v_rel,
-                s.mu,
-                s.law,
-                s.e,
-                s.rtol,
-            )?),
-            None,
-            warnings,
-        ));
+        return Ok((Some(free_impact()?), None, warnings));
     };
     let b = b_matrix(&s.bodies[0], &s.bodies[1]).ok_or_else(|| bad("singular".into()))?;
     let sm = matrices(&s.bodies[1], sup).ok_or_else(|| bad("singular".into()))?;
@@ -192,20 +192,7 @@ pub fn solve_scene(s: &RigidImpactScene) -> Result<SceneOutcome, ImpactError> {
     match cl.admissible[0].as_str() {
         "detach" => {
             warnings.push("the second body detaches from the support at the start; integrated as free for the whole impact".into());
-            Ok((
-                Some(impact(
-                    &s.bodies[0],
-                    &s.bodies[1],
-                    s.normal,
-                    s.v_rel,
-                    s.mu,
-                    s.law,
-                    s.e,
-                    s.rtol,
-                )?),
-                Some(cl),
-                warnings,
-            ))
+            Ok((Some(free_impact()?), Some(cl), warnings))
         }
         "roll" => {
             let inv = sm

@@ -25,6 +25,22 @@ impl Rng {
     fn range(&mut self, a: f64, b: f64) -> f64 {
         a + (b - a) * self.next()
     }
+    /// A random symmetric positive-definite matrix L L^T, diagonal of L in `diag`, the rest in
+    /// (-off, off).
+    fn spd(&mut self, diag: (f64, f64), off: f64) -> Matrix3<f64> {
+        let l = Matrix3::new(
+            self.range(diag.0, diag.1),
+            0.0,
+            0.0,
+            self.range(-off, off),
+            self.range(diag.0, diag.1),
+            0.0,
+            self.range(-off, off),
+            self.range(-off, off),
+            self.range(diag.0, diag.1),
+        );
+        l * l.transpose()
+    }
 }
 
 /// One random impact configuration.
@@ -38,20 +54,10 @@ struct Config {
 }
 
 fn random_body(r: &mut Rng) -> Body {
-    let l = Matrix3::new(
-        r.range(0.05, 1.0),
-        0.0,
-        0.0,
-        r.range(-0.5, 0.5),
-        r.range(0.05, 1.0),
-        0.0,
-        r.range(-0.5, 0.5),
-        r.range(-0.5, 0.5),
-        r.range(0.05, 1.0),
-    );
+    let inertia = r.spd((0.05, 1.0), 0.5) * 0.1;
     Body {
         mass: Some(r.range(0.1, 10.0)),
-        inertia: l * l.transpose() * 0.1,
+        inertia,
         offset: Vector3::new(r.range(-0.5, 0.5), r.range(-0.5, 0.5), r.range(-0.5, 0.5)),
     }
 }
@@ -604,20 +610,7 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
             let mut singular_count = 0;
             let mut min_eig: f64 = f64::INFINITY;
             let mut first_bad = String::new();
-            let spd = |rng: &mut Rng| {
-                let l = Matrix3::new(
-                    rng.range(0.2, 1.0),
-                    0.0,
-                    0.0,
-                    rng.range(-0.3, 0.3),
-                    rng.range(0.2, 1.0),
-                    0.0,
-                    rng.range(-0.3, 0.3),
-                    rng.range(-0.3, 0.3),
-                    rng.range(0.2, 1.0),
-                );
-                l * l.transpose()
-            };
+            let spd = |rng: &mut Rng| rng.spd((0.2, 1.0), 0.3);
             let rv = |rng: &mut Rng| {
                 Vector3::new(
                     rng.range(-1.0, 1.0),
