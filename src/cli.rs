@@ -23,6 +23,8 @@ pub enum Format {
     Latex,
     /// JSON.
     Json,
+    /// Comma-separated values (sweeps).
+    Csv,
 }
 
 /// Errors of the command layer.
@@ -134,7 +136,7 @@ pub fn series(
             }
             serde_json::to_string_pretty(&v).unwrap_or_default()
         }
-        Format::Text => {
+        Format::Text | Format::Csv => {
             let mut s = String::new();
             for (k, e) in terms.iter().enumerate() {
                 s.push_str(&format!("a{k}(t) = {}\n", e.to_text()));
@@ -278,6 +280,80 @@ type Curves = Vec<(String, Vec<(f64, f64)>)>;
 
 fn run_validated(scene: &crate::scene::Scene) -> Result<(Value, Curves), RunError> {
     match scene {
+        crate::scene::Scene::PendulumWall(s) => {
+            // (2.15) is written with m = 1, |GO| = 1, c2 = 1, approach speed 1: lengths scale with
+            // |GO|, velocities with v0, times with sqrt(m/c2)
+            let r = crate::models::pendulum_wall::impact(s.rho / s.length, s.sigma, s.rtol)?;
+            let mut warnings = Vec::new();
+            if r.v_cn.abs() < s.rtol.sqrt() {
+                // eps_Cn reaches zero with (nearly) zero slope: a multiple root, located in time
+                // only to about (tolerance)^(1/order); the after-velocities inherit that error
+                warnings.push(format!(
+                    "the contact element unloads tangentially (V_Cn = {:.2e} v0 at release): the release instant is ill-conditioned, and the velocities after impact carry an error of about that size",
+                    r.v_cn
+                ));
+            }
+            let v = json!({
+                "warnings": warnings,
+                "model": "pendulum-wall",
+                "energy_loss_ratio": r.loss,
+                "energy_counted": "kinetic energy lost while the suspension point O is braked after the contact unloads, (2.13), over the pendulum's kinetic energy before impact T0 = (1/2) m (rho^2 + |GO|^2) Omega0^2, Omega0 = v0/|OC.t| = v0/(2 |GO|)",
+                "v_after": {
+                    "omega": r.omega * s.v0 / s.length,
+                    "v_gn": (r.v_on - r.omega) * s.v0,
+                    "v_gt": 0.0,
+                },
+                "v_after_note": "(2.12) at the instant the contact element unloads (before O is braked); n is the wall normal into the pendulum, t along the wall; v_gt = (GO, n) Omega - eps'_Ot = 0 in this geometry",
+                "v_on_after": r.v_on * s.v0,
+                "v_cn_after": r.v_cn * s.v0,
+                "contact_time": r.duration * (s.mass / s.stiffness_o).sqrt(),
+                "suspension_reaction_free": ((s.rho / s.length) - 1.0).abs() < 1e-12,
+            });
+            Ok((v, vec![]))
+        }
+        crate::scene::Scene::BallsWall(s) => {
+            let (v1, v2) =
+                crate::models::balls_wall::rebound(s.wall_stiffness_ratio, s.exponent, s.rtol)?;
+            // m x'' = -k d^p is scale-free: velocities in units of v0 depend on p and the
+            // stiffness ratio only; the time unit is (m v0^(1-p)/k)^(1/(p+1))
+            let time_unit = s
+                .stiffness
+                .map(|k| (s.mass * s.v0.powf(1.0 - s.exponent) / k).powf(1.0 / (s.exponent + 1.0)));
+            let v = json!({
+                "model": "balls-wall",
+                "contact_law": if s.exponent > 1.0 { "hertz" } else { "linear" },
+                "wall_stiffness_ratio": s.wall_stiffness_ratio,
+                "v_striker_after": v1,
+                "v_wall_ball_after": v2,
+                "units": "velocities in units of v0, positive toward the wall",
+                "radius": s.radius,
+                "time_unit_s": time_unit,
+            });
+            Ok((v, vec![]))
+        }
+        crate::scene::Scene::DiskFriction(s) => {
+            use crate::models::disk_friction::{force_moment_elliptic, friction};
+            let r = friction([s.v, 0.0], s.omega, [0.0, s.c], s.a, 1e-14);
+            let k = if s.omega > 0.0 {
+                s.v / (s.a * s.omega)
+            } else {
+                f64::INFINITY
+            };
+            let elliptic = (s.c == 0.0).then(|| force_moment_elliptic(k));
+            let v = json!({
+                "model": "disk-friction",
+                "k": if k.is_finite() { json!(k) } else { Value::Null },
+                "force": r.force[0].hypot(r.force[1]),
+                "moment": r.moment.abs() / s.a,
+                "force_elliptic": elliptic.map(|e| e.0),
+                "moment_elliptic": elliptic.map(|e| e.1),
+                "force_vector": r.force,
+                "moment_signed": r.moment / s.a,
+                "quadrature_error": r.error,
+                "units": "F/(f N) and M/(f N a), N the normal load; the moment about the disk centre; the elliptic forms of (2.3) apply for c = 0",
+            });
+            Ok((v, vec![]))
+        }
         crate::scene::Scene::RigidImpact(s) => {
             let (r, classification, mut warnings) = crate::models::constrained::solve_scene(s)
                 .map_err(|e| RunError::BadArgument {
@@ -495,20 +571,13 @@ pub fn run_scene(
                 message: "this model has no plot yet".into(),
             });
         }
-        let series: Vec<crate::report::svg::Series> = curves
-            .iter()
-            .map(|(n, p)| crate::report::svg::Series {
-                name: n,
-                points: p.clone(),
-            })
-            .collect();
-        let svg = crate::report::svg::plot(
+        let svg = crate::report::svg::plot_curves(
             &format!("{}", path.display()),
             "t (s)",
             "m",
             crate::report::svg::Scale::Linear,
             crate::report::svg::Scale::Linear,
-            &series,
+            &curves,
         );
         std::fs::write(out, svg).map_err(|e| RunError::BadArgument {
             arg: "--plot".into(),
@@ -518,15 +587,72 @@ pub fn run_scene(
     Ok(render_run(&v, format))
 }
 
-/// `impact sweep SCENE.toml --param FIELD --values V1,V2,...`: one run per value, progress on
-/// stderr.
-pub fn sweep(
-    path: &std::path::Path,
-    param: &str,
-    values: &str,
-    format: Format,
-    progress: bool,
-) -> Result<String, RunError> {
+/// The values a sweep runs over.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SweepValues {
+    /// Dotted scene field.
+    pub param: String,
+    /// Values, in order.
+    pub values: Vec<f64>,
+}
+
+/// Parses `KEY=START:STOP:COUNT` (`log`: geometric spacing, START and STOP > 0).
+pub fn parse_vary(spec: &str, log: bool) -> Result<SweepValues, RunError> {
+    let bad = |m: &str| RunError::BadArgument {
+        arg: "--vary".into(),
+        message: format!("`{spec}`: {m}; expected KEY=START:STOP:COUNT, e.g. sigma=0.1:5:50"),
+    };
+    let (key, range) = spec.split_once('=').ok_or_else(|| bad("no `=`"))?;
+    let key = key.trim();
+    if key.is_empty() || key.split('.').any(|p| p.is_empty()) {
+        return Err(bad(
+            "the key must be a dotted scene path such as sigma or impactor.v0",
+        ));
+    }
+    let parts: Vec<&str> = range.split(':').collect();
+    if parts.len() != 3 {
+        return Err(bad("give START:STOP:COUNT"));
+    }
+    let num = |s: &str, what: &str| {
+        s.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| bad(&format!("{what} `{s}` is not a finite number")))
+    };
+    let (a, b) = (num(parts[0], "START")?, num(parts[1], "STOP")?);
+    let n: usize = parts[2]
+        .trim()
+        .parse()
+        .ok()
+        .filter(|n| (1..=10_000_000).contains(n))
+        .ok_or_else(|| bad("COUNT must be an integer in 1..=10000000"))?;
+    if log && (a <= 0.0 || b <= 0.0) {
+        return Err(bad("--log needs START > 0 and STOP > 0"));
+    }
+    let values = (0..n)
+        .map(|i| {
+            if n == 1 {
+                return a;
+            }
+            let f = i as f64 / (n - 1) as f64;
+            if i == n - 1 {
+                b
+            } else if log {
+                (a.ln() + f * (b.ln() - a.ln())).exp()
+            } else {
+                a + f * (b - a)
+            }
+        })
+        .collect();
+    Ok(SweepValues {
+        param: key.to_string(),
+        values,
+    })
+}
+
+/// Parses `--param FIELD --values V1,V2,...`.
+pub fn parse_values(param: &str, values: &str) -> Result<SweepValues, RunError> {
     let vals: Vec<f64> = values
         .split(',')
         .filter(|s| !s.trim().is_empty())
@@ -547,34 +673,173 @@ pub fn sweep(
             message: "give at least one value, e.g. --values 0.1,1,10".into(),
         });
     }
+    Ok(SweepValues {
+        param: param.to_string(),
+        values: vals,
+    })
+}
+
+/// `impact sweep SCENE.toml --vary KEY=START:STOP:COUNT`: every point's scene is validated first
+/// (a bad value stops the sweep before anything runs), then the points run in parallel (rayon),
+/// with a progress bar on stderr when it is a terminal. A point whose solver fails is kept as a
+/// row with its error.
+pub fn sweep(
+    path: &std::path::Path,
+    sv: &SweepValues,
+    format: Format,
+    progress: bool,
+) -> Result<String, RunError> {
+    use rayon::prelude::*;
+    use std::sync::atomic::{AtomicUsize, Ordering};
     let base = crate::scene::read_table(path)?;
     let label = path.display().to_string();
-    let mut runs = Vec::new();
-    for (i, v) in vals.iter().enumerate() {
-        let mut t = base.clone();
-        crate::scene::set_field(&mut t, param, *v, &label)?;
-        let scene = crate::scene::parse_table(&t, &format!("{label} with {param} = {v}"))?;
-        let (r, _) = run_validated(&scene)?;
-        if progress {
-            eprintln!("sweep: {}/{} ({param} = {v})", i + 1, vals.len());
-        }
-        runs.push(json!({"value": v, "result": r}));
+    let param = sv.param.as_str();
+    let scenes: Vec<crate::scene::Scene> = sv
+        .values
+        .iter()
+        .map(|v| {
+            let mut t = base.clone();
+            crate::scene::set_field(&mut t, param, *v, &label)?;
+            Ok(crate::scene::parse_table(
+                &t,
+                &format!("{label} with {param} = {v}"),
+            )?)
+        })
+        .collect::<Result<_, RunError>>()?;
+    let done = AtomicUsize::new(0);
+    let total = scenes.len();
+    let bar = |n: usize| {
+        let width = 40;
+        let filled = n * width / total.max(1);
+        eprint!(
+            "\rsweep {param} [{}{}] {n}/{total}",
+            "#".repeat(filled),
+            ".".repeat(width - filled)
+        );
+    };
+    let results: Vec<Result<Value, String>> = scenes
+        .par_iter()
+        .map(|scene| {
+            let r = run_validated(scene)
+                .map(|(v, _)| v)
+                .map_err(|e| e.to_string());
+            let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+            if progress && (n == total || n.is_multiple_of((total / 200).max(1))) {
+                bar(n);
+            }
+            r
+        })
+        .collect();
+    if progress {
+        eprintln!();
     }
-    let out = json!({"param": param, "runs": runs});
+    let failed = results.iter().filter(|r| r.is_err()).count();
+    if failed > 0 {
+        eprintln!("sweep: {failed} of {total} points failed (their rows carry the error)");
+    }
+    let runs: Vec<Value> = sv
+        .values
+        .iter()
+        .zip(&results)
+        .map(|(v, r)| match r {
+            Ok(res) => json!({"value": v, "result": res}),
+            Err(e) => json!({"value": v, "error": e}),
+        })
+        .collect();
     Ok(match format {
-        Format::Json => serde_json::to_string_pretty(&out).unwrap_or_default(),
+        Format::Json => {
+            serde_json::to_string_pretty(&json!({"param": param, "runs": runs})).unwrap_or_default()
+        }
+        Format::Csv => sweep_csv(param, &runs),
         _ => runs
             .iter()
-            .map(|r| {
-                format!(
+            .map(|r| match r.get("result") {
+                Some(res) => format!(
                     "{param} = {}\n{}\n",
                     r["value"],
-                    render_run(&r["result"], Format::Text)
-                )
+                    render_run(res, Format::Text)
+                ),
+                None => format!("{param} = {}\nerror: {}\n", r["value"], r["error"]),
             })
             .collect::<Vec<_>>()
             .join("\n"),
     })
+}
+
+/// One row per point: the swept value, then every number or flag of the result (nested keys
+/// dotted, arrays indexed), then the error if the point failed.
+fn sweep_csv(param: &str, runs: &[Value]) -> String {
+    fn flatten(prefix: &str, v: &Value, out: &mut Vec<(String, String)>) {
+        match v {
+            Value::Number(n) => out.push((prefix.to_string(), n.to_string())),
+            Value::Bool(b) => out.push((prefix.to_string(), b.to_string())),
+            Value::Object(m) => {
+                for (k, x) in m {
+                    let key = if prefix.is_empty() {
+                        k.clone()
+                    } else {
+                        format!("{prefix}.{k}")
+                    };
+                    flatten(&key, x, out);
+                }
+            }
+            Value::Array(a) if a.iter().all(|x| x.is_number()) => {
+                for (i, x) in a.iter().enumerate() {
+                    flatten(&format!("{prefix}.{i}"), x, out);
+                }
+            }
+            _ => {}
+        }
+    }
+    let rows: Vec<Vec<(String, String)>> = runs
+        .iter()
+        .map(|r| {
+            let mut row = Vec::new();
+            if let Some(res) = r.get("result") {
+                flatten("", res, &mut row);
+            }
+            row
+        })
+        .collect();
+    let mut cols: Vec<String> = Vec::new();
+    for row in &rows {
+        for (k, _) in row {
+            if !cols.contains(k) {
+                cols.push(k.clone());
+            }
+        }
+    }
+    let quote = |s: &str| {
+        if s.contains([',', '"', '\n']) {
+            format!("\"{}\"", s.replace('"', "\"\""))
+        } else {
+            s.to_string()
+        }
+    };
+    let mut out = format!(
+        "{},{},error\n",
+        quote(param),
+        cols.iter().map(|c| quote(c)).collect::<Vec<_>>().join(",")
+    );
+    for (r, row) in runs.iter().zip(&rows) {
+        let cells: Vec<String> = cols
+            .iter()
+            .map(|c| {
+                row.iter()
+                    .find(|(k, _)| k == c)
+                    .map(|(_, v)| v.clone())
+                    .unwrap_or_default()
+            })
+            .collect();
+        let err = r.get("error").and_then(|e| e.as_str()).unwrap_or("");
+        out.push_str(&format!(
+            "{},{},{}\n",
+            r["value"],
+            cells.join(","),
+            quote(err)
+        ));
+    }
+    out
 }
 
 /// `impact bench hertz`: times each method on $z'' = -\max(z,0)^{3/2}$, $z(0)=0$, $z'(0)=1$, from

@@ -329,3 +329,137 @@ fn grazing_hertz_impact_is_not_silently_inaccurate() {
     assert!(!v["warnings"].as_array().expect("warnings").is_empty());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+fn write_scene(name: &str, text: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("impactcheck-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let p = dir.join(name);
+    std::fs::write(&p, text).expect("write scene");
+    p
+}
+
+/// The pendulum-wall contract; reference: with rho = |GO| (condition (2.10)) the two elements
+/// decouple, eps_Cn = sin(sqrt(2 sigma) t)/sqrt(2 sigma) by hand, so the contact lasts
+/// pi/sqrt(2 sigma), the spin reverses (Omega = -v0/(2 L)), V_Gn = v0/2 and nothing is lost;
+/// with rho = 0.5, sigma = 1 the modes are sin x and sin 2x (x = sqrt(2) t), eps_Cn ~ sin x (1 +
+/// cos x) releases at x = pi with eps'_On = -1: loss 0.64 exactly, with a triple root (warned).
+#[test]
+fn pendulum_wall_contract_against_closed_forms() {
+    let p = write_scene(
+        "pw.toml",
+        "model = \"pendulum-wall\"\nrho = 2.0\nsigma = 0.5\nlength = 2.0\nv0 = 3.0\nmass = 4.0\nstiffness_o = 9.0\n",
+    );
+    let v = run_json(p.to_str().expect("utf8"));
+    assert!(
+        v["energy_loss_ratio"].as_f64().expect("loss").abs() < 1e-9,
+        "{v}"
+    );
+    assert!((v["v_after"]["omega"].as_f64().expect("omega") + 3.0 / 4.0).abs() < 1e-8);
+    assert!((v["v_after"]["v_gn"].as_f64().expect("v_gn") - 1.5).abs() < 1e-8);
+    assert_eq!(v["v_after"]["v_gt"].as_f64(), Some(0.0));
+    // time unit sqrt(m/c2) = 2/3 s, contact pi/sqrt(2 sigma) = pi units
+    let t = v["contact_time"].as_f64().expect("time");
+    assert!((t - std::f64::consts::PI * 2.0 / 3.0).abs() < 1e-8, "{t}");
+    assert_eq!(v["suspension_reaction_free"], true);
+
+    let p = write_scene(
+        "pw2.toml",
+        "model = \"pendulum-wall\"\nrho = 0.5\nsigma = 1.0\n",
+    );
+    let v = run_json(p.to_str().expect("utf8"));
+    let loss = v["energy_loss_ratio"].as_f64().expect("loss");
+    assert!((loss - 0.64).abs() < 1e-6, "{loss}");
+    assert!(
+        v["warnings"][0]
+            .as_str()
+            .expect("a warning")
+            .contains("tangentially")
+    );
+}
+
+/// Balls against a wall: the contract keys, checked against an invariant the code does not
+/// impose: the elements are elastic, so once both contacts are open the kinetic energy equals the
+/// striker's initial energy; both balls leave the wall, the striker no slower than its neighbour.
+#[test]
+fn balls_wall_contract() {
+    let v = run_json("scenes/balls_wall.toml");
+    let (v1, v2) = (
+        v["v_striker_after"].as_f64().expect("striker"),
+        v["v_wall_ball_after"].as_f64().expect("wall ball"),
+    );
+    // elastic: the kinetic energy is conserved once both contacts are open
+    assert!((v1 * v1 + v2 * v2 - 1.0).abs() < 1e-8, "{v1} {v2}");
+    assert!(v1 < 0.0 && v2 < 0.0 && v1 <= v2);
+}
+
+/// Disk friction: the contract keys; pure spin gives M = 2 f N a/3 and F = 0 (by hand).
+#[test]
+fn disk_friction_contract() {
+    let p = write_scene(
+        "disk.toml",
+        "model = \"disk-friction\"\na = 0.1\nv = 0.0\nomega = 5.0\n",
+    );
+    let v = run_json(p.to_str().expect("utf8"));
+    assert!(v["force"].as_f64().expect("force").abs() < 1e-14);
+    assert!((v["moment"].as_f64().expect("moment") - 2.0 / 3.0).abs() < 1e-14);
+    assert!((v["moment_elliptic"].as_f64().expect("elliptic") - 2.0 / 3.0).abs() < 1e-14);
+    assert!(v["force_elliptic"].as_f64().expect("elliptic").abs() < 1e-14);
+    let p = write_scene(
+        "disk2.toml",
+        "model = \"disk-friction\"\nk = 0.5\nv = 1.0\n",
+    );
+    let (code, _, err) = impact(&["run", p.to_str().expect("utf8")]);
+    assert_ne!(code, 0);
+    assert!(err.contains("either k, or v and omega"), "{err}");
+}
+
+/// `impact sweep --vary` in csv and json: values evenly spaced (both ends included), one row per
+/// value, a bad value rejected before anything runs, and a malformed spec named.
+#[test]
+fn sweep_vary_csv_and_json() {
+    let (code, out, err) = impact(&[
+        "sweep",
+        "scenes/pendulum_on_wall.toml",
+        "--vary",
+        "sigma=0.5:2:4",
+        "--format",
+        "csv",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 5);
+    assert!(lines[0].starts_with("sigma,") && lines[0].contains("energy_loss_ratio"));
+    let firsts: Vec<f64> = lines[1..]
+        .iter()
+        .map(|l| l.split(',').next().expect("cell").parse().expect("number"))
+        .collect();
+    assert_eq!(firsts, vec![0.5, 1.0, 1.5, 2.0]);
+    let (code, out, _) = impact(&[
+        "sweep",
+        "scenes/disk_friction.toml",
+        "--vary",
+        "omega=0.1:10:3",
+        "--log",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).expect("json");
+    let runs = v["runs"].as_array().expect("runs");
+    assert_eq!(runs.len(), 3);
+    assert!((runs[1]["value"].as_f64().expect("v") - 1.0).abs() < 1e-12);
+    let (code, _, err) = impact(&[
+        "sweep",
+        "scenes/pendulum_on_wall.toml",
+        "--vary",
+        "sigma=-1:2:3",
+    ]);
+    assert_ne!(code, 0);
+    assert!(
+        err.contains("sigma") && err.contains("1e-8 <= sigma"),
+        "{err}"
+    );
+    let (code, _, err) = impact(&["sweep", "scenes/hertz.toml", "--vary", "impactor.v0=1:2"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("START:STOP:COUNT"), "{err}");
+}

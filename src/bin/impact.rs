@@ -25,6 +25,7 @@ enum Fmt {
     Text,
     Latex,
     Json,
+    Csv,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -50,22 +51,34 @@ enum Command {
         #[arg(long)]
         plot: Option<std::path::PathBuf>,
     },
-    /// Run a scene once per value of one field, e.g. `--param impactor.v0 --values 0.1,1,10`.
+    /// Run a scene over a range of one field, in parallel on all cores, e.g.
+    /// `impact sweep scenes/pendulum_on_wall.toml --vary sigma=0.1:5:50 --format csv`. Every
+    /// point is validated before any runs; a point whose solver fails keeps its row, with the
+    /// error. A progress bar goes to stderr when it is a terminal.
     Sweep {
         /// The scene file.
         scene: std::path::PathBuf,
-        /// Dotted field to vary.
-        #[arg(long)]
-        param: String,
-        /// Comma-separated values.
-        #[arg(long)]
-        values: String,
-        /// Output format.
+        /// KEY=START:STOP:COUNT, KEY a dotted scene path (`sigma`, `impactor.v0`).
+        #[arg(long, conflicts_with_all = ["param", "values"])]
+        vary: Option<String>,
+        /// Space the --vary values geometrically (START, STOP > 0).
+        #[arg(long, requires = "vary")]
+        log: bool,
+        /// Dotted field to vary (with --values; the older form of --vary).
+        #[arg(long, requires = "values")]
+        param: Option<String>,
+        /// Comma-separated values for --param.
+        #[arg(long, requires = "param")]
+        values: Option<String>,
+        /// Output format: text, json or csv.
         #[arg(long, value_enum, default_value = "text")]
         format: Fmt,
-        /// No progress lines on stderr.
+        /// No progress bar.
         #[arg(long)]
         quiet: bool,
+        /// Worker threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
     },
     /// Time the integrators on a reference problem (used by benches/peers/peers.py).
     Bench {
@@ -118,6 +131,7 @@ fn fmt(f: Fmt) -> Format {
         Fmt::Text => Format::Text,
         Fmt::Latex => Format::Latex,
         Fmt::Json => Format::Json,
+        Fmt::Csv => Format::Csv,
     }
 }
 
@@ -141,11 +155,36 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
         } => Ok(cli::run_scene(&scene, fmt(format), plot.as_deref())?),
         Command::Sweep {
             scene,
+            vary,
+            log,
             param,
             values,
             format,
             quiet,
-        } => Ok(cli::sweep(&scene, &param, &values, fmt(format), !quiet)?),
+            threads,
+        } => {
+            let sv = match (vary, param, values) {
+                (Some(v), _, _) => cli::parse_vary(&v, log)?,
+                (None, Some(p), Some(v)) => cli::parse_values(&p, &v)?,
+                _ => {
+                    return Err(
+                        "give --vary KEY=START:STOP:COUNT (or --param FIELD --values V1,V2,...)"
+                            .into(),
+                    );
+                }
+            };
+            if let Some(n) = threads {
+                if n == 0 {
+                    return Err("--threads must be at least 1".into());
+                }
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(n)
+                    .build_global()
+                    .map_err(|e| format!("--threads: {e}"))?;
+            }
+            let progress = !quiet && std::io::IsTerminal::is_terminal(&std::io::stderr());
+            Ok(cli::sweep(&scene, &sv, fmt(format), progress)?)
+        }
         Command::Series {
             order,
             viscous,

@@ -4,6 +4,7 @@
 //! polylines with axes and a legend.
 
 /// One curve.
+#[derive(Clone)]
 pub struct Series<'a> {
     /// Legend text.
     pub name: &'a str,
@@ -140,11 +141,30 @@ fn escape(s: &str) -> String {
 
 /// A scatter plot: one marker per point, one colour per series (for classification maps).
 pub fn scatter(title: &str, xlabel: &str, ylabel: &str, series: &[Series]) -> String {
-    let lines = plot(title, xlabel, ylabel, Scale::Linear, Scale::Linear, series);
-    // re-draw the polylines as markers: replace each polyline by circles at its vertices
+    scatter_with_lines(title, xlabel, ylabel, &[], series)
+}
+
+/// Linear axes with `lines` drawn as polylines and `markers` as circles at their points.
+pub fn scatter_with_lines(
+    title: &str,
+    xlabel: &str,
+    ylabel: &str,
+    lines: &[Series],
+    markers: &[Series],
+) -> String {
+    let all: Vec<Series> = lines.iter().chain(markers).cloned().collect();
+    let drawn = plot(title, xlabel, ylabel, Scale::Linear, Scale::Linear, &all);
+    // re-draw the polylines of the marker series (those after the lines) as circles
     let mut out = String::new();
-    for line in lines.lines() {
+    let mut polyline = 0;
+    for line in drawn.lines() {
         if let Some(rest) = line.strip_prefix("<polyline points=\"") {
+            polyline += 1;
+            if polyline <= lines.len() {
+                out.push_str(line);
+                out.push('\n');
+                continue;
+            }
             let pts = rest.split('"').next().unwrap_or("");
             let color = line
                 .split("stroke=\"")
@@ -164,4 +184,23 @@ pub fn scatter(title: &str, xlabel: &str, ylabel: &str, series: &[Series]) -> St
         }
     }
     out
+}
+
+/// [`plot`] for curves held as `(name, points)` pairs.
+pub fn plot_curves(
+    title: &str,
+    xlabel: &str,
+    ylabel: &str,
+    xs: Scale,
+    ys: Scale,
+    curves: &[(String, Vec<(f64, f64)>)],
+) -> String {
+    let series: Vec<Series> = curves
+        .iter()
+        .map(|(n, p)| Series {
+            name: n,
+            points: p.clone(),
+        })
+        .collect();
+    plot(title, xlabel, ylabel, xs, ys, &series)
 }

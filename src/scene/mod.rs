@@ -136,6 +136,59 @@ pub struct RigidImpactScene {
     )>,
 }
 
+/// The `pendulum-wall` scene: 002_b53e4779673eb6ed.txt (2.14)-(2.15), the paper's geometry
+/// (|GO| = |G'C| = `length`, |GG'| = |OO'|) with linear elements.
+#[derive(Clone, Debug)]
+pub struct PendulumWallScene {
+    /// Central radius of inertia (m).
+    pub rho: f64,
+    /// Stiffness ratio c1/c2 (contact over suspension).
+    pub sigma: f64,
+    /// |GO| (m).
+    pub length: f64,
+    /// Approach speed of the contact point (m/s).
+    pub v0: f64,
+    /// Mass (kg).
+    pub mass: f64,
+    /// Suspension stiffness c2 (N/m).
+    pub stiffness_o: f64,
+    /// Relative tolerance.
+    pub rtol: f64,
+}
+
+/// The `balls-wall` scene: section 3's closing experiment of 002_b53e4779673eb6ed.txt.
+#[derive(Clone, Debug)]
+pub struct BallsWallScene {
+    /// Ball radius (m).
+    pub radius: f64,
+    /// Ball mass (kg).
+    pub mass: f64,
+    /// Exponent: 1.5 (Hertz) or 1 (linear).
+    pub exponent: f64,
+    /// Speed of the striking ball (m/s).
+    pub v0: f64,
+    /// Wall contact stiffness over ball-ball contact stiffness.
+    pub wall_stiffness_ratio: f64,
+    /// Ball-ball stiffness (N/m^p), if known (gives the contact time in seconds).
+    pub stiffness: Option<f64>,
+    /// Relative tolerance.
+    pub rtol: f64,
+}
+
+/// The `disk-friction` scene: 001_989b2e860c39ca83.txt (2.3), a disk of radius `a` sliding with
+/// speed `v` (along x) and spinning with `omega`; the centre of pressure at `c` along y.
+#[derive(Clone, Debug)]
+pub struct DiskFrictionScene {
+    /// Disk radius (m).
+    pub a: f64,
+    /// Sliding speed of the centre (m/s).
+    pub v: f64,
+    /// Spin (rad/s).
+    pub omega: f64,
+    /// Offset of the centre of pressure (m), 0 <= c <= a/4.
+    pub c: f64,
+}
+
 /// A validated scene.
 #[derive(Clone, Debug)]
 pub enum Scene {
@@ -145,9 +198,15 @@ pub enum Scene {
     Hertz(HertzScene),
     /// Cone on a viscoelastic plate.
     ConePlate(Box<ConePlateScene>),
+    /// Pendulum with deformable elements striking a smooth wall.
+    PendulumWall(PendulumWallScene),
+    /// Two balls in a line against a wall.
+    BallsWall(BallsWallScene),
+    /// Friction on a sliding, spinning disk.
+    DiskFriction(DiskFrictionScene),
 }
 
-const MODELS: &str = "hertz, cone-plate, rigid-impact";
+const MODELS: &str = "hertz, cone-plate, rigid-impact, pendulum-wall, balls-wall, disk-friction";
 const EFFECTS: &[&str] = &[
     "viscoelastic",
     "plate",
@@ -424,6 +483,9 @@ pub fn parse_table(root: &toml::Table, path: &str) -> Result<Scene, SceneError> 
         }
         "cone-plate" => cone_plate(&r, root),
         "rigid-impact" => rigid_impact(&r, root),
+        "pendulum-wall" => pendulum_wall(&r, root),
+        "balls-wall" => balls_wall(&r, root),
+        "disk-friction" => disk_friction(&r, root),
         other => {
             let near = MODELS
                 .split(", ")
@@ -461,6 +523,174 @@ fn string_choice(
                 .join(", "),
         }),
     }
+}
+
+fn rtol(r: &Reader, root: &toml::Table) -> Result<f64, SceneError> {
+    r.num(
+        root,
+        "rtol",
+        Some(1e-10),
+        |v| (1e-14..=1e-2).contains(&v),
+        "1e-14 <= rtol <= 1e-2",
+    )
+}
+
+fn pendulum_wall(r: &Reader, root: &toml::Table) -> Result<Scene, SceneError> {
+    r.check_keys(
+        root,
+        "",
+        &[
+            "model",
+            "rho",
+            "sigma",
+            "length",
+            "v0",
+            "mass",
+            "stiffness_o",
+            "rtol",
+        ],
+    )?;
+    let length = r.num(
+        root,
+        "length",
+        Some(1.0),
+        |v| v > 0.0,
+        "length = |GO| > 0 (m)",
+    )?;
+    Ok(Scene::PendulumWall(PendulumWallScene {
+        rho: r.num(
+            root,
+            "rho",
+            None,
+            |v| v > 0.0 && v / length >= 1e-3 && v / length <= 1e3,
+            "rho > 0 (m), central radius of inertia, 1e-3 <= rho/length <= 1e3",
+        )?,
+        sigma: r.num(
+            root,
+            "sigma",
+            None,
+            |v| (1e-8..=1e8).contains(&v),
+            "1e-8 <= sigma <= 1e8, stiffness ratio c1/c2 (contact over suspension)",
+        )?,
+        length,
+        v0: r.num(
+            root,
+            "v0",
+            Some(1.0),
+            |v| v > 0.0,
+            "v0 > 0 (m/s), approach speed of C",
+        )?,
+        mass: r.num(root, "mass", Some(1.0), |v| v > 0.0, "mass > 0 (kg)")?,
+        stiffness_o: r.num(
+            root,
+            "stiffness_o",
+            Some(1.0),
+            |v| v > 0.0,
+            "stiffness_o > 0 (N/m), the suspension element c2",
+        )?,
+        rtol: rtol(r, root)?,
+    }))
+}
+
+fn balls_wall(r: &Reader, root: &toml::Table) -> Result<Scene, SceneError> {
+    r.check_keys(
+        root,
+        "",
+        &[
+            "model",
+            "radius",
+            "mass",
+            "contact_law",
+            "v0",
+            "wall_stiffness_ratio",
+            "stiffness",
+            "rtol",
+        ],
+    )?;
+    let law = string_choice(r, root, "contact_law", &["hertz", "linear"], "hertz")?;
+    let stiffness = match root.get("stiffness") {
+        None => None,
+        Some(_) => Some(r.num(
+            root,
+            "stiffness",
+            None,
+            |v| v > 0.0,
+            "stiffness > 0 (N/m^1.5 for hertz, N/m for linear), the ball-ball contact",
+        )?),
+    };
+    Ok(Scene::BallsWall(BallsWallScene {
+        radius: r.num(root, "radius", None, |v| v > 0.0, "radius > 0 (m)")?,
+        mass: r.num(root, "mass", None, |v| v > 0.0, "mass > 0 (kg)")?,
+        exponent: if law == "hertz" { 1.5 } else { 1.0 },
+        v0: r.num(root, "v0", None, |v| v > 0.0, "v0 > 0 (m/s), toward the wall")?,
+        wall_stiffness_ratio: r.num(
+            root,
+            "wall_stiffness_ratio",
+            Some(2.0 * 2f64.sqrt()),
+            |v| (1e-6..=1e8).contains(&v),
+            "1e-6 <= wall_stiffness_ratio <= 1e8 (2 sqrt(2): identical elastic balls, rigid wall, Hertz)",
+        )?,
+        stiffness,
+        rtol: rtol(r, root)?,
+    }))
+}
+
+fn disk_friction(r: &Reader, root: &toml::Table) -> Result<Scene, SceneError> {
+    r.check_keys(root, "", &["model", "k", "v", "omega", "a", "c"])?;
+    let a = r.num(
+        root,
+        "a",
+        Some(1.0),
+        |v| v > 0.0,
+        "a > 0 (m), the disk radius",
+    )?;
+    let has_k = root.contains_key("k");
+    let has_vw = root.contains_key("v") || root.contains_key("omega");
+    let (v, omega) = match (has_k, has_vw) {
+        (true, true) => {
+            return Err(SceneError::OutOfRange {
+                path: r.path.into(),
+                field: "k".into(),
+                value: "given together with v/omega".into(),
+                allowed: "either k, or v and omega (with a)".into(),
+            });
+        }
+        (true, false) => {
+            let k = r.num(root, "k", None, |v| v >= 0.0, "k = V/(a omega) >= 0")?;
+            (k * a, 1.0)
+        }
+        _ => {
+            let v = r.num(
+                root,
+                "v",
+                None,
+                |v| v >= 0.0,
+                "v >= 0 (m/s), sliding speed of the centre; or give k = V/(a omega)",
+            )?;
+            let w = r.num(root, "omega", None, |v| v >= 0.0, "omega >= 0 (rad/s)")?;
+            if v == 0.0 && w == 0.0 {
+                return Err(SceneError::OutOfRange {
+                    path: r.path.into(),
+                    field: "v".into(),
+                    value: "0 with omega = 0".into(),
+                    allowed: "v > 0 or omega > 0 (a disk at rest has no kinetic friction)".into(),
+                });
+            }
+            (v, w)
+        }
+    };
+    Ok(Scene::DiskFriction(DiskFrictionScene {
+        a,
+        v,
+        omega,
+        c: r.num(
+            root,
+            "c",
+            Some(0.0),
+            |v| (0.0..=a / 4.0).contains(&v),
+            &format!("0 <= c <= a/4 = {} (m), centre of pressure off the centre; beyond a/4 part of the disk lifts off (001 (1.8))", a / 4.0),
+        )?,
+    }))
 }
 
 fn cone_plate(r: &Reader, root: &toml::Table) -> Result<Scene, SceneError> {

@@ -370,20 +370,13 @@ pub fn passivity(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outc
         ));
     }
     let svg_name = "000_energy.svg".to_string();
-    let series: Vec<Series> = curves
-        .iter()
-        .map(|(n, p)| Series {
-            name: n,
-            points: p.clone(),
-        })
-        .collect();
-    let svg = plot(
+    let svg = crate::report::svg::plot_curves(
         "cone on the viscoelastic half-space: energy against time",
         "t (s)",
         "energy / impact energy",
         Scale::Linear,
         Scale::Linear,
-        &series,
+        &curves,
     );
     Ok(Outcome {
         id: c.id.clone(),
