@@ -276,9 +276,10 @@ pub enum RunError {
 }
 
 /// Curves for `--plot`: `(name, points)`.
-type Curves = Vec<(String, Vec<(f64, f64)>)>;
+pub type Curves = Vec<(String, Vec<(f64, f64)>)>;
 
-fn run_validated(scene: &crate::scene::Scene) -> Result<(Value, Curves), RunError> {
+/// Runs a validated scene: the JSON result and any curves for `--plot`.
+pub fn run_validated(scene: &crate::scene::Scene) -> Result<(Value, Curves), RunError> {
     match scene {
         crate::scene::Scene::PendulumWall(s) => {
             // (2.15) is written with m = 1, |GO| = 1, c2 = 1, approach speed 1: lengths scale with

@@ -147,7 +147,8 @@ impl Evaluator {
             sum += v;
             mag += v.abs();
             tp *= t;
-            if v.abs() <= 1e-18 * sum.abs() {
+            // leading zero coefficients (a term that starts at t^k) are not a converged tail
+            if sum != 0.0 && v.abs() <= 1e-18 * sum.abs() {
                 small_run += 1;
                 // a run of negligible terms past the leading ones means the tail is negligible
                 if small_run >= 6 {

@@ -46,6 +46,8 @@ pub struct PendulumImpact {
     pub omega: f64,
     /// Relative energy loss $-\Delta T/T_0$ of (2.13).
     pub loss: f64,
+    /// Accepted integration steps.
+    pub steps: usize,
 }
 
 /// Integrates (2.15) to the unloading of the contact element.
@@ -79,5 +81,6 @@ pub fn impact(rho: f64, sigma: f64, rtol: f64) -> Result<PendulumImpact, Integra
         v_cn,
         omega: (sol.y[2] - sol.y[3]) / -2.0,
         loss: -d_t / t0,
+        steps: sol.stats.steps,
     })
 }

@@ -128,10 +128,15 @@ pub fn render(papers: &[PaperClaims], outcomes: &[Outcome]) -> Vec<(String, Stri
     files.push(("README.md".to_string(), readme));
     // one report per paper
     for p in papers {
+        let source = if p.file.ends_with(".txt") {
+            format!("../shared/seeds/{}", p.file)
+        } else {
+            p.file.clone()
+        };
         let mut md = format!(
-            "# {} — {}\n\nSource: `../shared/seeds/{}`. Each claim: what the paper states, what impactcheck \
+            "# {} — {}\n\nSource: `{source}`. Each claim: what the paper (or the catalogue) states, what impactcheck \
              computes, and the verdict.\n\n",
-            p.paper, p.title, p.file
+            p.paper, p.title
         );
         md.push_str("| claim | equation | verdict |\n|---|---|---|\n");
         let list = by_paper.get(p.paper.as_str()).cloned().unwrap_or_default();

@@ -6,6 +6,7 @@
 //! stated error.
 
 pub mod accuracy;
+pub mod hard_cases;
 pub mod paper000;
 pub mod paper001;
 pub mod paper002;
@@ -251,6 +252,11 @@ pub fn run_all(papers: &[PaperClaims], root: &Path) -> Result<Vec<Outcome>, Veri
             "002" => {
                 for c in &p.claim {
                     out.push(paper002::check(p, c)?);
+                }
+            }
+            "hard" => {
+                for c in &p.claim {
+                    out.push(hard_cases::check(p, c, root)?);
                 }
             }
             other => {
