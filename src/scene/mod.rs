@@ -206,8 +206,11 @@ pub enum Scene {
     DiskFriction(DiskFrictionScene),
 }
 
-const MODELS: &str = "hertz, cone-plate, rigid-impact, pendulum-wall, balls-wall, disk-friction";
-const EFFECTS: &[&str] = &[
+/// The model names a scene may give.
+pub const MODELS: &str =
+    "hertz, cone-plate, rigid-impact, pendulum-wall, balls-wall, disk-friction";
+/// The effects a cone-plate scene may name.
+pub const EFFECTS: &[&str] = &[
     "viscoelastic",
     "plate",
     "winkler",

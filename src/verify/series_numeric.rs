@@ -69,6 +69,30 @@ impl Curve {
     }
 }
 
+/// The exact series parameters of 000 (19)-(23) for the cone alone on the viscoelastic
+/// half-space with physical parameters `p`: `(derived, as printed)`. alpha, gamma and v0 are
+/// shared; a8, a9 carry the derived operator constant $c = -E\lambda/(1-2\nu)$ or the printed
+/// $E\zeta$, $\eta\zeta$ with $\zeta = (1-2\nu)/(4\lambda)$, $\lambda = E/\eta$.
+pub fn series_params(p: &cone_plate::Params) -> Result<(SeriesParams, SeriesParams), String> {
+    let lambda = p.e / p.eta;
+    let one_m_2nu = 1.0 - 2.0 * p.nu;
+    let a7 = 2.0 / (std::f64::consts::PI * p.theta_deg.to_radians().tan());
+    let zeta = one_m_2nu / (4.0 * lambda);
+    let c_corr = -p.e * lambda / one_m_2nu;
+    let mut sp = SeriesParams::symbolic();
+    let set =
+        |sp: &mut SeriesParams, k: &str, v: f64| sp.set(k, exact(v)).map_err(|e| e.to_string());
+    set(&mut sp, "alpha", -2.0 * (1.0 + p.nu) * lambda / one_m_2nu)?;
+    set(&mut sp, "gamma", 2.0 * (1.0 - p.nu) * lambda / one_m_2nu)?;
+    set(&mut sp, "v0", p.v0)?;
+    let mut printed = sp.clone();
+    set(&mut sp, "a8", a7 * c_corr / p.mass)?;
+    set(&mut sp, "a9", a7 * c_corr / lambda / p.mass)?;
+    set(&mut printed, "a8", a7 * p.e * zeta / p.mass)?;
+    set(&mut printed, "a9", a7 * p.eta * zeta / p.mass)?;
+    Ok((sp, printed))
+}
+
 /// Runs the comparison for the scene at `path`.
 pub fn check(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outcome, VerifyError> {
     let scene_err = |m: String| VerifyError::Scene {
@@ -85,24 +109,7 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outcome,
     };
     let p = &s.params;
     let t_end = s.solve.t_end.unwrap_or(1e-3);
-    let lambda = p.e / p.eta;
-    let one_m_2nu = 1.0 - 2.0 * p.nu;
-    let a7 = 2.0 / (std::f64::consts::PI * p.theta_deg.to_radians().tan());
-    let zeta = one_m_2nu / (4.0 * lambda);
-    let c_corr = -p.e * lambda / one_m_2nu;
-    // exact parameters
-    let mut sp = SeriesParams::symbolic();
-    let set = |sp: &mut SeriesParams, k: &str, v: f64| {
-        sp.set(k, exact(v)).map_err(|e| scene_err(e.to_string()))
-    };
-    set(&mut sp, "alpha", -2.0 * (1.0 + p.nu) * lambda / one_m_2nu)?;
-    set(&mut sp, "gamma", 2.0 * (1.0 - p.nu) * lambda / one_m_2nu)?;
-    set(&mut sp, "v0", p.v0)?;
-    let mut printed = sp.clone();
-    set(&mut sp, "a8", a7 * c_corr / p.mass)?;
-    set(&mut sp, "a9", a7 * c_corr / lambda / p.mass)?;
-    set(&mut printed, "a8", a7 * p.e * zeta / p.mass)?;
-    set(&mut printed, "a9", a7 * p.eta * zeta / p.mass)?;
+    let (sp, printed) = series_params(p).map_err(scene_err)?;
     // numerics: the corrected and the printed model, cone alone
     let mut effects = s.effects.clone();
     effects.plate = false;

@@ -27,3 +27,26 @@ fn every_bad_input_names_field_and_range() {
         .collect();
     assert!(failed.is_empty(), "{failed:#?}");
 }
+
+/// `impact run` on each bad scene: exit code 2, the message on stderr, nothing on stdout.
+#[test]
+fn every_bad_input_exits_2_without_output() {
+    let dir = std::env::temp_dir().join(format!("impactcheck-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    for (case, text, _) in
+        impactcheck::verify::hard_cases::bad_input_cases(std::path::Path::new("."))
+    {
+        let p = dir.join("bad.toml");
+        std::fs::write(&p, &text).expect("write");
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_impact"))
+            .args(["run", p.to_str().expect("utf8"), "--format", "json"])
+            .output()
+            .expect("runs");
+        assert_eq!(out.status.code(), Some(2), "{case}");
+        assert!(out.stdout.is_empty(), "{case}");
+        assert!(
+            String::from_utf8_lossy(&out.stderr).contains("bad.toml"),
+            "{case}"
+        );
+    }
+}
