@@ -20,6 +20,7 @@ pub mod algebra;
 pub mod cli;
 pub mod integrate;
 pub mod models;
+pub mod perf;
 pub mod report;
 pub mod scene;
 pub mod verify;

@@ -80,16 +80,25 @@ enum Command {
         #[arg(long)]
         threads: Option<usize>,
     },
-    /// Time the integrators on a reference problem (used by benches/peers/peers.py).
+    /// Measure for reports/performance.md (benches/peers/peers.py calls these): `hertz`, `cone`,
+    /// `pendulum` (work-precision of each method on the peer problems), `algebra` (series a0..a3
+    /// symbolic, Galerkin (3,5)), `sweeps` (impacts per second on 1 and all threads), `effects`
+    /// (the cost of effects that are off), `scaling` (modes up to (9,9), sweep points).
     Bench {
-        /// The problem: `hertz` (z'' = -max(z,0)^1.5 from touch to the end of contact).
+        /// The measurement.
         problem: String,
-        /// Tolerances (rtol = atol).
+        /// Tolerances (rtol = atol) for the integrator problems.
         #[arg(long, default_value = "1e-6,1e-9,1e-12")]
         tols: String,
-        /// Solves per point (the median is reported).
+        /// Repeats per point (the median is reported).
         #[arg(long, default_value_t = 301)]
         repeats: usize,
+        /// Rigid impacts for `sweeps`.
+        #[arg(long, default_value_t = 100_000)]
+        rigid: usize,
+        /// Cone impacts for `sweeps`.
+        #[arg(long, default_value_t = 10_000)]
+        cone: usize,
     },
     /// Print the Adomian terms a0..aN of (19)-(20), exactly.
     Series {
@@ -141,12 +150,17 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
             problem,
             tols,
             repeats,
+            rigid,
+            cone,
         } => {
-            if problem != "hertz" {
-                return Err(format!("unknown bench problem `{problem}`; allowed: hertz").into());
-            }
-            let tols = cli::parse_times(&tols)?;
-            Ok(cli::bench_hertz(&tols, repeats)?)
+            let v = match problem.as_str() {
+                "algebra" => impactcheck::perf::bench_algebra(repeats),
+                "sweeps" => impactcheck::perf::bench_sweeps(rigid, cone)?,
+                "effects" => impactcheck::perf::bench_effects(repeats)?,
+                "scaling" => impactcheck::perf::bench_scaling(repeats)?,
+                p => impactcheck::perf::bench_problem(p, &cli::parse_times(&tols)?, repeats)?,
+            };
+            Ok(serde_json::to_string_pretty(&v)?)
         }
         Command::Run {
             scene,

@@ -464,6 +464,15 @@ impl ConePlate {
         (d, dd)
     }
 
+    /// `(k, tau)` of the Kelvin-Voigt contact law $P = k\delta(|\delta| + 2\tau\dot\delta)$, when
+    /// that is the law (the cone alone with the constant-Poisson law).
+    pub fn kelvin_voigt(&self) -> Option<(f64, f64)> {
+        match self.contact {
+            ContactLaw::KelvinVoigt { k, tau } => Some((k, tau)),
+            _ => None,
+        }
+    }
+
     /// Contact force $P$ (N), unclamped: negative means the law would pull (contact has ended).
     pub fn contact_force(&self, y: &[f64]) -> f64 {
         let (d, dd) = self.indentation(y);

@@ -84,3 +84,83 @@ pub fn impact(rho: f64, sigma: f64, rtol: f64) -> Result<PendulumImpact, Integra
         steps: sol.stats.steps,
     })
 }
+
+/// (2.15) solved in closed form: it is linear, $\varepsilon'' = -K\varepsilon$ with
+/// $K = A\,\mathrm{diag}(1, \sigma)$, A symmetric positive-definite, so K has real positive
+/// eigenvalues $\omega_i^2$ and $\varepsilon(t) = \sum_i c_i v_i \sin(\omega_i t)/\omega_i$.
+/// An independent reference for the integrator (nalgebra's eigen-solver, no ODE method).
+pub struct ClosedForm {
+    w: [f64; 2],
+    v: [nalgebra::Vector2<f64>; 2],
+    c: nalgebra::Vector2<f64>,
+}
+
+impl ClosedForm {
+    /// The modes for `rho` and `sigma`.
+    pub fn new(rho: f64, sigma: f64) -> Self {
+        let r2 = 1.0 / (rho * rho);
+        let k = nalgebra::Matrix2::new(1.0 + r2, sigma * (1.0 - r2), 1.0 - r2, sigma * (1.0 + r2));
+        // eigenvalues of a 2x2 matrix with real positive spectrum
+        let (tr, det) = (k.trace(), k.determinant());
+        let disc = (0.25 * tr * tr - det).max(0.0).sqrt();
+        let l = [0.5 * tr - disc, 0.5 * tr + disc];
+        // the small one from the product (the difference cancels when sigma is far from 1)
+        let l = [det / l[1], l[1]];
+        let vec_for = |lam: f64| {
+            // a null vector of K - lam I from whichever row is larger
+            let r0 = nalgebra::Vector2::new(-k[(0, 1)], k[(0, 0)] - lam);
+            let r1 = nalgebra::Vector2::new(k[(1, 1)] - lam, -k[(1, 0)]);
+            if r0.norm() >= r1.norm() {
+                r0.normalize()
+            } else {
+                r1.normalize()
+            }
+        };
+        let v = [vec_for(l[0]), vec_for(l[1])];
+        let m = nalgebra::Matrix2::from_columns(&v);
+        let c = m
+            .try_inverse()
+            .map(|inv| inv * nalgebra::Vector2::new(0.0, 1.0))
+            .unwrap_or_else(|| nalgebra::Vector2::new(f64::NAN, f64::NAN));
+        ClosedForm {
+            w: [l[0].sqrt(), l[1].sqrt()],
+            v,
+            c,
+        }
+    }
+
+    /// $(\varepsilon_{On}, \varepsilon_{Cn}, \varepsilon_{On}', \varepsilon_{Cn}')$ at `t`.
+    pub fn state(&self, t: f64) -> [f64; 4] {
+        let mut s = [0.0; 4];
+        for i in 0..2 {
+            let (sn, cs) = (self.w[i] * t).sin_cos();
+            let a = self.c[i] * sn / self.w[i];
+            let b = self.c[i] * cs;
+            s[0] += self.v[i][0] * a;
+            s[1] += self.v[i][1] * a;
+            s[2] += self.v[i][0] * b;
+            s[3] += self.v[i][1] * b;
+        }
+        s
+    }
+
+    /// The first time the contact element unloads ($\varepsilon_{Cn}$ falls to zero): scanned at
+    /// 1/400 of the fastest half-period, then bisected to the last bit.
+    pub fn release(&self) -> f64 {
+        let h = std::f64::consts::PI / self.w[0].max(self.w[1]) / 400.0;
+        let mut t = h;
+        while self.state(t)[1] > 0.0 && t < 1e9 {
+            t += h;
+        }
+        let (mut lo, mut hi) = (t - h, t);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if self.state(mid)[1] > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+}

@@ -170,46 +170,11 @@ fn cone(root: &Path, id: &'static str, file: &'static str, what: &str) -> HardCa
     }
 }
 
-/// The pendulum (2.15) by closed form: the modes of the 2x2 system, the release the first zero
-/// of eps_Cn after it turns positive (scanned, then bisected).
+/// The pendulum (2.15) by closed form: release time and energy loss.
 fn pendulum_reference(rho: f64, sigma: f64) -> (f64, f64) {
-    let r2 = 1.0 / (rho * rho);
-    let k = nalgebra::Matrix2::new(1.0 + r2, sigma * (1.0 - r2), 1.0 - r2, sigma * (1.0 + r2));
-    // K = A D with A symmetric positive definite, D = diag(1, sigma): real positive eigenvalues
-    let eig = k.eigenvalues().expect("real eigenvalues");
-    let w = [eig[0].sqrt(), eig[1].sqrt()];
-    // eigenvectors: (K - w^2) v = 0
-    let vec_for = |l: f64| {
-        let (a, b) = (k[(0, 0)] - l, k[(0, 1)]);
-        if b.abs() > a.abs() * 1e-300 && (a != 0.0 || b != 0.0) {
-            nalgebra::Vector2::new(-b, a)
-        } else {
-            nalgebra::Vector2::new(k[(1, 1)] - l, -k[(1, 0)])
-        }
-    };
-    let (v1, v2) = (vec_for(eig[0]), vec_for(eig[1]));
-    // eps'(0) = (0, 1) = c1 v1 + c2 v2
-    let m = nalgebra::Matrix2::from_columns(&[v1, v2]);
-    let c = m.try_inverse().expect("independent modes") * nalgebra::Vector2::new(0.0, 1.0);
-    let eps =
-        |t: f64| v1 * (c[0] * (w[0] * t).sin() / w[0]) + v2 * (c[1] * (w[1] * t).sin() / w[1]);
-    let deps = |t: f64| v1 * (c[0] * (w[0] * t).cos()) + v2 * (c[1] * (w[1] * t).cos());
-    let h = std::f64::consts::PI / w[0].max(w[1]) / 400.0;
-    let mut t = h;
-    while eps(t)[1] > 0.0 {
-        t += h;
-    }
-    let (mut lo, mut hi) = (t - h, t);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if eps(mid)[1] > 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let t_rel = 0.5 * (lo + hi);
-    let v_on = -deps(t_rel)[0];
+    let cf = crate::models::pendulum_wall::ClosedForm::new(rho, sigma);
+    let t_rel = cf.release();
+    let v_on = -cf.state(t_rel)[2];
     let loss = 0.5 * v_on * v_on * (1.0 - 1.0 / (rho * rho + 1.0)) / ((1.0 + rho * rho) / 8.0);
     (t_rel, loss)
 }
@@ -337,6 +302,41 @@ fn stick_slip_threshold() -> HardCase {
             .finish()
         }
         (Err(e), _) | (_, Err(e)) => failed("stick-slip-threshold", what, hard, e.to_string()),
+    }
+}
+
+/// Slip dying out just above the stick threshold (mu = 1.382, mu* = 1.371): near |V_t| = 0 the
+/// slip direction relaxes at a rate that grows like 1/|V_t|, so the Keller equations turn stiff.
+fn stiff_slip_stop() -> HardCase {
+    use crate::models::rigid_impact::{Law, impact_with_matrix};
+    let (b, v, mu, e) = crate::perf::rigid_inputs(448);
+    let what = format!(
+        "rigid impact #448 of the sweep benchmark: random SPD B, mu = {mu:.4} just above the stick threshold mu* = 1.3710, e = {e:.3} (Poisson), rtol 1e-10"
+    );
+    let hard = "the slip stops slowly just above the stick threshold: the slip direction's relaxation rate grows like 1/|V_t|, the equations turn stiff and an explicit method stalls (DOP853 needed more than 1e5 steps)";
+    let run =
+        |rtol: f64| impact_with_matrix(&b, nalgebra::Vector3::z(), v, mu, Law::Poisson, e, rtol);
+    match (run(1e-10), run(1e-13)) {
+        (Ok(a), Ok(r)) => {
+            let scale = Vector3::from(r.impulse).norm();
+            let err = (0..3)
+                .map(|i| (a.impulse[i] - r.impulse[i]).abs())
+                .fold(0.0, f64::max)
+                / scale;
+            Case {
+                id: "stiff-slip-stop",
+                what,
+                hard,
+                method: "auto (DOP853, Radau5 once stiffness is detected) in the normal impulse"
+                    .into(),
+                steps: Some(a.stats.steps),
+                error: Some(err),
+                tolerance: Some(1e-8),
+                reference: "the same impact at rtol 1e-13 (relative impulse)",
+            }
+            .finish()
+        }
+        (Err(e), _) | (_, Err(e)) => failed("stiff-slip-stop", what, hard, e.to_string()),
     }
 }
 
@@ -592,6 +592,7 @@ pub fn catalogue(root: &Path) -> Vec<HardCase> {
         ),
         slip_stops_at_compression_end(),
         stick_slip_threshold(),
+        stiff_slip_stop(),
         near_singular_b(),
         beta_crossing_zero(),
         elliptic_near_one(),
