@@ -595,6 +595,92 @@ pub struct SweepValues {
     pub param: String,
     /// Values, in order.
     pub values: Vec<f64>,
+    /// Index of each value in the whole sweep (a shard runs a block of them).
+    pub indices: Vec<usize>,
+    /// Points in the whole sweep.
+    pub total: usize,
+}
+
+impl SweepValues {
+    fn new(param: &str, values: Vec<f64>) -> Self {
+        SweepValues {
+            param: param.to_string(),
+            indices: (0..values.len()).collect(),
+            total: values.len(),
+            values,
+        }
+    }
+
+    /// Keeps shard `k` of `n` (0-based): the contiguous block of points
+    /// `[k total/n, (k+1) total/n)`, so that n machines together run every point once.
+    pub fn shard(mut self, spec: &str) -> Result<Self, RunError> {
+        let bad = || RunError::BadArgument {
+            arg: "--shard".into(),
+            message: format!("`{spec}`: expected K/N with 0 <= K < N, e.g. 0/4"),
+        };
+        let (k, n) = spec.split_once('/').ok_or_else(bad)?;
+        let (k, n): (usize, usize) = (
+            k.trim().parse().map_err(|_| bad())?,
+            n.trim().parse().map_err(|_| bad())?,
+        );
+        if n == 0 || k >= n {
+            return Err(bad());
+        }
+        let (lo, hi) = (k * self.total / n, (k + 1) * self.total / n);
+        self.values = self.values[lo..hi].to_vec();
+        self.indices = self.indices[lo..hi].to_vec();
+        Ok(self)
+    }
+}
+
+/// `impact merge`: sweep outputs in JSON (from shards of one sweep) merged into one, in index
+/// order; every index of the sweep must be present exactly once.
+pub fn merge(paths: &[std::path::PathBuf], format: Format) -> Result<String, RunError> {
+    let bad = |m: String| RunError::BadArgument {
+        arg: "merge".into(),
+        message: m,
+    };
+    let mut param: Option<String> = None;
+    let mut total: Option<u64> = None;
+    let mut runs: Vec<Value> = Vec::new();
+    for p in paths {
+        let text = std::fs::read_to_string(p).map_err(|e| bad(format!("{}: {e}", p.display())))?;
+        let v: Value = serde_json::from_str(&text)
+            .map_err(|e| bad(format!("{}: not a sweep's JSON output: {e}", p.display())))?;
+        let this_param = v["param"].as_str().unwrap_or_default().to_string();
+        let this_total = v["total"].as_u64();
+        if param.get_or_insert(this_param.clone()) != &this_param
+            || total.get_or_insert(this_total.unwrap_or(0)) != &this_total.unwrap_or(0)
+        {
+            return Err(bad(format!(
+                "{}: a different sweep (param or total differs)",
+                p.display()
+            )));
+        }
+        runs.extend(v["runs"].as_array().cloned().unwrap_or_default());
+    }
+    runs.sort_by_key(|r| r["index"].as_u64().unwrap_or(u64::MAX));
+    let total = total.unwrap_or(0);
+    let got: Vec<u64> = runs.iter().filter_map(|r| r["index"].as_u64()).collect();
+    let expected: Vec<u64> = (0..total).collect();
+    if got != expected {
+        let missing: Vec<u64> = expected
+            .iter()
+            .filter(|i| !got.contains(i))
+            .copied()
+            .take(10)
+            .collect();
+        return Err(bad(format!(
+            "the shards do not cover the sweep once: {} runs for {total} points; first missing indices {missing:?}",
+            got.len()
+        )));
+    }
+    let param = param.unwrap_or_default();
+    Ok(match format {
+        Format::Csv => sweep_csv(&param, &runs),
+        _ => serde_json::to_string_pretty(&json!({"param": param, "total": total, "runs": runs}))
+            .unwrap_or_default(),
+    })
 }
 
 /// Parses `KEY=START:STOP:COUNT` (`log`: geometric spacing, START and STOP > 0).
@@ -646,10 +732,7 @@ pub fn parse_vary(spec: &str, log: bool) -> Result<SweepValues, RunError> {
             }
         })
         .collect();
-    Ok(SweepValues {
-        param: key.to_string(),
-        values,
-    })
+    Ok(SweepValues::new(key, values))
 }
 
 /// Parses `--param FIELD --values V1,V2,...`.
@@ -674,10 +757,7 @@ pub fn parse_values(param: &str, values: &str) -> Result<SweepValues, RunError> 
             message: "give at least one value, e.g. --values 0.1,1,10".into(),
         });
     }
-    Ok(SweepValues {
-        param: param.to_string(),
-        values: vals,
-    })
+    Ok(SweepValues::new(param, vals))
 }
 
 /// `impact sweep SCENE.toml --vary KEY=START:STOP:COUNT`: every point's scene is validated first
@@ -741,15 +821,17 @@ pub fn sweep(
     let runs: Vec<Value> = sv
         .values
         .iter()
+        .zip(&sv.indices)
         .zip(&results)
-        .map(|(v, r)| match r {
-            Ok(res) => json!({"value": v, "result": res}),
-            Err(e) => json!({"value": v, "error": e}),
+        .map(|((v, i), r)| match r {
+            Ok(res) => json!({"index": i, "value": v, "result": res}),
+            Err(e) => json!({"index": i, "value": v, "error": e}),
         })
         .collect();
     Ok(match format {
         Format::Json => {
-            serde_json::to_string_pretty(&json!({"param": param, "runs": runs})).unwrap_or_default()
+            serde_json::to_string_pretty(&json!({"param": param, "total": sv.total, "runs": runs}))
+                .unwrap_or_default()
         }
         Format::Csv => sweep_csv(param, &runs),
         _ => runs
@@ -818,7 +900,7 @@ fn sweep_csv(param: &str, runs: &[Value]) -> String {
         }
     };
     let mut out = format!(
-        "{},{},error\n",
+        "{},{},error,index\n",
         quote(param),
         cols.iter().map(|c| quote(c)).collect::<Vec<_>>().join(",")
     );

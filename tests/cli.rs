@@ -463,3 +463,43 @@ fn sweep_vary_csv_and_json() {
     assert_ne!(code, 0);
     assert!(err.contains("START:STOP:COUNT"), "{err}");
 }
+
+/// Sharding: three shards of one sweep, merged, equal the unsharded sweep point for point; a
+/// missing shard is an error naming the missing indices.
+#[test]
+fn sharded_sweep_merges_to_the_whole() {
+    let dir = std::env::temp_dir().join(format!("impactcheck-shards-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let vary = ["--vary", "sigma=0.2:4:7", "--format", "json", "--quiet"];
+    let mut files = Vec::new();
+    for k in 0..3 {
+        let shard = format!("{k}/3");
+        let mut args = vec![
+            "sweep",
+            "scenes/pendulum_on_wall.toml",
+            "--shard",
+            shard.as_str(),
+        ];
+        args.extend(vary);
+        let (code, out, err) = impact(&args);
+        assert_eq!(code, 0, "{err}");
+        let f = dir.join(format!("s{k}.json"));
+        std::fs::write(&f, out).expect("write");
+        files.push(f.to_str().expect("utf8").to_string());
+    }
+    let mut args = vec!["merge"];
+    args.extend(files.iter().map(String::as_str));
+    let (code, merged, err) = impact(&args);
+    assert_eq!(code, 0, "{err}");
+    let mut whole_args = vec!["sweep", "scenes/pendulum_on_wall.toml"];
+    whole_args.extend(vary);
+    let (_, whole, _) = impact(&whole_args);
+    let (m, w): (serde_json::Value, serde_json::Value) = (
+        serde_json::from_str(&merged).expect("json"),
+        serde_json::from_str(&whole).expect("json"),
+    );
+    assert_eq!(m["runs"], w["runs"]);
+    let (code, _, err) = impact(&["merge", &files[0], &files[2]]);
+    assert_ne!(code, 0);
+    assert!(err.contains("first missing indices [2, 3]"), "{err}");
+}

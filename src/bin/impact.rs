@@ -79,6 +79,21 @@ enum Command {
         /// Worker threads (default: all cores).
         #[arg(long)]
         threads: Option<usize>,
+        /// Run only shard K of N (0-based), a contiguous block of the points: N machines (or
+        /// batch jobs) with K = 0..N-1 together run the sweep once; `impact merge` joins their
+        /// JSON outputs.
+        #[arg(long)]
+        shard: Option<String>,
+    },
+    /// Merge the JSON outputs of a sharded sweep (`sweep --shard K/N --format json`) into one,
+    /// checking that every point is there exactly once.
+    Merge {
+        /// The shards' JSON files.
+        #[arg(required = true)]
+        files: Vec<std::path::PathBuf>,
+        /// Output format: json or csv.
+        #[arg(long, value_enum, default_value = "json")]
+        format: Fmt,
     },
     /// Measure for reports/performance.md (benches/peers/peers.py calls these): `hertz`, `cone`,
     /// `pendulum` (work-precision of each method on the peer problems), `algebra` (series a0..a3
@@ -162,6 +177,7 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
             };
             Ok(serde_json::to_string_pretty(&v)?)
         }
+        Command::Merge { files, format } => Ok(cli::merge(&files, fmt(format))?),
         Command::Run {
             scene,
             format,
@@ -176,6 +192,7 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
             format,
             quiet,
             threads,
+            shard,
         } => {
             let sv = match (vary, param, values) {
                 (Some(v), _, _) => cli::parse_vary(&v, log)?,
@@ -186,6 +203,10 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
                             .into(),
                     );
                 }
+            };
+            let sv = match shard {
+                Some(spec) => sv.shard(&spec)?,
+                None => sv,
             };
             if let Some(n) = threads {
                 if n == 0 {
