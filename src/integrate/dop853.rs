@@ -133,7 +133,8 @@ impl Stepper for Dop853 {
                 let t = self.t + ci * h;
                 sys.rhs(t, &self.y_stage, &mut self.k[i * n..(i + 1) * n]);
             }
-            self.y12.copy_from_slice(&self.y_stage);
+            // every stage rewrites all of y_stage: keep stage 12's input by a swap, not a copy
+            std::mem::swap(&mut self.y12, &mut self.y_stage);
             self.stats.rhs_evals += 11;
             // new solution: row 12 of A holds the weights b
             Self::combine(n, &self.k, &self.y, A[12], h, &mut self.y_new);
@@ -172,8 +173,8 @@ impl Stepper for Dop853 {
                     stden += (self.y_new[m] - self.y12[m]).powi(2);
                 }
                 self.stiffness.update(stnum, stden, h, 6.1);
-                self.y_old.copy_from_slice(&self.y);
-                self.y.copy_from_slice(&self.y_new);
+                std::mem::swap(&mut self.y_old, &mut self.y);
+                std::mem::swap(&mut self.y, &mut self.y_new);
                 self.t_old = self.t;
                 self.t = if last { t_end } else { self.t + h };
                 self.h_old = h;

@@ -76,7 +76,8 @@ pub struct Dopri5 {
     y_new: Vec<f64>,
     y_stage: Vec<f64>,
     y6: Vec<f64>,
-    k: Vec<Vec<f64>>,
+    /// The seven stages, flat: stage j at `[j n, (j+1) n)`.
+    k: Vec<f64>,
     cont: Vec<Vec<f64>>,
     facold: f64,
     reject: bool,
@@ -91,15 +92,24 @@ impl Dopri5 {
     /// Prepares a solve.
     pub fn new<S: OdeSystem>(sys: &S, t0: f64, y0: &[f64], t_end: f64, opts: &Options) -> Self {
         let n = y0.len();
-        let mut k = vec![vec![0.0; n]; 7];
-        sys.rhs(t0, y0, &mut k[0]);
+        let mut k = vec![0.0; 7 * n];
+        sys.rhs(t0, y0, &mut k[..n]);
         let hmax = opts.hmax.unwrap_or(t_end - t0).abs();
         let mut wy = vec![0.0; n];
         let mut wf = vec![0.0; n];
         let h = match opts.fixed_step.or(opts.h0) {
             Some(h) => h,
             None => initial_step(
-                sys, t0, y0, &k[0], 5, hmax, opts.rtol, opts.atol, &mut wy, &mut wf,
+                sys,
+                t0,
+                y0,
+                &k[..n],
+                5,
+                hmax,
+                opts.rtol,
+                opts.atol,
+                &mut wy,
+                &mut wf,
             ),
         };
         Dopri5 {
@@ -134,11 +144,10 @@ impl Dopri5 {
 
 impl Stepper for Dopri5 {
     fn step<S: OdeSystem>(&mut self, sys: &S, t_end: f64) -> Result<(), IntegrateError> {
-        if self.have_fsal {
-            let (head, tail) = self.k.split_at_mut(6);
-            head[0].copy_from_slice(&tail[0]);
-        }
         let n = self.n;
+        if self.have_fsal {
+            self.k.copy_within(6 * n..7 * n, 0);
+        }
         let mut last = false;
         loop {
             let mut h = self.h;
@@ -149,26 +158,66 @@ impl Stepper for Dopri5 {
                 h = t_end - self.t;
                 last = true;
             }
-            for i in 1..7 {
-                self.y_stage.copy_from_slice(&self.y);
-                for (j, a) in A[i].iter().enumerate() {
-                    for m in 0..n {
-                        self.y_stage[m] += h * a * self.k[j][m];
+            // the six stages, each row of A a fixed-size array so that its sum unrolls
+            fn row<const J: usize>(
+                n: usize,
+                k: &[f64],
+                y: &[f64],
+                a: [f64; J],
+                h: f64,
+                out: &mut [f64],
+            ) {
+                for m in 0..n {
+                    let mut acc = 0.0;
+                    for (j, aj) in a.iter().enumerate() {
+                        acc += aj * k[j * n + m];
                     }
-                }
-                let t = if i >= 5 {
-                    self.t + h
-                } else {
-                    self.t + C[i] * h
-                };
-                sys.rhs(t, &self.y_stage, &mut self.k[i]);
-                if i == 5 {
-                    self.y6.copy_from_slice(&self.y_stage);
-                }
-                if i == 6 {
-                    self.y_new.copy_from_slice(&self.y_stage);
+                    out[m] = y[m] + h * acc;
                 }
             }
+            let (t, y) = (self.t, &self.y);
+            row(n, &self.k, y, [A[1][0]], h, &mut self.y_stage);
+            sys.rhs(t + C[1] * h, &self.y_stage, &mut self.k[n..2 * n]);
+            row(n, &self.k, y, [A[2][0], A[2][1]], h, &mut self.y_stage);
+            sys.rhs(t + C[2] * h, &self.y_stage, &mut self.k[2 * n..3 * n]);
+            row(
+                n,
+                &self.k,
+                y,
+                [A[3][0], A[3][1], A[3][2]],
+                h,
+                &mut self.y_stage,
+            );
+            sys.rhs(t + C[3] * h, &self.y_stage, &mut self.k[3 * n..4 * n]);
+            row(
+                n,
+                &self.k,
+                y,
+                [A[4][0], A[4][1], A[4][2], A[4][3]],
+                h,
+                &mut self.y_stage,
+            );
+            sys.rhs(t + C[4] * h, &self.y_stage, &mut self.k[4 * n..5 * n]);
+            // stage 6's input is kept for the stiffness test
+            row(
+                n,
+                &self.k,
+                y,
+                [A[5][0], A[5][1], A[5][2], A[5][3], A[5][4]],
+                h,
+                &mut self.y6,
+            );
+            sys.rhs(t + h, &self.y6, &mut self.k[5 * n..6 * n]);
+            // the new solution (first same as last: its slope is stage 7)
+            row(
+                n,
+                &self.k,
+                y,
+                [A[6][0], A[6][1], A[6][2], A[6][3], A[6][4], A[6][5]],
+                h,
+                &mut self.y_new,
+            );
+            sys.rhs(t + h, &self.y_new, &mut self.k[6 * n..7 * n]);
             self.stats.rhs_evals += 6;
             if self.y_new.iter().any(|v| !v.is_finite()) {
                 return Err(IntegrateError::NonFinite { t: self.t + h });
@@ -176,7 +225,7 @@ impl Stepper for Dopri5 {
             let mut err = 0.0;
             for m in 0..n {
                 let sk = self.atol + self.rtol * self.y[m].abs().max(self.y_new[m].abs());
-                let e: f64 = h * (0..7).map(|j| E[j] * self.k[j][m]).sum::<f64>();
+                let e: f64 = h * (0..7).map(|j| E[j] * self.k[j * n + m]).sum::<f64>();
                 err += (e / sk) * (e / sk);
             }
             let err = (err / n as f64).sqrt();
@@ -190,12 +239,12 @@ impl Stepper for Dopri5 {
                 self.stats.steps += 1;
                 let (mut stnum, mut stden) = (0.0, 0.0);
                 for m in 0..n {
-                    stnum += (self.k[6][m] - self.k[5][m]).powi(2);
+                    stnum += (self.k[6 * n + m] - self.k[5 * n + m]).powi(2);
                     stden += (self.y_new[m] - self.y6[m]).powi(2);
                 }
                 self.stiffness.update(stnum, stden, h, 3.25);
-                self.y_old.copy_from_slice(&self.y);
-                self.y.copy_from_slice(&self.y_new);
+                std::mem::swap(&mut self.y_old, &mut self.y);
+                std::mem::swap(&mut self.y, &mut self.y_new);
                 self.t_old = self.t;
                 self.t = if last { t_end } else { self.t + h };
                 self.h_old = h;
@@ -241,14 +290,14 @@ impl Stepper for Dopri5 {
         if self.dense_ready {
             return;
         }
-        let h = self.h_old;
-        for m in 0..self.n {
+        let (h, n) = (self.h_old, self.n);
+        for m in 0..n {
             let dy = self.y[m] - self.y_old[m];
-            let bspl = h * self.k[0][m] - dy;
+            let bspl = h * self.k[m] - dy;
             self.cont[0][m] = dy;
             self.cont[1][m] = bspl;
-            self.cont[2][m] = dy - h * self.k[6][m] - bspl;
-            self.cont[3][m] = h * (0..7).map(|j| DENSE[j] * self.k[j][m]).sum::<f64>();
+            self.cont[2][m] = dy - h * self.k[6 * n + m] - bspl;
+            self.cont[3][m] = h * (0..7).map(|j| DENSE[j] * self.k[j * n + m]).sum::<f64>();
         }
         self.dense_ready = true;
     }
