@@ -130,9 +130,14 @@ fn median_seconds(repeats: usize, mut f: impl FnMut()) -> f64 {
 pub fn bench_algebra(repeats: usize) -> Value {
     use crate::algebra::galerkin;
     use crate::algebra::series::{SeriesParams, Viscous, adomian_terms};
-    let series = median_seconds(repeats, || {
-        std::hint::black_box(adomian_terms(&SeriesParams::symbolic(), 3, Viscous::TwoZZ));
-    });
+    let series: Vec<Value> = (1..=3)
+        .map(|order| {
+            let sec = median_seconds(repeats, || {
+                std::hint::black_box(adomian_terms(&SeriesParams::symbolic(), order, Viscous::TwoZZ));
+            });
+            json!({"order": order, "seconds": sec})
+        })
+        .collect();
     let gal = median_seconds(repeats, || {
         std::hint::black_box(galerkin::derive(3, 5).ok());
     });
@@ -145,7 +150,7 @@ pub fn bench_algebra(repeats: usize) -> Value {
             json!({"m": m, "n": m, "seconds": s})
         })
         .collect();
-    json!({"series_a0_a3_symbolic": series, "galerkin_3_5": gal, "galerkin_scaling": scaling,
+    json!({"series_symbolic": series, "galerkin_3_5": gal, "galerkin_scaling": scaling,
            "repeats": repeats})
 }
 
