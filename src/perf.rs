@@ -133,7 +133,11 @@ pub fn bench_algebra(repeats: usize) -> Value {
     let series: Vec<Value> = (1..=3)
         .map(|order| {
             let sec = median_seconds(repeats, || {
-                std::hint::black_box(adomian_terms(&SeriesParams::symbolic(), order, Viscous::TwoZZ));
+                std::hint::black_box(adomian_terms(
+                    &SeriesParams::symbolic(),
+                    order,
+                    Viscous::TwoZZ,
+                ));
             });
             json!({"order": order, "seconds": sec})
         })
