@@ -661,18 +661,21 @@ pub fn merge(paths: &[std::path::PathBuf], format: Format) -> Result<String, Run
     }
     runs.sort_by_key(|r| r["index"].as_u64().unwrap_or(u64::MAX));
     let total = total.unwrap_or(0);
-    let got: Vec<u64> = runs.iter().filter_map(|r| r["index"].as_u64()).collect();
-    let expected: Vec<u64> = (0..total).collect();
-    if got != expected {
-        let missing: Vec<u64> = expected
-            .iter()
-            .filter(|i| !got.contains(i))
-            .copied()
-            .take(10)
-            .collect();
+    // one pass: count each index; every one of 0..total must appear exactly once
+    let mut seen = vec![0u32; total as usize];
+    let mut stray = 0usize;
+    for r in &runs {
+        match r["index"].as_u64().filter(|i| *i < total) {
+            Some(i) => seen[i as usize] += 1,
+            None => stray += 1,
+        }
+    }
+    if stray > 0 || seen.iter().any(|c| *c != 1) {
+        let missing: Vec<usize> = (0..seen.len()).filter(|i| seen[*i] == 0).take(10).collect();
+        let twice = seen.iter().filter(|c| **c > 1).count();
         return Err(bad(format!(
-            "the shards do not cover the sweep once: {} runs for {total} points; first missing indices {missing:?}",
-            got.len()
+            "the shards do not cover the sweep once: {} runs for {total} points; first missing indices {missing:?}; {twice} indices more than once; {stray} runs without a valid index",
+            runs.len()
         )));
     }
     let param = param.unwrap_or_default();

@@ -158,28 +158,13 @@ pub fn bench_algebra(repeats: usize) -> Value {
            "repeats": repeats})
 }
 
-/// A small deterministic generator for the sweeps (splitmix64).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next()
-    }
-}
-
 fn rigid_one(i: u64) -> bool {
     rigid_case(i).is_ok()
 }
 
 /// The `i`-th seeded random rigid impact of the sweeps: `(B, V-, mu, e)`, Poisson's law.
 pub fn rigid_inputs(i: u64) -> (nalgebra::Matrix3<f64>, nalgebra::Vector3<f64>, f64, f64) {
-    let mut r = Rng(i.wrapping_mul(0x1234_5678_9ABC_DEF1) ^ 0xA5A5);
+    let mut r = crate::rng::Rng(i.wrapping_mul(0x1234_5678_9ABC_DEF1) ^ 0xA5A5);
     let a = nalgebra::Matrix3::from_fn(|_, _| r.range(-1.0, 1.0));
     let b = a * a.transpose() + nalgebra::Matrix3::identity() * 0.05;
     let v = nalgebra::Vector3::new(r.range(-2.0, 2.0), r.range(-2.0, 2.0), -r.range(0.1, 3.0));

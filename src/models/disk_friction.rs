@@ -318,15 +318,10 @@ fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
             let dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
             let dx = p1 / dp;
             x -= dx;
+            // P_n' at the previous iterate: it differs from P_n' at x by O(dx), below 1e-16 once
+            // converged
+            ws[i] = 2.0 / ((1.0 - x * x) * dp * dp);
             if dx.abs() < 1e-16 {
-                let (mut q0, mut q1) = (1.0, x);
-                for k in 2..=n {
-                    let q2 = ((2 * k - 1) as f64 * x * q1 - (k - 1) as f64 * q0) / k as f64;
-                    q0 = q1;
-                    q1 = q2;
-                }
-                let d = n as f64 * (x * q1 - q0) / (x * x - 1.0);
-                ws[i] = 2.0 / ((1.0 - x * x) * d * d);
                 break;
             }
         }

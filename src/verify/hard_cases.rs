@@ -243,6 +243,14 @@ fn hertz(
     }
 }
 
+/// The largest componentwise difference of two impulses.
+fn impulse_diff(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|i| (a[i] - b[i]).abs()).fold(0.0, f64::max)
+}
+
+/// How the rigid-impact model integrates (the Keller equations in the normal impulse).
+const RIGID_METHOD: &str = "auto (DOP853, Radau5 once stiffness is detected) in the normal impulse, events on slip and phase";
+
 /// A particle (B = I/m) whose slip stops exactly when compression ends.
 fn slip_stops_at_compression_end() -> HardCase {
     use crate::models::rigid_impact::{Law, impact_with_matrix};
@@ -257,14 +265,12 @@ fn slip_stops_at_compression_end() -> HardCase {
         Ok(r) => {
             // slip for p in [0, 1] takes (-0.5, 0, 1), then sticking restitution adds (0, 0, 0.5)
             let exact = [-0.5, 0.0, 1.5];
-            let err = (0..3)
-                .map(|i| (r.impulse[i] - exact[i]).abs())
-                .fold(0.0, f64::max);
+            let err = impulse_diff(r.impulse, exact);
             Case {
                 id: "slip-stops-at-compression-end",
                 what,
                 hard,
-                method: "dop853 in the normal impulse, events on slip and phase".into(),
+                method: RIGID_METHOD.into(),
                 steps: Some(r.stats.steps),
                 error: Some(err),
                 tolerance: Some(1e-8),
@@ -286,14 +292,12 @@ fn stick_slip_threshold() -> HardCase {
     let run = |mu: f64| impact_with_matrix(&b, Vector3::z(), v, mu, Law::Poisson, 0.5, 1e-10);
     match (run(mu_star * (1.0 - 1e-12)), run(mu_star * (1.0 + 1e-12))) {
         (Ok(a), Ok(c)) => {
-            let err = (0..3)
-                .map(|i| (a.impulse[i] - c.impulse[i]).abs())
-                .fold(0.0, f64::max);
+            let err = impulse_diff(a.impulse, c.impulse);
             Case {
                 id: "stick-slip-threshold",
                 what,
                 hard,
-                method: "dop853 in the normal impulse".into(),
+                method: RIGID_METHOD.into(),
                 steps: Some(a.stats.steps.max(c.stats.steps)),
                 error: Some(err),
                 tolerance: Some(1e-8),
@@ -319,16 +323,12 @@ fn stiff_slip_stop() -> HardCase {
     match (run(1e-10), run(1e-13)) {
         (Ok(a), Ok(r)) => {
             let scale = Vector3::from(r.impulse).norm();
-            let err = (0..3)
-                .map(|i| (a.impulse[i] - r.impulse[i]).abs())
-                .fold(0.0, f64::max)
-                / scale;
+            let err = impulse_diff(a.impulse, r.impulse) / scale;
             Case {
                 id: "stiff-slip-stop",
                 what,
                 hard,
-                method: "auto (DOP853, Radau5 once stiffness is detected) in the normal impulse"
-                    .into(),
+                method: RIGID_METHOD.into(),
                 steps: Some(a.stats.steps),
                 error: Some(err),
                 tolerance: Some(1e-8),
@@ -357,7 +357,7 @@ fn near_singular_b() -> HardCase {
                 id: "near-singular-b",
                 what,
                 hard,
-                method: "dop853 in the normal impulse".into(),
+                method: RIGID_METHOD.into(),
                 steps: Some(r.stats.steps),
                 error: Some(err),
                 tolerance: Some(1e-9),

@@ -8,40 +8,9 @@ use crate::models::rigid_impact::{Body, ImpactResult, Law, b_matrix, impact, imp
 use crate::report::svg::{Scale, Series};
 use nalgebra::{Matrix3, SymmetricEigen, Vector3};
 
+use crate::rng::Rng;
+
 const SAMPLES: usize = 400;
-
-/// SplitMix64: a seeded generator, so every run checks the same bodies.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next()
-    }
-    /// A random symmetric positive-definite matrix L L^T, diagonal of L in `diag`, the rest in
-    /// (-off, off).
-    fn spd(&mut self, diag: (f64, f64), off: f64) -> Matrix3<f64> {
-        let l = Matrix3::new(
-            self.range(diag.0, diag.1),
-            0.0,
-            0.0,
-            self.range(-off, off),
-            self.range(diag.0, diag.1),
-            0.0,
-            self.range(-off, off),
-            self.range(-off, off),
-            self.range(diag.0, diag.1),
-        );
-        l * l.transpose()
-    }
-}
 
 /// One random impact configuration.
 #[derive(Clone, Debug)]

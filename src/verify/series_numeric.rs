@@ -93,20 +93,29 @@ pub fn series_params(p: &cone_plate::Params) -> Result<(SeriesParams, SeriesPara
     Ok((sp, printed))
 }
 
+/// The cone-plate scene a claim names.
+fn load_cone(
+    c: &ClaimSpec,
+    path: &Path,
+    what: &str,
+) -> Result<Box<crate::scene::ConePlateScene>, VerifyError> {
+    let err = |m: String| VerifyError::Scene {
+        id: c.id.clone(),
+        message: m,
+    };
+    match crate::scene::load(path).map_err(|e| err(e.to_string()))? {
+        Scene::ConePlate(s) => Ok(s),
+        _ => Err(err(format!("the {what} claim needs a cone-plate scene"))),
+    }
+}
+
 /// Runs the comparison for the scene at `path`.
 pub fn check(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outcome, VerifyError> {
     let scene_err = |m: String| VerifyError::Scene {
         id: c.id.clone(),
         message: m,
     };
-    let s = match crate::scene::load(path).map_err(|e| scene_err(e.to_string()))? {
-        Scene::ConePlate(s) => s,
-        _ => {
-            return Err(scene_err(
-                "the series claim needs a cone-plate scene".into(),
-            ));
-        }
-    };
+    let s = load_cone(c, path, "series")?;
     let p = &s.params;
     let t_end = s.solve.t_end.unwrap_or(1e-3);
     let (sp, printed) = series_params(p).map_err(scene_err)?;
@@ -306,14 +315,7 @@ pub fn passivity(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outc
         id: c.id.clone(),
         message: m,
     };
-    let s = match crate::scene::load(path).map_err(|e| scene_err(e.to_string()))? {
-        Scene::ConePlate(s) => s,
-        _ => {
-            return Err(scene_err(
-                "the passivity claim needs a cone-plate scene".into(),
-            ));
-        }
-    };
+    let s = load_cone(c, path, "passivity")?;
     let t_end = s.solve.t_end.unwrap_or(1e-3);
     let mut lines = Vec::new();
     let mut curves: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
