@@ -10,6 +10,7 @@
 pub mod dims;
 pub mod eval;
 pub mod expo;
+pub mod expr;
 pub mod galerkin;
 pub mod identity21;
 pub mod operator;
@@ -17,6 +18,7 @@ pub mod poly;
 pub mod ratfunc;
 pub mod series;
 pub mod trig;
+pub mod units;
 
 /// Why an exact computation could not be done.
 #[derive(Debug, thiserror::Error, Clone, PartialEq, Eq)]

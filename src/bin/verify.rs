@@ -28,7 +28,13 @@ enum Fmt {
         summary (or --baseline PATH); a changed verdict, or a number in a detail that moved by more \
         than 1e-6 relative, exits with status 1 and names the claim.\n\n\
         With --only PAPER|PREFIX only those claims run (e.g. --only 002, --only 000.eq22); nothing \
-        is written unless --check compares them."
+        is written unless --check compares them.\n\n\
+        With --claims PATH (a claims file or a folder of them) any paper's claims are checked: \
+        formulas as text, kinds identity, dimension, model and bound (see verify/README.md), scenes \
+        relative to the claims file. A bad claim (syntax, unknown symbol or kind, missing scene, a \
+        quantity the model does not produce) exits 2 before anything runs, naming the file, the \
+        claim and the key. Reports are written only with --out DIR (or for the default claims); \
+        without it the verdicts are printed."
 )]
 struct Args {
     /// Compare with the committed summary instead of writing reports.
@@ -40,7 +46,7 @@ struct Args {
     /// Run only one paper ("000") or the claims whose id starts with this prefix.
     #[arg(long)]
     only: Option<String>,
-    /// Folder of claim files.
+    /// A claims file, or a folder of them (default: verify/).
     #[arg(long)]
     claims: Option<PathBuf>,
     /// Output folder for reports.
@@ -64,6 +70,9 @@ fn default_dir(name: &str) -> PathBuf {
 }
 
 fn run(args: Args) -> Result<bool> {
+    // claims other than the project's own write a report only where --out says
+    let custom = args.claims.is_some();
+    let write_reports = !custom || args.out.is_some();
     let claims_dir = args.claims.unwrap_or_else(|| default_dir("verify"));
     let out_dir = args.out.unwrap_or_else(|| default_dir("reports"));
     let all = verify::load_claims(&claims_dir)
@@ -79,9 +88,17 @@ fn run(args: Args) -> Result<bool> {
                 .join(", ")
         );
     }
+    // `check` claims name scenes relative to the folder above the claims folder
     let root = claims_dir
         .canonicalize()
         .ok()
+        .map(|p| {
+            if p.is_file() {
+                p.parent().map(|x| x.to_path_buf()).unwrap_or(p)
+            } else {
+                p
+            }
+        })
         .and_then(|p| p.parent().map(|x| x.to_path_buf()))
         .unwrap_or_else(|| PathBuf::from("."));
     let progress = std::io::stderr().is_terminal();
@@ -94,7 +111,11 @@ fn run(args: Args) -> Result<bool> {
     }
     outcomes.sort_by(|a, b| a.id.cmp(&b.id));
     let fresh = report::summary(&outcomes);
-    match args.format {
+    let format = match args.format {
+        None if !write_reports && !args.check => Some(Fmt::Text),
+        f => f,
+    };
+    match format {
         Some(Fmt::Json) => println!("{}", serde_json::to_string_pretty(&fresh)?),
         Some(Fmt::Text) => {
             for c in &fresh.claims {
@@ -147,11 +168,20 @@ fn run(args: Args) -> Result<bool> {
         );
         return Ok(true);
     }
-    if progress {
-        eprintln!("verify: work-precision diagrams ...");
+    if !write_reports {
+        eprintln!(
+            "verify: {} claims checked; give --out DIR to write their report",
+            outcomes.len()
+        );
+        return Ok(true);
     }
     let mut files = report::render(&papers, &outcomes);
-    files.extend(verify::accuracy::render(args.repeats.max(1)).context("work-precision runs")?);
+    if !custom {
+        if progress {
+            eprintln!("verify: work-precision diagrams ...");
+        }
+        files.extend(verify::accuracy::render(args.repeats.max(1)).context("work-precision runs")?);
+    }
     report::write_atomically(&out_dir, &files)
         .with_context(|| format!("writing {}", out_dir.display()))?;
     let mut counts = std::collections::BTreeMap::new();

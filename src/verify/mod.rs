@@ -7,28 +7,37 @@
 
 pub mod accuracy;
 pub mod hard_cases;
+pub mod kinds;
 pub mod paper000;
 pub mod paper001;
 pub mod paper002;
 pub mod series_numeric;
 
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// One paper's claim file.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PaperClaims {
-    /// The seed's number, "000".
+    /// The paper's short name ("000", "classics"): the first part of every claim id.
     pub paper: String,
-    /// The seed's file name.
+    /// The paper's text (a seed's file name, or a reference), if any.
+    #[serde(default)]
     pub file: String,
     /// The paper's title.
     pub title: String,
     /// The report's file name under `reports/`.
     pub report: String,
+    /// The unit of every symbol a formula uses (`"N/m^1.5"`, `"1"`).
+    #[serde(default)]
+    pub symbols: BTreeMap<String, String>,
     /// The claims.
     pub claim: Vec<ClaimSpec>,
+    /// Where the file was read from (scenes of generic claims are relative to it).
+    #[serde(skip)]
+    pub source: PathBuf,
 }
 
 /// One claim as listed in `verify/`.
@@ -41,8 +50,53 @@ pub struct ClaimSpec {
     pub equation: String,
     /// One-line quote of what the paper states.
     pub quote: String,
-    /// Which check computes it.
+    /// How it is checked: `identity`, `dimension`, `model`, `bound` (generic, [`kinds`]) or
+    /// `check` (a named Rust check).
+    pub kind: String,
+    /// For `kind = "check"`: which Rust check computes it.
+    #[serde(default)]
     pub check: String,
+    /// The formula as printed, in the paper's notation (`identity`, `dimension`, `model`).
+    #[serde(default)]
+    pub printed: Option<String>,
+    /// `identity`: the derived side, a formula or `@name[k=v,...]` (a derivation of the algebra).
+    #[serde(default)]
+    pub derived: Option<String>,
+    /// `identity`: a corrected formula; when the printed one fails and this one holds, the
+    /// verdict is `holds-with-correction`.
+    #[serde(default)]
+    pub corrected: Option<String>,
+    /// `identity`: the time symbol of an exponential polynomial (default `t`).
+    #[serde(default)]
+    pub variable: Option<String>,
+    /// `dimension`: the expected unit.
+    #[serde(default)]
+    pub expect: Option<String>,
+    /// `model`: the dotted path of the outcome quantity compared.
+    #[serde(default)]
+    pub quantity: Option<String>,
+    /// `model`, `bound`: formula symbol -> scene field.
+    #[serde(default)]
+    pub bind: BTreeMap<String, String>,
+    /// `model`: the grid, `FIELD=START:STOP:COUNT[:log]` per axis.
+    #[serde(default)]
+    pub vary: Vec<String>,
+    /// `model`: the largest relative difference allowed.
+    #[serde(default)]
+    pub rtol: Option<f64>,
+    /// `bound`: scene field -> distribution (`uniform(a, b)`, `loguniform(a, b)`,
+    /// `normal(mu, sigma)`).
+    #[serde(default)]
+    pub sample: BTreeMap<String, String>,
+    /// `bound`: number of samples.
+    #[serde(default)]
+    pub count: Option<usize>,
+    /// `bound`: seed of the generator.
+    #[serde(default)]
+    pub seed: Option<u64>,
+    /// `bound`: the inequality every sample must satisfy.
+    #[serde(default)]
+    pub require: Option<String>,
     /// Plate modes `(m, n)` to check, where relevant.
     #[serde(default)]
     pub modes: Vec<[u32; 2]>,
@@ -55,7 +109,8 @@ pub struct ClaimSpec {
     /// Highest power for identity checks.
     #[serde(default)]
     pub k_max: Option<u32>,
-    /// Scene file used (relative to the repository root).
+    /// Scene file used: for `kind = "check"` relative to the repository root, for the generic
+    /// kinds relative to the claims file.
     #[serde(default)]
     pub scene: Option<String>,
 }
@@ -109,6 +164,8 @@ pub struct Outcome {
     pub extra_md: Option<String>,
     /// Extra files (plots) to write beside the report: `(file name, contents)`.
     pub files: Vec<(String, String)>,
+    /// How the verdict was computed: the claim's kind, and for `check` the Rust check's name.
+    pub kind: String,
 }
 
 /// Why verification could not run.
@@ -128,6 +185,19 @@ pub enum VerifyError {
         /// The file.
         path: PathBuf,
         /// What is wrong.
+        message: String,
+    },
+    /// A claim of a claims file is bad (syntax, unknown symbol, unknown kind, missing scene, a
+    /// quantity the model does not produce): found before anything runs.
+    #[error("{file}: claim {id}: {field}: {message}")]
+    Claim {
+        /// The claims file.
+        file: String,
+        /// The claim.
+        id: String,
+        /// The key of the claim that is wrong.
+        field: String,
+        /// What is wrong and what is allowed.
         message: String,
     },
     /// A claim names a check that does not exist or lacks a parameter.
@@ -174,6 +244,7 @@ pub(crate) fn outcome(
         derived_latex: None,
         extra_md: None,
         files: vec![],
+        kind: String::new(),
     }
 }
 
@@ -191,26 +262,33 @@ pub(crate) fn holds(b: bool) -> Verdict {
     if b { Verdict::Holds } else { Verdict::Fails }
 }
 
-/// Reads every `*.toml` claim file in `dir`, sorted by file name.
-pub fn load_claims(dir: &Path) -> Result<Vec<PaperClaims>, VerifyError> {
+/// Reads a claims file, or every `*.toml` claims file of a folder (sorted by file name).
+pub fn load_claims(path: &Path) -> Result<Vec<PaperClaims>, VerifyError> {
     let io = |path: &Path, source| VerifyError::Io {
         path: path.to_path_buf(),
         source,
     };
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(|e| io(dir, e))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
+    let mut files: Vec<PathBuf> = if path.is_file() {
+        vec![path.to_path_buf()]
+    } else {
+        std::fs::read_dir(path)
+            .map_err(|e| io(path, e))?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+            .collect()
+    };
     files.sort();
     files
         .iter()
         .map(|p| {
             let text = std::fs::read_to_string(p).map_err(|e| io(p, e))?;
-            toml::from_str::<PaperClaims>(&text).map_err(|e| VerifyError::BadClaims {
-                path: p.clone(),
-                message: e.to_string(),
-            })
+            let mut claims =
+                toml::from_str::<PaperClaims>(&text).map_err(|e| VerifyError::BadClaims {
+                    path: p.clone(),
+                    message: e.to_string().trim().replace('\n', " "),
+                })?;
+            claims.source = p.clone();
+            Ok(claims)
         })
         .collect()
 }
@@ -233,48 +311,37 @@ pub fn select(papers: &[PaperClaims], only: Option<&str>) -> Vec<PaperClaims> {
         .collect()
 }
 
-/// Runs every claim of every paper; scenes named by claims are read relative to `root`.
+/// Checks every claim of every paper: first every file is validated ([`kinds::Checked`]: a bad
+/// claim stops here, before anything runs), then each claim runs. Scenes named by `check` claims
+/// are read relative to `root`, those of the generic kinds relative to their claims file.
 pub fn run_all(papers: &[PaperClaims], root: &Path) -> Result<Vec<Outcome>, VerifyError> {
+    let checked: Vec<kinds::Checked> = papers
+        .iter()
+        .map(kinds::Checked::validate)
+        .collect::<Result<_, _>>()?;
+    let mut derivations = kinds::Derivations::default();
     let mut out = Vec::new();
-    for p in papers {
-        match p.paper.as_str() {
-            "000" => {
-                let mut ctx = paper000::Context::new(root);
-                for c in &p.claim {
-                    out.push(paper000::check(&mut ctx, p, c)?);
-                }
+    for (p, generic) in papers.iter().zip(&checked) {
+        let mut ctx000 = paper000::Context::new(root);
+        for c in &p.claim {
+            if c.kind != "check" {
+                out.push(generic.check(c, &mut derivations)?);
+                continue;
             }
-            "001" => {
-                for c in &p.claim {
-                    out.push(paper001::check(p, c)?);
-                }
-            }
-            "002" => {
-                for c in &p.claim {
-                    out.push(paper002::check(p, c)?);
-                }
-            }
-            "hard" => {
-                for c in &p.claim {
-                    out.push(hard_cases::check(p, c, root)?);
-                }
-            }
-            other => {
-                for c in &p.claim {
-                    out.push(Outcome {
-                        id: c.id.clone(),
-                        paper: other.to_string(),
-                        equation: c.equation.clone(),
-                        quote: c.quote.clone(),
-                        verdict: Verdict::NotCheckable,
-                        detail: format!("no checks are implemented yet for paper {other}"),
-                        printed_latex: None,
-                        derived_latex: None,
-                        extra_md: None,
-                        files: vec![],
-                    });
-                }
-            }
+            let mut o = match p.paper.as_str() {
+                "000" => paper000::check(&mut ctx000, p, c)?,
+                "001" => paper001::check(p, c)?,
+                "002" => paper002::check(p, c)?,
+                "hard" => hard_cases::check(p, c, root)?,
+                other => outcome(
+                    p,
+                    c,
+                    Verdict::NotCheckable,
+                    format!("no Rust checks exist for paper {other}: use a generic kind"),
+                ),
+            };
+            o.kind = format!("check `{}`", c.check);
+            out.push(o);
         }
     }
     out.sort_by(|a, b| a.id.cmp(&b.id));

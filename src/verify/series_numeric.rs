@@ -303,6 +303,7 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outcome,
         derived_latex: None,
         extra_md: Some(md),
         files: vec![(svg_name, svg)],
+        kind: String::new(),
     })
 }
 
@@ -406,5 +407,6 @@ pub fn passivity(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outc
             c.scene.clone().unwrap_or_default()
         )),
         files: vec![(svg_name, svg)],
+        kind: String::new(),
     })
 }

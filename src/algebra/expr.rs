@@ -1,0 +1,847 @@
+//! Formulas as text: the parser, printer and converters of the claim files (`verify/*.toml`).
+//!
+//! A referee writes a printed formula in the paper's notation, e.g. the contact duration of a
+//! Hertz impact
+//! $$t_c = 3.2181\,(m/k)^{2/5}\,v_0^{-1/5}\qquad\text{as}\qquad
+//!   \texttt{3.2181*(m/k)\^{}(2/5)*v0\^{}(-1/5)},$$
+//! or $A_1$ of (16) of 000_92d54b11128ea1ec.txt as
+//! `E*zeta*(m^2/a^2 + n^2/b^2)^2*h^3*a*b*pi^4/48`.
+//!
+//! Grammar (`^` binds tightest and to the right, unary minus below it, so `-x^2` is `-(x^2)`):
+//! ```text
+//! relation := expr (("<" | "<=" | ">" | ">=") expr)?
+//! expr     := term (("+" | "-") term)*
+//! term     := unary (("*" | "/") unary)*
+//! unary    := "-" unary | power
+//! power    := atom ("^" unary)?
+//! atom     := number | name | function "(" expr ")" | "(" expr ")"
+//! ```
+//! Numbers (`3`, `3.2181`, `1e-3`) are read as exact rationals; names are
+//! `[A-Za-z_][A-Za-z0-9_]*` with dotted parts (`contact.duration`, an outcome quantity); `pi` is
+//! the constant; the functions are `sqrt exp ln sin cos tan abs`.
+//!
+//! A parsed [`Expr`] is a tree. It becomes an exact [`RatFunc`] when it is rational (integer
+//! powers, no functions; `pi` stays a symbol, which is sound for identities because $\pi$ is
+//! transcendental), an exact [`Expo`] when it is an exponential polynomial in a time symbol, and
+//! is evaluated in `f64` otherwise ([`Expr::eval`]). Printing gives the text a user would write,
+//! with only the parentheses the grammar needs, so `parse(print(e)) == e`.
+//!
+//! Written by hand: a recursive-descent parser is ~300 lines here, and a parser crate would add
+//! a dependency for a grammar this small while the exact conversion is ours anyway.
+
+use super::expo::Expo;
+use super::poly::{Poly, Q, Sym};
+use super::ratfunc::RatFunc;
+use num_bigint::BigInt;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+use std::fmt;
+
+/// The functions a formula may call.
+pub const FUNCTIONS: &[&str] = &["sqrt", "exp", "ln", "sin", "cos", "tan", "abs"];
+
+/// A function of one argument.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Func {
+    /// Square root.
+    Sqrt,
+    /// Exponential.
+    Exp,
+    /// Natural logarithm.
+    Ln,
+    /// Sine (radians).
+    Sin,
+    /// Cosine (radians).
+    Cos,
+    /// Tangent (radians).
+    Tan,
+    /// Absolute value.
+    Abs,
+}
+
+impl Func {
+    fn from_name(name: &str) -> Option<Func> {
+        Some(match name {
+            "sqrt" => Func::Sqrt,
+            "exp" => Func::Exp,
+            "ln" => Func::Ln,
+            "sin" => Func::Sin,
+            "cos" => Func::Cos,
+            "tan" => Func::Tan,
+            "abs" => Func::Abs,
+            _ => return None,
+        })
+    }
+
+    /// The name as written.
+    pub fn name(self) -> &'static str {
+        match self {
+            Func::Sqrt => "sqrt",
+            Func::Exp => "exp",
+            Func::Ln => "ln",
+            Func::Sin => "sin",
+            Func::Cos => "cos",
+            Func::Tan => "tan",
+            Func::Abs => "abs",
+        }
+    }
+
+    fn apply(self, x: f64) -> f64 {
+        match self {
+            Func::Sqrt => x.sqrt(),
+            Func::Exp => x.exp(),
+            Func::Ln => x.ln(),
+            Func::Sin => x.sin(),
+            Func::Cos => x.cos(),
+            Func::Tan => x.tan(),
+            Func::Abs => x.abs(),
+        }
+    }
+}
+
+/// A binary operator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Op {
+    /// `+`
+    Add,
+    /// `-`
+    Sub,
+    /// `*`
+    Mul,
+    /// `/`
+    Div,
+    /// `^`
+    Pow,
+}
+
+impl Op {
+    fn symbol(self) -> &'static str {
+        match self {
+            Op::Add => " + ",
+            Op::Sub => " - ",
+            Op::Mul => "*",
+            Op::Div => "/",
+            Op::Pow => "^",
+        }
+    }
+    fn prec(self) -> u8 {
+        match self {
+            Op::Add | Op::Sub => 1,
+            Op::Mul | Op::Div => 2,
+            Op::Pow => 4,
+        }
+    }
+}
+
+/// A formula as a tree.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Expr {
+    /// A literal, exact (never negative: `-3` is `Neg(3)`).
+    Num(Q),
+    /// A symbol or a dotted outcome quantity.
+    Sym(String),
+    /// The constant pi.
+    Pi,
+    /// Unary minus.
+    Neg(Box<Expr>),
+    /// A binary operation.
+    Bin(Op, Box<Expr>, Box<Expr>),
+    /// A function call.
+    Call(Func, Box<Expr>),
+}
+
+/// A comparison.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Rel {
+    /// `<`
+    Lt,
+    /// `<=`
+    Le,
+    /// `>`
+    Gt,
+    /// `>=`
+    Ge,
+}
+
+impl Rel {
+    /// As written.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Rel::Lt => "<",
+            Rel::Le => "<=",
+            Rel::Gt => ">",
+            Rel::Ge => ">=",
+        }
+    }
+    /// Whether `l REL r` holds.
+    pub fn holds(self, l: f64, r: f64) -> bool {
+        match self {
+            Rel::Lt => l < r,
+            Rel::Le => l <= r,
+            Rel::Gt => l > r,
+            Rel::Ge => l >= r,
+        }
+    }
+}
+
+/// An inequality `lhs REL rhs`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Inequality {
+    /// Left side.
+    pub lhs: Expr,
+    /// The relation.
+    pub rel: Rel,
+    /// Right side.
+    pub rhs: Expr,
+}
+
+impl Inequality {
+    /// How far the inequality is from failing, in units of the larger side (positive: holds with
+    /// margin; negative: violated by that much).
+    pub fn margin(&self, l: f64, r: f64) -> f64 {
+        let scale = l.abs().max(r.abs()).max(f64::MIN_POSITIVE);
+        match self.rel {
+            Rel::Lt | Rel::Le => (r - l) / scale,
+            Rel::Gt | Rel::Ge => (l - r) / scale,
+        }
+    }
+}
+
+impl fmt::Display for Inequality {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} {} {}", self.lhs, self.rel.symbol(), self.rhs)
+    }
+}
+
+/// Why a formula could not be read.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("column {column}: expected {expected}, found {found}")]
+pub struct ParseError {
+    /// 1-based column (in characters) where reading stopped.
+    pub column: usize,
+    /// What the grammar allows there.
+    pub expected: String,
+    /// What was there.
+    pub found: String,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+enum Tok {
+    Num(Q, String),
+    Name(String),
+    Op(char),
+    Rel(Rel),
+    LParen,
+    RParen,
+    End,
+}
+
+impl Tok {
+    fn describe(&self) -> String {
+        match self {
+            Tok::Num(_, t) => format!("number `{t}`"),
+            Tok::Name(n) => format!("name `{n}`"),
+            Tok::Op(c) => format!("`{c}`"),
+            Tok::Rel(r) => format!("`{}`", r.symbol()),
+            Tok::LParen => "`(`".into(),
+            Tok::RParen => "`)`".into(),
+            Tok::End => "the end of the formula".into(),
+        }
+    }
+}
+
+fn lex(text: &str) -> Result<Vec<(Tok, usize)>, ParseError> {
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        let col = i + 1;
+        if c.is_whitespace() {
+            i += 1;
+            continue;
+        }
+        if c.is_ascii_digit() || (c == '.' && chars.get(i + 1).is_some_and(|d| d.is_ascii_digit()))
+        {
+            let start = i;
+            while i < chars.len() && (chars[i].is_ascii_digit() || chars[i] == '.') {
+                i += 1;
+            }
+            // an exponent only when digits follow `e`, `e+` or `e-` (so `2e` is 2 times e? no:
+            // it is an error below, since a name cannot follow a number)
+            if i < chars.len() && (chars[i] == 'e' || chars[i] == 'E') {
+                let mut j = i + 1;
+                if j < chars.len() && (chars[j] == '+' || chars[j] == '-') {
+                    j += 1;
+                }
+                if j < chars.len() && chars[j].is_ascii_digit() {
+                    while j < chars.len() && chars[j].is_ascii_digit() {
+                        j += 1;
+                    }
+                    i = j;
+                }
+            }
+            let t: String = chars[start..i].iter().collect();
+            let v = super::poly::parse_q(&t).filter(|_| t.matches('.').count() <= 1);
+            let Some(v) = v else {
+                return Err(ParseError {
+                    column: col,
+                    expected: "a number such as 3, 0.25 or 1e-3".into(),
+                    found: format!("`{t}`"),
+                });
+            };
+            out.push((Tok::Num(v, t), col));
+            continue;
+        }
+        if c.is_ascii_alphabetic() || c == '_' {
+            let start = i;
+            loop {
+                while i < chars.len() && (chars[i].is_ascii_alphanumeric() || chars[i] == '_') {
+                    i += 1;
+                }
+                let dotted_next = i + 1 < chars.len()
+                    && chars[i] == '.'
+                    && (chars[i + 1].is_ascii_alphabetic() || chars[i + 1] == '_');
+                if dotted_next {
+                    i += 1;
+                } else {
+                    break;
+                }
+            }
+            out.push((Tok::Name(chars[start..i].iter().collect()), col));
+            continue;
+        }
+        let next = chars.get(i + 1).copied();
+        let (tok, len) = match (c, next) {
+            ('<', Some('=')) => (Tok::Rel(Rel::Le), 2),
+            ('>', Some('=')) => (Tok::Rel(Rel::Ge), 2),
+            ('<', _) => (Tok::Rel(Rel::Lt), 1),
+            ('>', _) => (Tok::Rel(Rel::Gt), 1),
+            ('(', _) => (Tok::LParen, 1),
+            (')', _) => (Tok::RParen, 1),
+            ('+' | '-' | '*' | '/' | '^', _) => (Tok::Op(c), 1),
+            _ => {
+                return Err(ParseError {
+                    column: col,
+                    expected: "a number, a name, an operator (+ - * / ^) or a parenthesis".into(),
+                    found: format!("`{c}`"),
+                });
+            }
+        };
+        out.push((tok, col));
+        i += len;
+    }
+    out.push((Tok::End, chars.len() + 1));
+    Ok(out)
+}
+
+struct Parser {
+    toks: Vec<(Tok, usize)>,
+    pos: usize,
+    depth: usize,
+}
+
+/// Nesting deeper than this is refused (a formula from a paper is far shallower; the limit keeps
+/// the recursive parser from overflowing the stack on hostile input).
+const MAX_DEPTH: usize = 200;
+
+impl Parser {
+    fn peek(&self) -> &Tok {
+        &self.toks[self.pos].0
+    }
+    fn col(&self) -> usize {
+        self.toks[self.pos].1
+    }
+    fn bump(&mut self) -> Tok {
+        let t = self.toks[self.pos].0.clone();
+        if self.pos + 1 < self.toks.len() {
+            self.pos += 1;
+        }
+        t
+    }
+    fn err(&self, expected: &str) -> ParseError {
+        ParseError {
+            column: self.col(),
+            expected: expected.into(),
+            found: self.peek().describe(),
+        }
+    }
+    fn deeper(&mut self) -> Result<(), ParseError> {
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return Err(self.err("a formula nested less than 200 levels deep"));
+        }
+        Ok(())
+    }
+
+    fn expr(&mut self) -> Result<Expr, ParseError> {
+        self.deeper()?;
+        let mut lhs = self.term()?;
+        while let Tok::Op(c @ ('+' | '-')) = *self.peek() {
+            self.bump();
+            let rhs = self.term()?;
+            let op = if c == '+' { Op::Add } else { Op::Sub };
+            lhs = Expr::Bin(op, Box::new(lhs), Box::new(rhs));
+        }
+        self.depth -= 1;
+        Ok(lhs)
+    }
+
+    fn term(&mut self) -> Result<Expr, ParseError> {
+        let mut lhs = self.unary()?;
+        while let Tok::Op(c @ ('*' | '/')) = *self.peek() {
+            self.bump();
+            let rhs = self.unary()?;
+            let op = if c == '*' { Op::Mul } else { Op::Div };
+            lhs = Expr::Bin(op, Box::new(lhs), Box::new(rhs));
+        }
+        Ok(lhs)
+    }
+
+    fn unary(&mut self) -> Result<Expr, ParseError> {
+        if *self.peek() == Tok::Op('-') {
+            self.bump();
+            self.deeper()?;
+            let e = self.unary()?;
+            self.depth -= 1;
+            return Ok(Expr::Neg(Box::new(e)));
+        }
+        self.power()
+    }
+
+    fn power(&mut self) -> Result<Expr, ParseError> {
+        let base = self.atom()?;
+        if *self.peek() == Tok::Op('^') {
+            self.bump();
+            self.deeper()?;
+            let e = self.unary()?;
+            self.depth -= 1;
+            return Ok(Expr::Bin(Op::Pow, Box::new(base), Box::new(e)));
+        }
+        Ok(base)
+    }
+
+    fn atom(&mut self) -> Result<Expr, ParseError> {
+        const WHAT: &str = "a number, a name, a function call or `(`";
+        match self.peek().clone() {
+            Tok::Num(v, _) => {
+                self.bump();
+                Ok(Expr::Num(v))
+            }
+            Tok::Name(n) => {
+                self.bump();
+                if let Some(f) = Func::from_name(&n) {
+                    if *self.peek() != Tok::LParen {
+                        return Err(self.err(&format!("`(` after the function `{n}`")));
+                    }
+                    self.bump();
+                    let arg = self.expr()?;
+                    if *self.peek() != Tok::RParen {
+                        return Err(self.err(&format!("`)` closing `{n}(`")));
+                    }
+                    self.bump();
+                    return Ok(Expr::Call(f, Box::new(arg)));
+                }
+                if *self.peek() == Tok::LParen {
+                    return Err(ParseError {
+                        column: self.col(),
+                        expected: format!(
+                            "an operator after `{n}` (write `*` for a product; functions are: {})",
+                            FUNCTIONS.join(" ")
+                        ),
+                        found: "`(`".into(),
+                    });
+                }
+                Ok(if n == "pi" { Expr::Pi } else { Expr::Sym(n) })
+            }
+            Tok::LParen => {
+                self.bump();
+                let e = self.expr()?;
+                if *self.peek() != Tok::RParen {
+                    return Err(self.err("`)` or an operator"));
+                }
+                self.bump();
+                Ok(e)
+            }
+            _ => Err(self.err(WHAT)),
+        }
+    }
+
+    fn finish(&self) -> Result<(), ParseError> {
+        match self.peek() {
+            Tok::End => Ok(()),
+            Tok::Num(..) | Tok::Name(_) | Tok::LParen => {
+                Err(self.err("an operator (write `*` for a product)"))
+            }
+            _ => Err(self.err("an operator or the end of the formula")),
+        }
+    }
+}
+
+fn parser(text: &str) -> Result<Parser, ParseError> {
+    Ok(Parser {
+        toks: lex(text)?,
+        pos: 0,
+        depth: 0,
+    })
+}
+
+/// Parses a formula (no inequality).
+pub fn parse(text: &str) -> Result<Expr, ParseError> {
+    let mut p = parser(text)?;
+    let e = p.expr()?;
+    if let Tok::Rel(_) = p.peek() {
+        return Err(p.err("a formula without `<`, `>` here (an inequality is not allowed)"));
+    }
+    p.finish()?;
+    Ok(e)
+}
+
+/// Parses an inequality `lhs REL rhs`.
+pub fn parse_inequality(text: &str) -> Result<Inequality, ParseError> {
+    let mut p = parser(text)?;
+    let lhs = p.expr()?;
+    let Tok::Rel(rel) = p.peek().clone() else {
+        return Err(p.err("one of < <= > >="));
+    };
+    p.bump();
+    let rhs = p.expr()?;
+    p.finish()?;
+    Ok(Inequality { lhs, rel, rhs })
+}
+
+/// Writes an exact rational literal as a decimal (the parser reads literals only as decimals, so
+/// their denominators divide a power of ten), or as `n/d` for other values.
+fn number_text(v: &Q) -> String {
+    let (n, d) = (v.numer().clone(), v.denom().clone());
+    let mut den = d.clone();
+    let (two, five) = (BigInt::from(2), BigInt::from(5));
+    let mut digits = 0usize;
+    let (mut p2, mut p5) = (0usize, 0usize);
+    while (&den % &two).is_zero() {
+        den /= &two;
+        p2 += 1;
+    }
+    while (&den % &five).is_zero() {
+        den /= &five;
+        p5 += 1;
+    }
+    if !den.is_one() {
+        return format!("{n}/{d}");
+    }
+    digits += p2.max(p5);
+    if digits == 0 {
+        return n.to_string();
+    }
+    let scaled = &n * num_traits::pow(BigInt::from(10), digits) / &d;
+    let s = scaled.abs().to_string();
+    let s = format!("{s:0>width$}", width = digits + 1);
+    let (int, frac) = s.split_at(s.len() - digits);
+    let sign = if scaled.is_negative() { "-" } else { "" };
+    format!("{sign}{int}.{frac}")
+}
+
+impl Expr {
+    /// A symbol.
+    pub fn sym(name: &str) -> Expr {
+        Expr::Sym(name.to_string())
+    }
+
+    /// Binding strength when printed: atoms 5, `^` 4, unary minus 3, `* /` 2, `+ -` 1.
+    fn prec(&self) -> u8 {
+        match self {
+            Expr::Num(v) if v.is_negative() => 3,
+            Expr::Num(v) if !v.denom().is_one() && number_text(v).contains('/') => 2,
+            Expr::Num(_) | Expr::Sym(_) | Expr::Pi | Expr::Call(..) => 5,
+            Expr::Neg(_) => 3,
+            Expr::Bin(op, ..) => op.prec(),
+        }
+    }
+
+    fn write(&self, out: &mut String) {
+        let wrap = |e: &Expr, paren: bool, out: &mut String| {
+            if paren {
+                out.push('(');
+                e.write(out);
+                out.push(')');
+            } else {
+                e.write(out);
+            }
+        };
+        match self {
+            Expr::Num(v) => out.push_str(&number_text(v)),
+            Expr::Sym(s) => out.push_str(s),
+            Expr::Pi => out.push_str("pi"),
+            Expr::Neg(e) => {
+                out.push('-');
+                wrap(e, e.prec() < 3, out);
+            }
+            Expr::Call(f, a) => {
+                out.push_str(f.name());
+                out.push('(');
+                a.write(out);
+                out.push(')');
+            }
+            Expr::Bin(op, l, r) => {
+                let p = op.prec();
+                match op {
+                    Op::Pow => {
+                        // right-associative; the exponent is a `unary`
+                        wrap(l, l.prec() <= p, out);
+                        out.push('^');
+                        wrap(r, r.prec() < 3, out);
+                    }
+                    _ => {
+                        // left-associative; a `unary` operand needs no parentheses after an
+                        // operator, but a product's left operand must not be a bare negation
+                        // of a sum, which `prec` already covers
+                        wrap(l, l.prec() < p, out);
+                        out.push_str(op.symbol());
+                        wrap(r, r.prec() <= p, out);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Every symbol the formula uses (dotted names included, `pi` excluded), sorted, once each.
+    pub fn symbols(&self) -> Vec<String> {
+        fn go(e: &Expr, out: &mut Vec<String>) {
+            match e {
+                Expr::Sym(s) => out.push(s.clone()),
+                Expr::Num(_) | Expr::Pi => {}
+                Expr::Neg(a) | Expr::Call(_, a) => go(a, out),
+                Expr::Bin(_, a, b) => {
+                    go(a, out);
+                    go(b, out);
+                }
+            }
+        }
+        let mut v = Vec::new();
+        go(self, &mut v);
+        v.sort();
+        v.dedup();
+        v
+    }
+
+    /// Replaces symbols by expressions (`m` -> `1`).
+    pub fn substitute(&self, with: &dyn Fn(&str) -> Option<Expr>) -> Expr {
+        match self {
+            Expr::Sym(s) => with(s).unwrap_or_else(|| self.clone()),
+            Expr::Num(_) | Expr::Pi => self.clone(),
+            Expr::Neg(a) => Expr::Neg(Box::new(a.substitute(with))),
+            Expr::Call(f, a) => Expr::Call(*f, Box::new(a.substitute(with))),
+            Expr::Bin(op, a, b) => Expr::Bin(
+                *op,
+                Box::new(a.substitute(with)),
+                Box::new(b.substitute(with)),
+            ),
+        }
+    }
+
+    /// The exact value when the formula is a rational number (no symbols, integer powers).
+    pub fn exact_constant(&self) -> Option<Q> {
+        self.to_ratfunc().and_then(|r| r.as_constant())
+    }
+
+    /// The formula as an exact rational function, when it is one: `+ - * /`, integer powers (a
+    /// power whose exponent is an exact integer), no functions. `pi` is the symbol `pi`.
+    pub fn to_ratfunc(&self) -> Option<RatFunc> {
+        Some(match self {
+            Expr::Num(v) => RatFunc::from_q(v.clone()),
+            Expr::Sym(s) => RatFunc::sym(s),
+            Expr::Pi => RatFunc::sym("pi"),
+            Expr::Neg(a) => -&a.to_ratfunc()?,
+            Expr::Call(..) => return None,
+            Expr::Bin(op, a, b) => {
+                if *op == Op::Pow {
+                    let e = b.exact_constant()?;
+                    if !e.denom().is_one() {
+                        return None;
+                    }
+                    let e = e.to_integer().to_i32()?;
+                    if e.unsigned_abs() > 64 {
+                        return None;
+                    }
+                    return a.to_ratfunc()?.powi(e);
+                }
+                let (x, y) = (a.to_ratfunc()?, b.to_ratfunc()?);
+                match op {
+                    Op::Add => &x + &y,
+                    Op::Sub => &x - &y,
+                    Op::Mul => &x * &y,
+                    Op::Div => x.div(&y)?,
+                    Op::Pow => unreachable!("handled above"),
+                }
+            }
+        })
+    }
+
+    /// The formula as an exact exponential polynomial in the time symbol `t`: sums of
+    /// `c * t^k * exp(-rate*t)` with `c` rational in the other symbols and `rate` a polynomial
+    /// in them. `None` when it is not one (a division by something that depends on `t`, a power
+    /// of `t` that is not a non-negative integer, `exp` of something not linear in `t`).
+    pub fn to_expo(&self, t: &str) -> Option<Expo> {
+        let tsym = Sym::new(t);
+        let free = |e: &Expr| -> Option<RatFunc> {
+            let r = e.to_ratfunc()?;
+            (!r.depends_on(tsym)).then_some(r)
+        };
+        Some(match self {
+            Expr::Sym(s) if s == t => Expo::monomial(RatFunc::one(), 1),
+            Expr::Num(_) | Expr::Sym(_) | Expr::Pi => Expo::monomial(self.to_ratfunc()?, 0),
+            Expr::Neg(a) => -&a.to_expo(t)?,
+            Expr::Call(Func::Exp, arg) => {
+                let r = arg.to_ratfunc()?;
+                if r.denom().as_constant().is_none_or(|c| c.is_zero()) {
+                    return None;
+                }
+                let num = r.numer();
+                if num.degree_in(tsym) != 1 || !num.coeff_of(tsym, 0).is_zero() {
+                    return None;
+                }
+                let slope = num.coeff_of(tsym, 1);
+                let inv = Q::one() / r.denom().as_constant()?;
+                let rate: Poly = slope.scale(&-inv);
+                Expo::part(RatFunc::one(), 0, rate)
+            }
+            Expr::Call(..) => Expo::monomial(free(self)?, 0),
+            Expr::Bin(op, a, b) => match op {
+                Op::Add => &a.to_expo(t)? + &b.to_expo(t)?,
+                Op::Sub => &a.to_expo(t)? - &b.to_expo(t)?,
+                Op::Mul => &a.to_expo(t)? * &b.to_expo(t)?,
+                Op::Div => a.to_expo(t)?.scale(&free(b)?.inv()?),
+                Op::Pow => {
+                    let e = b.exact_constant()?;
+                    if !e.denom().is_one() || e.is_negative() {
+                        // a negative power is a division: fine when the base is free of t
+                        return Some(Expo::monomial(free(self)?, 0));
+                    }
+                    let k = e.to_integer().to_u32().filter(|k| *k <= 64)?;
+                    let base = a.to_expo(t)?;
+                    let mut acc = Expo::monomial(RatFunc::one(), 0);
+                    for _ in 0..k {
+                        acc = &acc * &base;
+                    }
+                    acc
+                }
+            },
+        })
+    }
+
+    /// Evaluates in `f64`; `value` gives each symbol's value (`None`: unknown).
+    pub fn eval(&self, value: &dyn Fn(&str) -> Option<f64>) -> Result<f64, String> {
+        Ok(match self {
+            Expr::Num(v) => v.to_f64().unwrap_or(f64::NAN),
+            Expr::Sym(s) => value(s).ok_or_else(|| format!("no value for `{s}`"))?,
+            Expr::Pi => std::f64::consts::PI,
+            Expr::Neg(a) => -a.eval(value)?,
+            Expr::Call(f, a) => f.apply(a.eval(value)?),
+            Expr::Bin(op, a, b) => {
+                let (x, y) = (a.eval(value)?, b.eval(value)?);
+                match op {
+                    Op::Add => x + y,
+                    Op::Sub => x - y,
+                    Op::Mul => x * y,
+                    Op::Div => x / y,
+                    Op::Pow => match b.exact_constant() {
+                        Some(e) if e.denom().is_one() && e.numer().abs() < BigInt::from(64) => {
+                            x.powi(e.to_integer().to_i32().unwrap_or(0))
+                        }
+                        _ => x.powf(y),
+                    },
+                }
+            }
+        })
+    }
+}
+
+impl fmt::Display for Expr {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut s = String::new();
+        self.write(&mut s);
+        f.write_str(&s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::poly::q;
+
+    #[test]
+    fn precedence_and_associativity() {
+        // by hand from the grammar: ^ right-assoc above unary minus above * / above + -
+        let e = parse("-x^2").unwrap();
+        assert_eq!(
+            e,
+            Expr::Neg(Box::new(Expr::Bin(
+                Op::Pow,
+                Box::new(Expr::sym("x")),
+                Box::new(Expr::Num(q(2, 1)))
+            )))
+        );
+        assert_eq!(parse("a - b - c").unwrap().to_string(), "a - b - c");
+        assert_eq!(parse("a - (b - c)").unwrap().to_string(), "a - (b - c)");
+        assert_eq!(parse("a/(b*c)").unwrap().to_string(), "a/(b*c)");
+        assert_eq!(parse("2^3^2").unwrap().exact_constant(), Some(q(512, 1)));
+        assert_eq!(parse("(2^3)^2").unwrap().exact_constant(), Some(q(64, 1)));
+        assert_eq!(parse("(m/k)^(2/5)").unwrap().to_string(), "(m/k)^(2/5)");
+        assert_eq!(parse("x^-1/2").unwrap().to_string(), "x^-1/2");
+    }
+
+    #[test]
+    fn numbers_are_exact() {
+        assert_eq!(parse("3.2181").unwrap(), Expr::Num(q(32181, 10000)));
+        assert_eq!(parse("1e-3").unwrap(), Expr::Num(q(1, 1000)));
+        assert_eq!(parse("1e-3").unwrap().to_string(), "0.001");
+        assert_eq!(parse("2.5E2").unwrap().to_string(), "250");
+    }
+
+    #[test]
+    fn dotted_names_and_functions() {
+        let e = parse("contact.peak_force/sqrt(k*m)").unwrap();
+        assert_eq!(e.symbols(), vec!["contact.peak_force", "k", "m"]);
+        assert_eq!(e.to_string(), "contact.peak_force/sqrt(k*m)");
+        let v = parse("exp(-zeta*pi/sqrt(1 - zeta^2))")
+            .unwrap()
+            .eval(&|s| (s == "zeta").then_some(0.1))
+            .unwrap();
+        // the linear spring-dashpot restitution at zeta = 0.1, by a second formula
+        let want = (-0.1 * std::f64::consts::PI / (1.0f64 - 0.01).sqrt()).exp();
+        assert!((v - want).abs() < 1e-15);
+    }
+
+    #[test]
+    fn errors_name_the_column() {
+        let e = parse("a + * b").unwrap_err();
+        assert_eq!(e.column, 5);
+        assert!(e.expected.contains("a number"), "{e}");
+        let e = parse("2 x").unwrap_err();
+        assert_eq!(e.column, 3);
+        assert!(e.expected.contains("`*`"), "{e}");
+        let e = parse("sqrt x").unwrap_err();
+        assert!(e.expected.contains("`(` after the function `sqrt`"), "{e}");
+        let e = parse("(a + b").unwrap_err();
+        assert_eq!(e.column, 7);
+        let e = parse("a # b").unwrap_err();
+        assert_eq!((e.column, e.found.as_str()), (3, "`#`"));
+        assert!(parse("a < b").is_err());
+        assert!(parse_inequality("a + b").is_err());
+        assert_eq!(
+            parse_inequality("v_out <= 1.0*v0").unwrap().to_string(),
+            "v_out <= 1*v0"
+        );
+    }
+
+    #[test]
+    fn rational_and_exponential_forms() {
+        let r = parse("(x^2 - 1)/(x - 1)").unwrap().to_ratfunc().unwrap();
+        assert_eq!(r, parse("x + 1").unwrap().to_ratfunc().unwrap());
+        assert!(parse("x^(1/2)").unwrap().to_ratfunc().is_none());
+        // int_0^t exp(-a s) ds = (1 - exp(-a t))/a, an exponential polynomial in t
+        let e = parse("(1 - exp(-a*t))/a").unwrap().to_expo("t").unwrap();
+        assert_eq!(e.len(), 2);
+        assert!(parse("exp(-a*t^2)").unwrap().to_expo("t").is_none());
+        assert!(parse("1/t").unwrap().to_expo("t").is_none());
+    }
+}

@@ -1,0 +1,228 @@
+//! Units of the claim files: every symbol a formula uses has one (`[symbols]` of
+//! `verify/*.toml`), written as SI names and products, quotients and rational powers of them
+//! (`"kg"`, `"m/s"`, `"N/m^1.5"`, `"Pa"`, `"J"`, `"1"`). A unit is kept as exact rational exponents
+//! of kilogram, metre and second, so that $k\,\delta^{3/2}$ with $k$ in N/m^1.5 and $\delta$ in m
+//! is a force exactly, and [`dimension`] of a formula either gives its unit or names the first
+//! term whose units do not match.
+
+use super::expr::{Expr, Func, Op};
+use num_rational::Rational64;
+use num_traits::{ToPrimitive, Zero};
+use std::fmt;
+
+/// Exponents of (kg, m, s).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct Unit(pub [Rational64; 3]);
+
+impl Unit {
+    /// Dimensionless.
+    pub fn one() -> Unit {
+        Unit::default()
+    }
+
+    fn base(kg: i64, m: i64, s: i64) -> Unit {
+        Unit([kg.into(), m.into(), s.into()])
+    }
+
+    /// `self * o^k`.
+    fn times(self, o: Unit, k: Rational64) -> Unit {
+        let mut r = self.0;
+        for (x, y) in r.iter_mut().zip(o.0) {
+            *x += k * y;
+        }
+        Unit(r)
+    }
+
+    /// Whether the unit is 1.
+    pub fn is_one(&self) -> bool {
+        self.0.iter().all(Zero::is_zero)
+    }
+
+    /// The named SI units a file may use.
+    pub fn named(name: &str) -> Option<Unit> {
+        Some(match name {
+            "kg" => Unit::base(1, 0, 0),
+            "m" => Unit::base(0, 1, 0),
+            "s" => Unit::base(0, 0, 1),
+            "N" => Unit::base(1, 1, -2),
+            "Pa" => Unit::base(1, -1, -2),
+            "J" => Unit::base(1, 2, -2),
+            "W" => Unit::base(1, 2, -3),
+            "Hz" => Unit::base(0, 0, -1),
+            "rad" => Unit::one(),
+            _ => return None,
+        })
+    }
+
+    /// Reads a unit: `"N/m^1.5"`, `"kg*m^2"`, `"kg m^2"` (a space is a product), `"1"`.
+    pub fn parse(text: &str) -> Result<Unit, String> {
+        let spaced = text.split_whitespace().collect::<Vec<_>>().join("*");
+        let e = super::expr::parse(&spaced).map_err(|e| format!("unit `{text}`: {e}"))?;
+        dimension(&e, &|s| Unit::named(s)).map_err(|e| match e {
+            DimError::Unknown(s) => format!(
+                "unit `{text}`: unknown unit `{s}`; allowed: kg m s N Pa J W Hz rad 1, with * / ^"
+            ),
+            other => format!("unit `{text}`: {other}"),
+        })
+    }
+}
+
+impl fmt::Display for Unit {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let parts: Vec<String> = ["kg", "m", "s"]
+            .iter()
+            .zip(self.0)
+            .filter(|(_, e)| !e.is_zero())
+            .map(|(n, e)| {
+                if e == Rational64::from(1) {
+                    n.to_string()
+                } else if e.is_integer() {
+                    format!("{n}^{e}")
+                } else {
+                    format!("{n}^({e})")
+                }
+            })
+            .collect();
+        if parts.is_empty() {
+            f.write_str("1")
+        } else {
+            f.write_str(&parts.join(" "))
+        }
+    }
+}
+
+/// Why a formula has no single unit.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum DimError {
+    /// A symbol with no unit.
+    #[error("`{0}` has no unit")]
+    Unknown(String),
+    /// A sum (or comparison) of terms with different units.
+    #[error("`{left}` is {left_unit} but `{right}` is {right_unit}, in `{whole}`")]
+    Mismatch {
+        /// The whole sum.
+        whole: String,
+        /// One term.
+        left: String,
+        /// Its unit.
+        left_unit: String,
+        /// The other term.
+        right: String,
+        /// Its unit.
+        right_unit: String,
+    },
+    /// A function or power whose argument must be a pure number.
+    #[error("`{term}`: {what} must be dimensionless, but is {unit}")]
+    NotDimensionless {
+        /// The term.
+        term: String,
+        /// Which part.
+        what: String,
+        /// Its unit.
+        unit: String,
+    },
+    /// A power of a dimensional base whose exponent is not an exact rational.
+    #[error("`{0}`: the exponent of a dimensional base must be a rational number")]
+    Exponent(String),
+}
+
+/// The unit of a formula, given each symbol's unit; `pi` and numbers are dimensionless.
+pub fn dimension(e: &Expr, unit: &dyn Fn(&str) -> Option<Unit>) -> Result<Unit, DimError> {
+    let pure = |x: &Expr, what: &str, term: &Expr| -> Result<(), DimError> {
+        let u = dimension(x, unit)?;
+        if u.is_one() {
+            Ok(())
+        } else {
+            Err(DimError::NotDimensionless {
+                term: term.to_string(),
+                what: what.into(),
+                unit: u.to_string(),
+            })
+        }
+    };
+    match e {
+        Expr::Num(_) | Expr::Pi => Ok(Unit::one()),
+        Expr::Sym(s) => unit(s).ok_or_else(|| DimError::Unknown(s.clone())),
+        Expr::Neg(a) => dimension(a, unit),
+        Expr::Call(f, a) => match f {
+            Func::Sqrt => Ok(Unit::one().times(dimension(a, unit)?, Rational64::new(1, 2))),
+            Func::Abs => dimension(a, unit),
+            _ => {
+                pure(a, &format!("the argument of {}", f.name()), e)?;
+                Ok(Unit::one())
+            }
+        },
+        Expr::Bin(op, a, b) => match op {
+            Op::Add | Op::Sub => {
+                let (ua, ub) = (dimension(a, unit)?, dimension(b, unit)?);
+                if ua == ub {
+                    Ok(ua)
+                } else {
+                    Err(DimError::Mismatch {
+                        whole: e.to_string(),
+                        left: a.to_string(),
+                        left_unit: ua.to_string(),
+                        right: b.to_string(),
+                        right_unit: ub.to_string(),
+                    })
+                }
+            }
+            Op::Mul => Ok(dimension(a, unit)?.times(dimension(b, unit)?, 1.into())),
+            Op::Div => Ok(dimension(a, unit)?.times(dimension(b, unit)?, (-1).into())),
+            Op::Pow => {
+                pure(b, "the exponent", e)?;
+                let ua = dimension(a, unit)?;
+                if ua.is_one() {
+                    return Ok(ua);
+                }
+                let k = b
+                    .exact_constant()
+                    .ok_or_else(|| DimError::Exponent(e.to_string()))?;
+                let (n, d) = (k.numer().to_i64(), k.denom().to_i64());
+                match (n, d) {
+                    (Some(n), Some(d)) => Ok(Unit::one().times(ua, Rational64::new(n, d))),
+                    _ => Err(DimError::Exponent(e.to_string())),
+                }
+            }
+        },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::expr::parse;
+
+    #[test]
+    fn units_parse_to_si_exponents() {
+        // N/m^1.5 = kg m^-1/2 s^-2 (by hand)
+        let u = Unit::parse("N/m^1.5").unwrap();
+        assert_eq!(u.0, [1.into(), Rational64::new(-1, 2), (-2).into()]);
+        assert_eq!(
+            Unit::parse("kg m^2").unwrap(),
+            Unit::parse("J*s^2").unwrap()
+        );
+        assert!(Unit::parse("1").unwrap().is_one());
+        assert!(
+            Unit::parse("furlong")
+                .unwrap_err()
+                .contains("unknown unit `furlong`")
+        );
+    }
+
+    #[test]
+    fn hertz_force_is_a_force_and_a_sum_that_mixes_units_is_named() {
+        let units = |s: &str| match s {
+            "k" => Unit::parse("N/m^1.5").ok(),
+            "z" => Unit::parse("m").ok(),
+            "t" => Unit::parse("s").ok(),
+            _ => None,
+        };
+        let f = dimension(&parse("k*z^(3/2)").unwrap(), &units).unwrap();
+        assert_eq!(f, Unit::named("N").unwrap());
+        let err = dimension(&parse("k*z^(3/2) + z").unwrap(), &units).unwrap_err();
+        assert!(err.to_string().contains("`z` is m"), "{err}");
+        let err = dimension(&parse("exp(t)").unwrap(), &units).unwrap_err();
+        assert!(err.to_string().contains("argument of exp"), "{err}");
+    }
+}

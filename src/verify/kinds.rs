@@ -1,0 +1,1126 @@
+//! The generic check kinds of a claims file: a printed formula, written as text in the paper's
+//! notation, checked without Rust written for it.
+//!
+//! - `identity`: `printed` against `derived` (a formula, or `@name[k=v,...]` for a derivation of
+//!   [`crate::algebra`], see [`DERIVATIONS`]), both exact ([`crate::algebra::expr`]); `holds` when
+//!   the difference is exactly zero, `fails` with the simplified difference otherwise. With
+//!   `corrected`, a failing printed form whose correction holds is `holds-with-correction`.
+//! - `dimension`: the unit of `printed` (units from the file's `[symbols]`) against `expect`.
+//! - `model`: `printed`, with symbols bound to scene fields (`bind`), against an outcome
+//!   `quantity` of the model over the grid `vary`; `holds` when the largest relative difference is
+//!   at most `rtol`.
+//! - `bound`: `require`, an inequality over outcome quantities and bound symbols, on `count`
+//!   samples of the scene fields drawn from `sample` (statrs quantiles of a seeded generator);
+//!   `holds` when no sample violates it.
+//!
+//! [`validate`] reads every formula, unit, scene and quantity before anything runs, so a bad claim
+//! stops `verify` with the file, the claim and the key named, and nothing written.
+
+use super::{ClaimSpec, Outcome, PaperClaims, Verdict, VerifyError, outcome};
+use crate::algebra::expr::{self, Expr, Inequality};
+use crate::algebra::poly::{Q, Sym};
+use crate::algebra::ratfunc::RatFunc;
+use crate::algebra::units::{self, Unit};
+use serde_json::Value;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// The kinds a claim may have.
+pub const KINDS: &[&str] = &["identity", "dimension", "model", "bound", "check"];
+
+/// The derivations `@name[...]` reaches, with their parameters and what they are.
+pub const DERIVATIONS: &[(&str, &str, &str)] = &[
+    (
+        "galerkin.bend",
+        "m, n (odd)",
+        "000 (2),(12): the projection of the bending term D~ Delta^2 w onto sin(m pi x/a) sin(n pi y/b), the coefficient of E~/(1-nu~^2)[f]",
+    ),
+    (
+        "galerkin.a3",
+        "m, n (odd)",
+        "000 (2),(8),(12): the projected coefficient of f (in-plane loads p1, p2, Winkler Kw, Pasternak KG)",
+    ),
+    (
+        "galerkin.ct",
+        "m, n (odd)",
+        "000 (2),(12): the projected coefficient of f' (the foundation damper CT)",
+    ),
+    (
+        "galerkin.a4",
+        "m, n (odd)",
+        "000 (2),(12): the projected coefficient of f'' (inertia rho h)",
+    ),
+    (
+        "galerkin.cubic",
+        "m, n (odd)",
+        "000 (2),(3),(12): the projected membrane coefficient of f E~[f^2], with the Airy function solved from (3)",
+    ),
+    (
+        "operator",
+        "",
+        "000 sec. 2: E~/(1-nu~^2) derived from E~ = E(1 + D/lambda) and a constant bulk modulus, as a rational function of D = d/dt",
+    ),
+    (
+        "operator.constant",
+        "",
+        "000 sec. 2: the constant c of E~/(1-nu~^2) = c (1 + D/lambda)[L(alpha) - L(gamma)], from the partial fractions of @operator",
+    ),
+];
+
+fn claim_err(file: &PaperClaims, c: &ClaimSpec, field: &str, message: String) -> VerifyError {
+    VerifyError::Claim {
+        file: file.source.display().to_string(),
+        id: c.id.clone(),
+        field: field.into(),
+        message,
+    }
+}
+
+/// A reference `@name[k=v,...]` inside a derived formula.
+#[derive(Clone, Debug)]
+struct DerivationRef {
+    placeholder: String,
+    name: String,
+    params: Vec<(String, Q)>,
+}
+
+/// Splits the `@name[...]` references out of `text`, replacing each by a placeholder symbol.
+fn split_refs(text: &str) -> Result<(String, Vec<DerivationRef>), String> {
+    let mut out = String::new();
+    let mut refs = Vec::new();
+    let mut rest = text;
+    while let Some(at) = rest.find('@') {
+        out.push_str(&rest[..at]);
+        let after = &rest[at + 1..];
+        let end = after
+            .find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '_' || ch == '.'))
+            .unwrap_or(after.len());
+        let name = after[..end].to_string();
+        if !DERIVATIONS.iter().any(|d| d.0 == name) {
+            return Err(format!(
+                "unknown derivation `@{name}`; known: {}",
+                DERIVATIONS
+                    .iter()
+                    .map(|d| format!("@{}", d.0))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+        let mut params = Vec::new();
+        let mut tail = &after[end..];
+        if let Some(inner) = tail.strip_prefix('[') {
+            let close = inner
+                .find(']')
+                .ok_or_else(|| format!("`@{name}[`: no closing `]`"))?;
+            for kv in inner[..close].split(',').filter(|s| !s.trim().is_empty()) {
+                let (k, v) = kv
+                    .split_once('=')
+                    .ok_or_else(|| format!("`@{name}[{kv}]`: expected NAME=VALUE"))?;
+                let v = crate::algebra::poly::parse_q(v)
+                    .ok_or_else(|| format!("`@{name}[{kv}]`: `{v}` is not an exact number"))?;
+                params.push((k.trim().to_string(), v));
+            }
+            tail = &inner[close + 1..];
+        }
+        let placeholder = format!("at_ref_{}", refs.len());
+        out.push_str(&placeholder);
+        refs.push(DerivationRef {
+            placeholder,
+            name,
+            params,
+        });
+        rest = tail;
+    }
+    out.push_str(rest);
+    Ok((out, refs))
+}
+
+/// The derivations computed in one run, kept for the claims that share them.
+#[derive(Default)]
+pub struct Derivations {
+    galerkin: BTreeMap<(u32, u32), crate::algebra::galerkin::Galerkin>,
+    operator: Option<crate::algebra::operator::OperatorCheck>,
+}
+
+impl Derivations {
+    fn get(&mut self, r: &DerivationRef, defaults: &[(String, Q)]) -> Result<RatFunc, String> {
+        let param = |k: &str| -> Result<u32, String> {
+            let v = r
+                .params
+                .iter()
+                .chain(defaults)
+                .find(|(n, _)| n == k)
+                .map(|(_, v)| v.clone())
+                .ok_or_else(|| format!("`@{}` needs `{k}` (e.g. @{}[m=1,n=1])", r.name, r.name))?;
+            use num_traits::ToPrimitive;
+            v.to_integer()
+                .to_u32()
+                .filter(|_| v.is_integer())
+                .ok_or_else(|| format!("`@{}`: {k} = {v} is not a positive integer", r.name))
+        };
+        if let Some(part) = r.name.strip_prefix("galerkin.") {
+            let (m, n) = (param("m")?, param("n")?);
+            let g = match self.galerkin.entry((m, n)) {
+                std::collections::btree_map::Entry::Occupied(e) => e.into_mut(),
+                std::collections::btree_map::Entry::Vacant(e) => {
+                    e.insert(crate::algebra::galerkin::derive(m, n).map_err(|e| e.to_string())?)
+                }
+            };
+            let p = &g.parts;
+            return Ok(match part {
+                "bend" => p.bend.clone(),
+                "a3" => p.a3.clone(),
+                "ct" => p.ct.clone(),
+                "a4" => p.a4.clone(),
+                _ => p.cubic.clone(),
+            });
+        }
+        let op = self
+            .operator
+            .get_or_insert_with(crate::algebra::operator::check);
+        Ok(match r.name.as_str() {
+            "operator" => crate::algebra::operator::derived_operator(),
+            _ => op.derived_constant.clone(),
+        })
+    }
+}
+
+/// A claims file with its units read.
+pub struct Checked<'a> {
+    file: &'a PaperClaims,
+    units: BTreeMap<String, Unit>,
+    dir: PathBuf,
+}
+
+fn parse_formula(
+    file: &PaperClaims,
+    c: &ClaimSpec,
+    field: &str,
+    text: &str,
+) -> Result<Expr, VerifyError> {
+    expr::parse(text).map_err(|e| claim_err(file, c, field, format!("`{text}`: {e}")))
+}
+
+fn required<'b, T>(
+    file: &PaperClaims,
+    c: &ClaimSpec,
+    field: &str,
+    v: &'b Option<T>,
+    what: &str,
+) -> Result<&'b T, VerifyError> {
+    v.as_ref().ok_or_else(|| {
+        claim_err(
+            file,
+            c,
+            field,
+            format!("missing; kind `{}` needs it ({what})", c.kind),
+        )
+    })
+}
+
+/// One grid axis or sampled field.
+#[derive(Clone, Debug)]
+struct Axis {
+    field: String,
+    values: Vec<f64>,
+    log: bool,
+}
+
+fn parse_axis(spec: &str) -> Result<Axis, String> {
+    let (spec, log) = match spec.strip_suffix(":log") {
+        Some(s) => (s, true),
+        None => (spec, false),
+    };
+    let sv = crate::cli::parse_vary(spec, log).map_err(|e| e.to_string())?;
+    Ok(Axis {
+        field: sv.param,
+        values: sv.values,
+        log,
+    })
+}
+
+/// A distribution of `sample`.
+#[derive(Clone, Copy, Debug)]
+enum Dist {
+    Uniform(f64, f64),
+    LogUniform(f64, f64),
+    Normal(f64, f64),
+}
+
+fn parse_dist(text: &str) -> Result<Dist, String> {
+    let help = "expected uniform(a, b), loguniform(a, b) with 0 < a < b, or normal(mu, sigma) with sigma > 0";
+    let t = text.trim();
+    let open = t.find('(').ok_or_else(|| format!("`{text}`: {help}"))?;
+    let inner = t[open + 1..]
+        .strip_suffix(')')
+        .ok_or_else(|| format!("`{text}`: {help}"))?;
+    let args: Vec<f64> = inner
+        .split(',')
+        .map(|s| s.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("`{text}`: {help}"))?;
+    let [a, b] = args[..] else {
+        return Err(format!("`{text}`: two numbers are needed; {help}"));
+    };
+    if !a.is_finite() || !b.is_finite() {
+        return Err(format!("`{text}`: {help}"));
+    }
+    match &t[..open] {
+        "uniform" if a < b => Ok(Dist::Uniform(a, b)),
+        "loguniform" if 0.0 < a && a < b => Ok(Dist::LogUniform(a, b)),
+        "normal" if b > 0.0 => Ok(Dist::Normal(a, b)),
+        _ => Err(format!("`{text}`: {help}")),
+    }
+}
+
+impl Dist {
+    /// The quantile at `u` in (0, 1) (statrs' inverse CDFs).
+    fn quantile(self, u: f64) -> f64 {
+        use statrs::distribution::{ContinuousCDF, Normal, Uniform};
+        match self {
+            Dist::Uniform(a, b) => Uniform::new(a, b).map_or(f64::NAN, |d| d.inverse_cdf(u)),
+            Dist::LogUniform(a, b) => Uniform::new(a.ln(), b.ln())
+                .map_or(f64::NAN, |d| d.inverse_cdf(u))
+                .exp(),
+            Dist::Normal(m, s) => Normal::new(m, s).map_or(f64::NAN, |d| d.inverse_cdf(u)),
+        }
+    }
+}
+
+/// The number at a dotted path of a model's outcome (`contact.duration`, `impulse.2`).
+pub fn lookup(v: &Value, path: &str) -> Option<f64> {
+    let mut cur = v;
+    for part in path.split('.') {
+        cur = match cur {
+            Value::Object(m) => m.get(part)?,
+            Value::Array(a) => a.get(part.parse::<usize>().ok()?)?,
+            _ => return None,
+        };
+    }
+    match cur {
+        Value::Number(n) => n.as_f64(),
+        Value::Bool(b) => Some(f64::from(u8::from(*b))),
+        _ => None,
+    }
+}
+
+/// The number at a dotted field of a scene table.
+fn field_value(t: &toml::Table, path: &str) -> Option<f64> {
+    let mut parts = path.split('.').peekable();
+    let mut table = t;
+    while let Some(p) = parts.next() {
+        let v = table.get(p)?;
+        if parts.peek().is_none() {
+            return match v {
+                toml::Value::Float(x) => Some(*x),
+                toml::Value::Integer(i) => Some(*i as f64),
+                _ => None,
+            };
+        }
+        table = v.as_table()?;
+    }
+    None
+}
+
+fn run_table(t: &toml::Table, label: &str) -> Result<Value, String> {
+    let scene = crate::scene::parse_table(t, label).map_err(|e| e.to_string())?;
+    crate::cli::run_validated(&scene)
+        .map(|(v, _)| v)
+        .map_err(|e| e.to_string())
+}
+
+fn g4(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let e = x.abs().log10().floor();
+    if (-3.0..5.0).contains(&e) {
+        let digits = (3.0 - e).max(0.0) as usize;
+        format!("{x:.digits$}")
+    } else {
+        format!("{x:.3e}")
+    }
+}
+
+impl<'a> Checked<'a> {
+    /// Reads the file's units and checks every generic claim's keys, formulas, scenes and
+    /// quantities (running each named scene once), before any claim runs.
+    pub fn validate(file: &'a PaperClaims) -> Result<Self, VerifyError> {
+        let mut units = BTreeMap::new();
+        for (name, text) in &file.symbols {
+            let u = Unit::parse(text).map_err(|message| VerifyError::BadClaims {
+                path: file.source.clone(),
+                message: format!("symbols.{name}: {message}"),
+            })?;
+            units.insert(name.clone(), u);
+        }
+        let dir = file
+            .source
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_else(|| PathBuf::from("."));
+        let me = Checked { file, units, dir };
+        for c in &file.claim {
+            me.validate_claim(c)?;
+        }
+        Ok(me)
+    }
+
+    fn units_of(
+        &self,
+        c: &ClaimSpec,
+        field: &str,
+        e: &Expr,
+        also: &[&str],
+    ) -> Result<(), VerifyError> {
+        for s in e.symbols() {
+            if !self.units.contains_key(&s)
+                && !also.contains(&s.as_str())
+                && !s.starts_with("at_ref_")
+            {
+                return Err(claim_err(
+                    self.file,
+                    c,
+                    field,
+                    format!(
+                        "unknown symbol `{s}`: give its unit in [symbols] (e.g. {s} = \"m\"){}",
+                        if self.units.is_empty() {
+                            String::new()
+                        } else {
+                            format!(
+                                "; known: {}",
+                                self.units.keys().cloned().collect::<Vec<_>>().join(", ")
+                            )
+                        }
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn scene_path(&self, c: &ClaimSpec) -> Result<PathBuf, VerifyError> {
+        let s = required(
+            self.file,
+            c,
+            "scene",
+            &c.scene,
+            "a scene file, relative to the claims file",
+        )?;
+        let p = self.dir.join(s);
+        if !p.is_file() {
+            return Err(claim_err(
+                self.file,
+                c,
+                "scene",
+                format!("`{s}`: no such file ({})", p.display()),
+            ));
+        }
+        Ok(p)
+    }
+
+    fn validate_claim(&self, c: &ClaimSpec) -> Result<(), VerifyError> {
+        let f = self.file;
+        match c.kind.as_str() {
+            "check" => {
+                if c.check.is_empty() {
+                    return Err(claim_err(
+                        f,
+                        c,
+                        "check",
+                        "missing; kind `check` names a Rust check".into(),
+                    ));
+                }
+            }
+            "identity" => {
+                let p = parse_formula(
+                    f,
+                    c,
+                    "printed",
+                    required(f, c, "printed", &c.printed, "a formula")?,
+                )?;
+                self.units_of(c, "printed", &p, &["m", "n"])?;
+                let d = required(f, c, "derived", &c.derived, "a formula or @derivation")?;
+                let (text, _) = split_refs(d).map_err(|m| claim_err(f, c, "derived", m))?;
+                let de = parse_formula(f, c, "derived", &text)?;
+                self.units_of(c, "derived", &de, &["m", "n"])?;
+                if let Some(k) = &c.corrected {
+                    let (text, _) = split_refs(k).map_err(|m| claim_err(f, c, "corrected", m))?;
+                    let ke = parse_formula(f, c, "corrected", &text)?;
+                    self.units_of(c, "corrected", &ke, &["m", "n"])?;
+                }
+            }
+            "dimension" => {
+                let p = parse_formula(
+                    f,
+                    c,
+                    "printed",
+                    required(f, c, "printed", &c.printed, "a formula")?,
+                )?;
+                self.units_of(c, "printed", &p, &[])?;
+                let e = required(f, c, "expect", &c.expect, "a unit such as \"N\"")?;
+                Unit::parse(e).map_err(|m| claim_err(f, c, "expect", m))?;
+            }
+            "model" | "bound" => {
+                let path = self.scene_path(c)?;
+                let base = crate::scene::read_table(&path)
+                    .map_err(|e| claim_err(f, c, "scene", e.to_string()))?;
+                let mut table = base.clone();
+                if c.kind == "model" {
+                    required(
+                        f,
+                        c,
+                        "quantity",
+                        &c.quantity,
+                        "a dotted path of the outcome",
+                    )?;
+                    let rtol = *required(f, c, "rtol", &c.rtol, "a relative tolerance")?;
+                    if !(rtol.is_finite() && rtol >= 0.0) {
+                        return Err(claim_err(
+                            f,
+                            c,
+                            "rtol",
+                            format!("{rtol} is not a tolerance >= 0"),
+                        ));
+                    }
+                    if c.vary.is_empty() {
+                        return Err(claim_err(
+                            f,
+                            c,
+                            "vary",
+                            "missing; give at least one FIELD=START:STOP:COUNT[:log]".into(),
+                        ));
+                    }
+                    for spec in &c.vary {
+                        let a = parse_axis(spec).map_err(|m| claim_err(f, c, "vary", m))?;
+                        crate::scene::set_field(&mut table, &a.field, a.values[0], "scene")
+                            .map_err(|e| claim_err(f, c, "vary", e.to_string()))?;
+                    }
+                } else {
+                    required(f, c, "require", &c.require, "an inequality")?;
+                    let n = *required(f, c, "count", &c.count, "the number of samples")?;
+                    if !(1..=1_000_000).contains(&n) {
+                        return Err(claim_err(
+                            f,
+                            c,
+                            "count",
+                            format!("{n} is out of range; allowed: 1..=1000000"),
+                        ));
+                    }
+                    required(f, c, "seed", &c.seed, "the generator's seed")?;
+                    if c.sample.is_empty() {
+                        return Err(claim_err(
+                            f,
+                            c,
+                            "sample",
+                            "missing; give at least one FIELD = \"uniform(a, b)\"".into(),
+                        ));
+                    }
+                    for (field, d) in &c.sample {
+                        let d = parse_dist(d)
+                            .map_err(|m| claim_err(f, c, &format!("sample.{field}"), m))?;
+                        crate::scene::set_field(&mut table, field, d.quantile(0.5), "scene")
+                            .map_err(|e| {
+                                claim_err(f, c, &format!("sample.{field}"), e.to_string())
+                            })?;
+                    }
+                }
+                for (sym, field) in &c.bind {
+                    if field_value(&table, field).is_none() {
+                        return Err(claim_err(
+                            f,
+                            c,
+                            &format!("bind.{sym}"),
+                            format!(
+                                "scene field `{field}` is not a number in {}",
+                                path.display()
+                            ),
+                        ));
+                    }
+                }
+                // one run of the scene, to know what the model produces
+                let outcome = run_table(&table, &path.display().to_string())
+                    .map_err(|m| claim_err(f, c, "scene", m))?;
+                let mut formulas: Vec<(&str, Expr)> = Vec::new();
+                if c.kind == "model" {
+                    let q = c.quantity.as_deref().unwrap_or_default();
+                    if lookup(&outcome, q).is_none() {
+                        return Err(claim_err(
+                            f,
+                            c,
+                            "quantity",
+                            format!(
+                                "`{q}`: the model does not produce this number; it produces: {}",
+                                numeric_paths(&outcome).join(", ")
+                            ),
+                        ));
+                    }
+                    formulas.push((
+                        "printed",
+                        parse_formula(
+                            f,
+                            c,
+                            "printed",
+                            required(f, c, "printed", &c.printed, "a formula")?,
+                        )?,
+                    ));
+                } else {
+                    let text = c.require.as_deref().unwrap_or_default();
+                    let ineq = expr::parse_inequality(text)
+                        .map_err(|e| claim_err(f, c, "require", format!("`{text}`: {e}")))?;
+                    formulas.push(("require", ineq.lhs));
+                    formulas.push(("require", ineq.rhs));
+                }
+                for (field, e) in &formulas {
+                    for s in e.symbols() {
+                        if !c.bind.contains_key(&s) && lookup(&outcome, &s).is_none() {
+                            return Err(claim_err(
+                                f,
+                                c,
+                                field,
+                                format!(
+                                    "`{s}` is neither bound to a scene field (bind) nor a number the model produces ({})",
+                                    numeric_paths(&outcome).join(", ")
+                                ),
+                            ));
+                        }
+                    }
+                    self.units_of(c, field, e, &[])?;
+                }
+            }
+            other => {
+                return Err(claim_err(
+                    f,
+                    c,
+                    "kind",
+                    format!("unknown kind `{other}`; allowed: {}", KINDS.join(", ")),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Runs one generic claim (`kind` other than `check`).
+    pub fn check(&self, c: &ClaimSpec, der: &mut Derivations) -> Result<Outcome, VerifyError> {
+        let mut o = match c.kind.as_str() {
+            "identity" => self.identity(c, der)?,
+            "dimension" => self.dimension(c)?,
+            "model" => self.model(c)?,
+            _ => self.bound(c)?,
+        };
+        o.kind = c.kind.clone();
+        Ok(o)
+    }
+
+    fn unit_fn(&self) -> impl Fn(&str) -> Option<Unit> + '_ {
+        |s: &str| {
+            if s == "m" || s == "n" {
+                self.units.get(s).copied().or(Some(Unit::one()))
+            } else {
+                self.units.get(s).copied()
+            }
+        }
+    }
+
+    fn dimension(&self, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+        let f = self.file;
+        let text = c.printed.as_deref().unwrap_or_default();
+        let p = parse_formula(f, c, "printed", text)?;
+        let want = Unit::parse(c.expect.as_deref().unwrap_or_default())
+            .map_err(|m| claim_err(f, c, "expect", m))?;
+        let (verdict, detail) = match units::dimension(&p, &self.unit_fn()) {
+            Ok(u) if u == want => (Verdict::Holds, format!("`{p}` is {u}, as expected")),
+            Ok(u) => (
+                Verdict::Fails,
+                format!(
+                    "`{p}` is {u}, not {want} (expected `{}`)",
+                    c.expect.as_deref().unwrap_or_default()
+                ),
+            ),
+            Err(e) => (Verdict::Fails, format!("`{p}` has no single unit: {e}")),
+        };
+        let mut o = outcome(f, c, verdict, detail);
+        o.extra_md = Some(format!(
+            "Kind `dimension`. Printed: `{p}`; expected unit: `{}`.",
+            c.expect.as_deref().unwrap_or_default()
+        ));
+        Ok(o)
+    }
+
+    /// The derived side (with derivations substituted) minus the printed, exact; `None` when one
+    /// side is not rational.
+    fn exact_difference(
+        &self,
+        c: &ClaimSpec,
+        field: &str,
+        printed: &Expr,
+        derived_text: &str,
+        params: &[(String, Q)],
+        der: &mut Derivations,
+    ) -> Result<Option<(RatFunc, RatFunc)>, VerifyError> {
+        let f = self.file;
+        let (text, refs) = split_refs(derived_text).map_err(|m| claim_err(f, c, field, m))?;
+        let subst = |e: &Expr| {
+            e.substitute(&|s: &str| {
+                params
+                    .iter()
+                    .find(|(k, _)| k == s)
+                    .map(|(_, v)| Expr::Num(v.clone()))
+            })
+        };
+        let d = subst(&parse_formula(f, c, field, &text)?);
+        let (Some(p), Some(mut d)) = (subst(printed).to_ratfunc(), d.to_ratfunc()) else {
+            return Ok(None);
+        };
+        for r in &refs {
+            let v = der.get(r, params).map_err(|m| claim_err(f, c, field, m))?;
+            d = d.subst(Sym::new(&r.placeholder), &v).ok_or_else(|| {
+                claim_err(
+                    f,
+                    c,
+                    field,
+                    format!("`@{}` makes a denominator zero", r.name),
+                )
+            })?;
+        }
+        Ok(Some((&d - &p, d)))
+    }
+
+    fn identity(&self, c: &ClaimSpec, der: &mut Derivations) -> Result<Outcome, VerifyError> {
+        let f = self.file;
+        let printed_text = c.printed.as_deref().unwrap_or_default();
+        let printed = parse_formula(f, c, "printed", printed_text)?;
+        let derived_text = c.derived.as_deref().unwrap_or_default();
+        let modes: Vec<Vec<(String, Q)>> = if c.modes.is_empty() {
+            vec![vec![]]
+        } else {
+            c.modes
+                .iter()
+                .map(|[m, n]| {
+                    vec![
+                        ("m".to_string(), Q::from_integer((*m).into())),
+                        ("n".to_string(), Q::from_integer((*n).into())),
+                    ]
+                })
+                .collect()
+        };
+        let mut lines = Vec::new();
+        let mut all_printed = true;
+        let mut all_corrected = true;
+        for params in &modes {
+            let at = if params.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    "({}): ",
+                    params
+                        .iter()
+                        .map(|(_, v)| v.to_string())
+                        .collect::<Vec<_>>()
+                        .join(",")
+                )
+            };
+            match self.exact_difference(c, "derived", &printed, derived_text, params, der)? {
+                Some((diff, d)) if diff.is_zero() => {
+                    lines.push(format!("{at}printed = derived = {d}"))
+                }
+                Some((diff, d)) => {
+                    all_printed = false;
+                    let mut line = format!("{at}derived {d}; derived - printed = {diff}");
+                    if let Some(k) = &c.corrected {
+                        let ke = parse_formula(
+                            f,
+                            c,
+                            "corrected",
+                            &split_refs(k)
+                                .map_err(|m| claim_err(f, c, "corrected", m))?
+                                .0,
+                        )?;
+                        match self.exact_difference(c, "derived", &ke, derived_text, params, der)? {
+                            Some((kd, _)) if kd.is_zero() => {
+                                line.push_str("; the corrected form holds exactly")
+                            }
+                            Some((kd, _)) => {
+                                all_corrected = false;
+                                line.push_str(&format!("; the corrected form differs by {kd}"));
+                            }
+                            None => all_corrected = false,
+                        }
+                    } else {
+                        all_corrected = false;
+                    }
+                    lines.push(line);
+                }
+                None => {
+                    let (ok, line) = self.numeric_identity(c, &printed, derived_text, params)?;
+                    all_printed &= ok;
+                    all_corrected &= ok;
+                    lines.push(format!("{at}{line}"));
+                }
+            }
+        }
+        let verdict = if all_printed {
+            Verdict::Holds
+        } else if c.corrected.is_some() && all_corrected {
+            Verdict::HoldsWithCorrection
+        } else {
+            Verdict::Fails
+        };
+        let mut o = outcome(f, c, verdict, lines.join("; "));
+        let mut md = format!("Kind `identity`. Printed: `{printed}`; derived: `{derived_text}`.");
+        if let Some(k) = &c.corrected {
+            md.push_str(&format!(" Corrected: `{k}`."));
+        }
+        o.extra_md = Some(md);
+        Ok(o)
+    }
+
+    /// A non-rational identity (sqrt, exp of a non-linear argument, rational powers) compared in
+    /// `f64` at seeded random points, each symbol in [0.5, 2]: holds when every relative
+    /// difference is below 1e-12.
+    fn numeric_identity(
+        &self,
+        c: &ClaimSpec,
+        printed: &Expr,
+        derived_text: &str,
+        params: &[(String, Q)],
+    ) -> Result<(bool, String), VerifyError> {
+        let f = self.file;
+        if derived_text.contains('@') {
+            return Err(claim_err(
+                f,
+                c,
+                "derived",
+                "a derivation can be compared only with a rational printed form".into(),
+            ));
+        }
+        let d = parse_formula(f, c, "derived", derived_text)?;
+        let mut syms = printed.symbols();
+        syms.extend(d.symbols());
+        syms.sort();
+        syms.dedup();
+        let mut rng = crate::rng::Rng(0x1D_E27);
+        let mut worst: f64 = 0.0;
+        for _ in 0..8 {
+            let vals: BTreeMap<String, f64> = syms
+                .iter()
+                .map(|s| {
+                    let fixed = params.iter().find(|(k, _)| k == s).map(|(_, v)| {
+                        use num_traits::ToPrimitive;
+                        v.to_f64().unwrap_or(f64::NAN)
+                    });
+                    (s.clone(), fixed.unwrap_or_else(|| rng.range(0.5, 2.0)))
+                })
+                .collect();
+            let get = |s: &str| vals.get(s).copied();
+            let (a, b) = (printed.eval(&get), d.eval(&get));
+            let (a, b) = (
+                a.map_err(|m| claim_err(f, c, "printed", m))?,
+                b.map_err(|m| claim_err(f, c, "derived", m))?,
+            );
+            let rel = (a - b).abs() / a.abs().max(b.abs()).max(f64::MIN_POSITIVE);
+            worst = worst.max(if rel.is_nan() { f64::INFINITY } else { rel });
+        }
+        let ok = worst <= 1e-12;
+        Ok((
+            ok,
+            format!(
+                "not rational: compared in floating point at 8 seeded points in [0.5, 2]; largest relative difference {}",
+                g4(worst)
+            ),
+        ))
+    }
+
+    fn model(&self, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+        use rayon::prelude::*;
+        let f = self.file;
+        let path = self.scene_path(c)?;
+        let label = path.display().to_string();
+        let base =
+            crate::scene::read_table(&path).map_err(|e| claim_err(f, c, "scene", e.to_string()))?;
+        let axes: Vec<Axis> = c
+            .vary
+            .iter()
+            .map(|s| parse_axis(s).map_err(|m| claim_err(f, c, "vary", m)))
+            .collect::<Result<_, _>>()?;
+        let printed = parse_formula(f, c, "printed", c.printed.as_deref().unwrap_or_default())?;
+        let quantity = c.quantity.clone().unwrap_or_default();
+        let rtol = c.rtol.unwrap_or(0.0);
+        // the full grid, first axis slowest
+        let mut points: Vec<Vec<(String, f64)>> = vec![vec![]];
+        for a in &axes {
+            points = points
+                .into_iter()
+                .flat_map(|p| {
+                    a.values.iter().map(move |v| {
+                        let mut q = p.clone();
+                        q.push((a.field.clone(), *v));
+                        q
+                    })
+                })
+                .collect();
+        }
+        let rows: Vec<Result<(f64, f64), String>> = points
+            .par_iter()
+            .map(|pt| {
+                let mut t = base.clone();
+                for (field, v) in pt {
+                    crate::scene::set_field(&mut t, field, *v, &label)
+                        .map_err(|e| e.to_string())?;
+                }
+                let out = run_table(&t, &label)?;
+                let model = lookup(&out, &quantity)
+                    .ok_or_else(|| format!("no `{quantity}` in the outcome"))?;
+                let value = |s: &str| match c.bind.get(s) {
+                    Some(field) => field_value(&t, field),
+                    None => lookup(&out, s),
+                };
+                let formula = printed.eval(&value)?;
+                Ok((model, formula))
+            })
+            .collect();
+        let mut worst: Option<(f64, usize)> = None;
+        let mut errors = Vec::new();
+        for (i, r) in rows.iter().enumerate() {
+            match r {
+                Ok((m, p)) => {
+                    let rel = (p - m).abs() / m.abs().max(f64::MIN_POSITIVE);
+                    let rel = if rel.is_nan() { f64::INFINITY } else { rel };
+                    if worst.is_none_or(|(w, _)| rel > w) {
+                        worst = Some((rel, i));
+                    }
+                }
+                Err(e) => errors.push(format!("at {}: {e}", point_text(&points[i]))),
+            }
+        }
+        let n = points.len();
+        let (verdict, mut detail) = match worst {
+            Some((w, i)) => {
+                let (m, p) = rows[i].clone().unwrap_or((f64::NAN, f64::NAN));
+                (
+                    if w <= rtol && errors.is_empty() {
+                        Verdict::Holds
+                    } else {
+                        Verdict::Fails
+                    },
+                    format!(
+                        "{n} grid points: largest relative difference {} (rtol {}) at {}: model {quantity} = {}, printed {}",
+                        g4(w),
+                        g4(rtol),
+                        point_text(&points[i]),
+                        g4(m),
+                        g4(p)
+                    ),
+                )
+            }
+            None => (Verdict::NotCheckable, format!("{n} grid points, none ran")),
+        };
+        if !errors.is_empty() {
+            detail.push_str(&format!(
+                "; {} point(s) failed: {}",
+                errors.len(),
+                errors[0]
+            ));
+            if worst.is_some() && verdict == Verdict::Fails {
+                detail.push_str(" (a failed point counts against the claim)");
+            }
+        }
+        // dimension of the printed formula against the quantity's unit, when it has one
+        if let Some(u) = self.units.get(&quantity)
+            && let Ok(pu) = units::dimension(&printed, &self.unit_fn())
+            && pu != *u
+        {
+            detail.push_str(&format!("; units: the formula is {pu}, the quantity {u}"));
+        }
+        let mut o = outcome(f, c, verdict, detail);
+        let mut md = format!(
+            "Kind `model`. Scene `{}`; `{quantity}` against `{printed}`{}; grid {}.",
+            c.scene.clone().unwrap_or_default(),
+            if c.bind.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    " with {}",
+                    c.bind
+                        .iter()
+                        .map(|(k, v)| format!("{k} = {v}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
+            },
+            c.vary.join(" x ")
+        );
+        if axes.len() == 1 && rows.iter().filter(|r| r.is_ok()).count() > 1 {
+            let a = &axes[0];
+            let mut model_curve = Vec::new();
+            let mut printed_curve = Vec::new();
+            for (v, r) in a.values.iter().zip(&rows) {
+                if let Ok((m, p)) = r {
+                    model_curve.push((*v, *m));
+                    printed_curve.push((*v, *p));
+                }
+            }
+            let scale = if a.log {
+                crate::report::svg::Scale::Log
+            } else {
+                crate::report::svg::Scale::Linear
+            };
+            let name = format!("{}.svg", c.id.replace('.', "_"));
+            let svg = crate::report::svg::plot_curves(
+                &format!("{}: {quantity} (model) and the printed formula", c.id),
+                &a.field,
+                &quantity,
+                scale,
+                crate::report::svg::Scale::Linear,
+                &[
+                    ("model".to_string(), model_curve),
+                    ("printed".to_string(), printed_curve),
+                ],
+            );
+            md.push_str(&format!(
+                "\n\n![{}: the model's {quantity} and the printed formula against {}]({name})",
+                c.id, a.field
+            ));
+            o.files.push((name, svg));
+        }
+        o.extra_md = Some(md);
+        Ok(o)
+    }
+
+    fn bound(&self, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+        use rayon::prelude::*;
+        let f = self.file;
+        let path = self.scene_path(c)?;
+        let label = path.display().to_string();
+        let base =
+            crate::scene::read_table(&path).map_err(|e| claim_err(f, c, "scene", e.to_string()))?;
+        let text = c.require.as_deref().unwrap_or_default();
+        let ineq: Inequality = expr::parse_inequality(text)
+            .map_err(|e| claim_err(f, c, "require", format!("`{text}`: {e}")))?;
+        let dists: Vec<(String, Dist)> = c
+            .sample
+            .iter()
+            .map(|(k, v)| {
+                parse_dist(v)
+                    .map(|d| (k.clone(), d))
+                    .map_err(|m| claim_err(f, c, &format!("sample.{k}"), m))
+            })
+            .collect::<Result<_, _>>()?;
+        let count = c.count.unwrap_or(0);
+        let mut rng = crate::rng::Rng(c.seed.unwrap_or(0));
+        let half = 0.5 / (1u64 << 53) as f64;
+        let draws: Vec<Vec<(String, f64)>> = (0..count)
+            .map(|_| {
+                dists
+                    .iter()
+                    .map(|(k, d)| (k.clone(), d.quantile(rng.next() + half)))
+                    .collect()
+            })
+            .collect();
+        let rows: Vec<Result<(f64, f64), String>> = draws
+            .par_iter()
+            .map(|pt| {
+                let mut t = base.clone();
+                for (field, v) in pt {
+                    crate::scene::set_field(&mut t, field, *v, &label)
+                        .map_err(|e| e.to_string())?;
+                }
+                let out = run_table(&t, &label)?;
+                let value = |s: &str| match c.bind.get(s) {
+                    Some(field) => field_value(&t, field),
+                    None => lookup(&out, s),
+                };
+                Ok((ineq.lhs.eval(&value)?, ineq.rhs.eval(&value)?))
+            })
+            .collect();
+        let mut violations = 0;
+        let mut worst: Option<(f64, usize)> = None;
+        let mut errors = Vec::new();
+        for (i, r) in rows.iter().enumerate() {
+            match r {
+                Ok((l, rr)) => {
+                    if !ineq.rel.holds(*l, *rr) {
+                        violations += 1;
+                    }
+                    let m = ineq.margin(*l, *rr);
+                    if worst.is_none_or(|(w, _)| m < w) {
+                        worst = Some((m, i));
+                    }
+                }
+                Err(e) => errors.push((i, e.clone())),
+            }
+        }
+        let ran = count - errors.len();
+        let mut detail = format!(
+            "{ran} of {count} samples ran (seed {}): {violations} violate `{ineq}`",
+            c.seed.unwrap_or(0)
+        );
+        if let Some((m, i)) = worst {
+            let (l, r) = rows[i].clone().unwrap_or((f64::NAN, f64::NAN));
+            detail.push_str(&format!(
+                "; {} sample: {} ({} {} {}, margin {})",
+                if violations > 0 { "worst" } else { "closest" },
+                point_text(&draws[i]),
+                g4(l),
+                ineq.rel.symbol(),
+                g4(r),
+                g4(m)
+            ));
+        }
+        if let Some((i, e)) = errors.first() {
+            detail.push_str(&format!(
+                "; {} sample(s) failed to run, first at {}: {e}",
+                errors.len(),
+                point_text(&draws[*i])
+            ));
+        }
+        let verdict = if violations > 0 {
+            Verdict::Fails
+        } else if errors.is_empty() && ran > 0 {
+            Verdict::Holds
+        } else {
+            Verdict::NotCheckable
+        };
+        let mut o = outcome(f, c, verdict, detail);
+        o.extra_md = Some(format!(
+            "Kind `bound`. Scene `{}`; sampled: {}; required: `{ineq}`.",
+            c.scene.clone().unwrap_or_default(),
+            c.sample
+                .iter()
+                .map(|(k, v)| format!("{k} ~ {v}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+        Ok(o)
+    }
+}
+
+fn point_text(pt: &[(String, f64)]) -> String {
+    pt.iter()
+        .map(|(k, v)| format!("{k} = {}", g4(*v)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Every dotted path of `v` that holds a number, for error messages.
+fn numeric_paths(v: &Value) -> Vec<String> {
+    fn go(prefix: &str, v: &Value, out: &mut Vec<String>) {
+        match v {
+            Value::Number(_) | Value::Bool(_) => out.push(prefix.to_string()),
+            Value::Object(m) => {
+                for (k, x) in m {
+                    let p = if prefix.is_empty() {
+                        k.clone()
+                    } else {
+                        format!("{prefix}.{k}")
+                    };
+                    go(&p, x, out);
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    go("", v, &mut out);
+    out
+}
