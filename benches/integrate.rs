@@ -12,6 +12,7 @@ fn bench(c: &mut Criterion) {
         mass: 1.0,
         k: 1.0,
         damping: 0.0,
+        law: impactcheck::models::hertz::ContactLaw::Hertz,
     };
     let mut g = c.benchmark_group("hertz");
     for method in [Method::Dop853, Method::Dopri5, Method::Radau5] {

@@ -6,6 +6,7 @@ fn main() {
         mass: 1.0,
         k: 1.0,
         damping: 0.0,
+        law: impactcheck::models::hertz::ContactLaw::Hertz,
     };
     let o = Options {
         rtol: 1e-6,

@@ -487,11 +487,12 @@ pub fn run_validated(scene: &crate::scene::Scene) -> Result<(Value, Curves), Run
                 mass: s.mass,
                 k: s.k,
                 damping: s.damping,
+                law: s.law,
             };
             // an absolute tolerance above rtol times the indentation scale would make a grazing
             // impact silently inaccurate: tighten it to that scale and say so
-            let z_scale = (5.0 * s.mass * s.v0 * s.v0 / (4.0 * s.k))
-                .powf(0.4)
+            let z_scale = model
+                .indentation_scale(s.v0)
                 .min(s.v0.abs().max(f64::MIN_POSITIVE));
             let atol = s.solve.atol.min(s.solve.rtol * z_scale);
             let mut warnings = Vec::new();
@@ -522,6 +523,8 @@ pub fn run_validated(scene: &crate::scene::Scene) -> Result<(Value, Curves), Run
                     "max_indentation": r.max_indentation,
                 },
                 "v_out": r.v_out,
+                "restitution": -r.v_out / s.v0,
+                "contact_law": s.law.name(),
                 "energy_lost": r.energy_lost,
                 "stats": r.stats,
             });
@@ -939,6 +942,7 @@ pub fn bench_hertz(tols: &[f64], repeats: usize) -> Result<String, RunError> {
         mass: 1.0,
         k: 1.0,
         damping: 0.0,
+        law: crate::models::hertz::ContactLaw::Hertz,
     };
     let t_end = crate::models::hertz::TAU_UNDAMPED;
     let points = work_precision(

@@ -1,11 +1,14 @@
 //! A sphere striking a rigid-backed half-space: Hertz contact with optional Hunt-Crossley
-//! damping, the smallest real impact model.
+//! damping, the smallest real impact model; or, with [`ContactLaw::Linear`], the linear
+//! spring-dashpot (Kelvin-Voigt) contact of the classic restitution formula.
 //!
 //! $$m\ddot z = -F,\qquad F = \max\!\big(0,\ k\,z_+^{3/2}\,(1 + c\,\dot z)\big),\qquad
 //!   z(0) = 0,\ \dot z(0) = v_0,$$
 //! with $z$ the indentation (m), $k$ the contact stiffness (N/m^{3/2}) and $c$ the Hunt-Crossley
 //! coefficient (s/m); the force is clamped at zero (no adhesion). Contact ends when $z$ returns
-//! to zero (a falling event). For $c = 0$ the contact duration is
+//! to zero (a falling event). The linear law is $F = k z + c\dot z$ for $z > 0$ ($k$ in N/m,
+//! $c$ in N s/m), not clamped: the dashpot may pull at the end of contact, as in the closed form
+//! $e = \exp(-\zeta\pi/\sqrt{1-\zeta^2})$, $\zeta = c/(2\sqrt{km})$, that it is checked against. For $c = 0$ the contact duration is
 //! $t_c = \tau\,(m/k)^{2/5} v_0^{-1/5}$ with $\tau = 3.2180654597\ldots$ and the rebound
 //! velocity is $-v_0$ (energy is conserved), which the tests use as closed forms.
 
@@ -18,15 +21,37 @@ use crate::integrate::{
 /// \tfrac45 z^{5/2}}$, $z_m = (5/4)^{2/5}$).
 pub const TAU_UNDAMPED: f64 = 3.218_065_459_719_043;
 
-/// Parameters of the Hertz impact (SI).
+/// The force law of the contact.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ContactLaw {
+    /// $F = k z^{3/2}(1 + c\dot z)$, clamped at zero: Hertz with Hunt-Crossley damping.
+    #[default]
+    Hertz,
+    /// $F = k z + c\dot z$: a linear spring and dashpot in parallel.
+    Linear,
+}
+
+impl ContactLaw {
+    /// The name used in scenes and output.
+    pub fn name(self) -> &'static str {
+        match self {
+            ContactLaw::Hertz => "hertz",
+            ContactLaw::Linear => "linear",
+        }
+    }
+}
+
+/// Parameters of the impact (SI).
 #[derive(Clone, Debug)]
 pub struct Hertz {
     /// Impactor mass (kg).
     pub mass: f64,
-    /// Contact stiffness (N/m^1.5).
+    /// Contact stiffness (N/m^1.5 for Hertz, N/m for linear).
     pub k: f64,
-    /// Hunt-Crossley coefficient (s/m).
+    /// Damping: the Hunt-Crossley coefficient (s/m) for Hertz, the dashpot (N s/m) for linear.
     pub damping: f64,
+    /// The force law.
+    pub law: ContactLaw,
 }
 
 impl Hertz {
@@ -35,21 +60,45 @@ impl Hertz {
         if z <= 0.0 {
             return 0.0;
         }
-        (self.k * z * z.sqrt() * (1.0 + self.damping * v)).max(0.0)
+        match self.law {
+            ContactLaw::Hertz => (self.k * z * z.sqrt() * (1.0 + self.damping * v)).max(0.0),
+            ContactLaw::Linear => self.k * z + self.damping * v,
+        }
     }
 
     /// $dF/dt$ along the motion (N/s); zero at the peak force.
     pub fn force_rate(&self, z: f64, v: f64) -> f64 {
-        if z <= 0.0 || self.force(z, v) <= 0.0 {
+        if z <= 0.0 {
             return 0.0;
         }
         let acc = -self.force(z, v) / self.mass;
-        self.k * (1.5 * z.sqrt() * v * (1.0 + self.damping * v) + z * z.sqrt() * self.damping * acc)
+        match self.law {
+            ContactLaw::Hertz if self.force(z, v) <= 0.0 => 0.0,
+            ContactLaw::Hertz => {
+                self.k
+                    * (1.5 * z.sqrt() * v * (1.0 + self.damping * v)
+                        + z * z.sqrt() * self.damping * acc)
+            }
+            ContactLaw::Linear => self.k * v + self.damping * acc,
+        }
     }
 
-    /// Undamped contact duration (s) for impact speed `v0`.
+    /// Undamped contact duration (s) for impact speed `v0`: $\tau (m/k)^{2/5} v_0^{-1/5}$ for
+    /// Hertz, $\pi\sqrt{m/k}$ for the linear spring.
     pub fn undamped_duration(&self, v0: f64) -> f64 {
-        TAU_UNDAMPED * (self.mass / self.k).powf(0.4) * v0.powf(-0.2)
+        match self.law {
+            ContactLaw::Hertz => TAU_UNDAMPED * (self.mass / self.k).powf(0.4) * v0.powf(-0.2),
+            ContactLaw::Linear => std::f64::consts::PI * (self.mass / self.k).sqrt(),
+        }
+    }
+
+    /// The undamped maximum indentation (m): $(5 m v_0^2/(4k))^{2/5}$ for Hertz,
+    /// $v_0\sqrt{m/k}$ for the linear spring.
+    pub fn indentation_scale(&self, v0: f64) -> f64 {
+        match self.law {
+            ContactLaw::Hertz => (5.0 * self.mass * v0 * v0 / (4.0 * self.k)).powf(0.4),
+            ContactLaw::Linear => v0 * (self.mass / self.k).sqrt(),
+        }
     }
 }
 
@@ -143,6 +192,7 @@ mod tests {
             mass: 2.0,
             k: 3.0e6,
             damping: 0.0,
+            law: ContactLaw::Hertz,
         };
         let v0 = 1.5;
         let r = run(&h, v0, 1e-12, 1e-14, Method::Dop853, None).expect("solves");
@@ -165,9 +215,33 @@ mod tests {
             mass: 1.0,
             k: 1.0e5,
             damping: 0.2,
+            law: ContactLaw::Hertz,
         };
         let r = run(&h, 1.0, 1e-10, 1e-12, Method::Dop853, None).expect("solves");
         assert!(r.ended);
         assert!(r.energy_lost > 0.0 && r.v_out < 0.0 && r.v_out > -1.0);
+    }
+
+    #[test]
+    fn linear_spring_dashpot_matches_its_closed_form() {
+        // closed form of the damped linear oscillator: contact ends at z = 0 after
+        // pi/omega_d, omega_d = omega_n sqrt(1 - zeta^2), with v_out = -v0 exp(-zeta pi/sqrt(1-zeta^2))
+        let (m, k, c) = (0.5_f64, 2.0e4_f64, 20.0_f64);
+        let h = Hertz {
+            mass: m,
+            k,
+            damping: c,
+            law: ContactLaw::Linear,
+        };
+        let zeta = c / (2.0 * (k * m).sqrt());
+        let r = run(&h, 2.0, 1e-12, 1e-15, Method::Dop853, None).expect("solves");
+        let e = (-zeta * std::f64::consts::PI / (1.0 - zeta * zeta).sqrt()).exp();
+        assert!(
+            (-r.v_out / 2.0 - e).abs() < 1e-10,
+            "{} vs {e}",
+            -r.v_out / 2.0
+        );
+        let td = std::f64::consts::PI / ((k / m).sqrt() * (1.0 - zeta * zeta).sqrt());
+        assert!((r.duration - td).abs() < 1e-10 * td);
     }
 }

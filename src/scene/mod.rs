@@ -86,8 +86,10 @@ pub struct HertzScene {
     pub v0: f64,
     /// Contact stiffness (N/m^1.5).
     pub k: f64,
-    /// Hunt-Crossley coefficient (s/m).
+    /// Hunt-Crossley coefficient (s/m), or the dashpot (N s/m) of the linear law.
     pub damping: f64,
+    /// Force law: Hertz (default) or a linear spring-dashpot.
+    pub law: crate::models::hertz::ContactLaw,
     /// Solver settings.
     pub solve: SolveSpec,
 }
@@ -463,8 +465,24 @@ pub fn parse_table(root: &toml::Table, path: &str) -> Result<Scene, SceneError> 
             let imp = r.table(root, "impactor")?;
             r.check_keys(imp, "impactor", &["mass", "v0"])?;
             let con = r.table(root, "contact")?;
-            r.check_keys(con, "contact", &["k", "damping"])?;
+            r.check_keys(con, "contact", &["k", "damping", "law"])?;
+            let law = match string_choice(&r, con, "law", &["hertz", "linear"], "hertz") {
+                Ok(l) if l == "linear" => crate::models::hertz::ContactLaw::Linear,
+                Ok(_) => crate::models::hertz::ContactLaw::Hertz,
+                Err(SceneError::OutOfRange { value, .. }) => {
+                    return Err(SceneError::OutOfRange {
+                        path: path.into(),
+                        field: "contact.law".into(),
+                        value,
+                        allowed:
+                            "\"hertz\" (F = k z^1.5 (1 + c z')) or \"linear\" (F = k z + c z')"
+                                .into(),
+                    });
+                }
+                Err(e) => return Err(e),
+            };
             Ok(Scene::Hertz(HertzScene {
+                law,
                 mass: r.num(imp, "impactor.mass", None, |v| v > 0.0, "mass > 0 (kg)")?,
                 v0: r.num(
                     imp,
@@ -473,13 +491,19 @@ pub fn parse_table(root: &toml::Table, path: &str) -> Result<Scene, SceneError> 
                     |v| v > 0.0,
                     "v0 > 0 (m/s), toward the surface",
                 )?,
-                k: r.num(con, "contact.k", None, |v| v > 0.0, "k > 0 (N/m^1.5)")?,
+                k: r.num(
+                    con,
+                    "contact.k",
+                    None,
+                    |v| v > 0.0,
+                    "k > 0 (N/m^1.5 for hertz, N/m for linear)",
+                )?,
                 damping: r.num(
                     con,
                     "contact.damping",
                     Some(0.0),
                     |v| v >= 0.0,
-                    "damping >= 0 (s/m)",
+                    "damping >= 0 (s/m for hertz, N s/m for linear)",
                 )?,
                 solve: r.solve(root, "contact-end", false)?,
             }))

@@ -94,6 +94,7 @@ pub fn render(repeats: usize) -> Result<Vec<(String, String)>, crate::integrate:
         mass: 1.0,
         k: 1.0,
         damping: 0.0,
+        law: crate::models::hertz::ContactLaw::Hertz,
     };
     let mut problems = vec![Problem {
         name: "Hertz impact",

@@ -224,6 +224,7 @@ fn hertz(
                 mass: s.mass,
                 k: s.k,
                 damping: 0.0,
+                law: s.law,
             };
             let exact = model.undamped_duration(s.v0);
             let d = num(&v, &["contact", "duration"]).unwrap_or(f64::NAN);
