@@ -1,0 +1,402 @@
+//! Claims files as data: the formula parser (round trip, errors, a proptest fuzzer), each generic
+//! kind on a case that holds and one that fails, and the bad-claims table (each bad claim stops
+//! `verify` with exit 2, names the file, the claim and the key, and writes nothing).
+//!
+//! Reference values come from outside the code under test: identities done by hand (a binomial
+//! square), the SI units of a force, and the Hertz constant tau = 3.2180654597 (the closed form
+//! quoted in `src/models/hertz.rs`, an integral evaluated independently), against which the
+//! rounded 3.2181 differs by 1.07e-5 relative.
+
+use impactcheck::algebra::expr::{Expr, Op, parse, parse_inequality};
+use impactcheck::verify::{Verdict, load_claims, run_all};
+use proptest::prelude::*;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("impactcheck-claims-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("temp dir");
+    d
+}
+
+/// A claims file in a fresh folder, with the repository's Hertz scene beside it as `hertz.toml`.
+fn claims_file(name: &str, body: &str) -> PathBuf {
+    let d = temp_dir(name);
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hertz.toml");
+    std::fs::copy(scene, d.join("hertz.toml")).expect("copy scene");
+    let head = r#"paper = "t"
+title = "test"
+report = "t.md"
+[symbols]
+x = "m"
+y = "m"
+m = "kg"
+k = "N/m^1.5"
+v0 = "m/s"
+alpha_hc = "s/m"
+restitution = "1"
+"contact.duration" = "s"
+"#;
+    let p = d.join("claims.toml");
+    std::fs::write(&p, format!("{head}\n{body}")).expect("write claims");
+    p
+}
+
+fn verdicts(path: &Path) -> Vec<(String, Verdict, String)> {
+    let papers = load_claims(path).expect("claims load");
+    let out = run_all(&papers, path.parent().expect("dir")).expect("claims run");
+    out.into_iter()
+        .map(|o| (o.id, o.verdict, o.detail))
+        .collect()
+}
+
+#[test]
+fn identity_holds_exactly_and_fails_with_the_difference() {
+    // (x + y)^2 = x^2 + 2 x y + y^2 by hand; dropping 2 x y leaves exactly that difference
+    let p = claims_file(
+        "identity",
+        r#"
+[[claim]]
+id = "t.square"
+equation = "(1)"
+quote = "(x + y)^2 = x^2 + 2 x y + y^2"
+kind = "identity"
+printed = "x^2 + 2*x*y + y^2"
+derived = "(x + y)^2"
+
+[[claim]]
+id = "t.square-wrong"
+equation = "(1)"
+quote = "(x + y)^2 = x^2 + y^2"
+kind = "identity"
+printed = "x^2 + y^2"
+derived = "(x + y)^2"
+"#,
+    );
+    let v = verdicts(&p);
+    assert_eq!(v[0].1, Verdict::Holds, "{:?}", v[0]);
+    assert_eq!(v[1].1, Verdict::Fails, "{:?}", v[1]);
+    assert!(v[1].2.contains("derived - printed = 2*x*y"), "{}", v[1].2);
+}
+
+#[test]
+fn dimension_holds_and_fails_naming_the_unit_found() {
+    // k x^(3/2) with k in N/m^1.5 is a force, N = kg m s^-2; k x is kg m^(1/2) s^-2
+    let p = claims_file(
+        "dimension",
+        r#"
+[[claim]]
+id = "t.force"
+equation = "(2)"
+quote = "k x^(3/2) is a force"
+kind = "dimension"
+printed = "k*x^(3/2)"
+expect = "N"
+
+[[claim]]
+id = "t.force-wrong"
+equation = "(2)"
+quote = "k x is a force"
+kind = "dimension"
+printed = "k*x"
+expect = "N"
+
+[[claim]]
+id = "t.sum"
+equation = "(2)"
+quote = "x + m is something"
+kind = "dimension"
+printed = "x + m"
+expect = "m"
+"#,
+    );
+    let v = verdicts(&p);
+    assert_eq!(v[0].1, Verdict::Holds, "{:?}", v[0]);
+    assert_eq!(v[1].1, Verdict::Fails);
+    assert!(
+        v[1].2.contains("is kg m^(1/2) s^-2, not kg m s^-2"),
+        "{}",
+        v[1].2
+    );
+    assert_eq!(v[2].1, Verdict::Fails);
+    assert!(v[2].2.contains("`x` is m but `m` is kg"), "{}", v[2].2);
+}
+
+#[test]
+fn model_holds_within_rtol_and_fails_below_the_rounding_of_the_constant() {
+    // the printed 3.2181 differs from tau = 3.2180654597 by 1.07e-5 relative: within 2e-5,
+    // outside 5e-6
+    let claim = |id: &str, rtol: &str| {
+        format!(
+            r#"
+[[claim]]
+id = "{id}"
+equation = "(3)"
+quote = "t_c = 3.2181 (m/k)^(2/5) v0^(-1/5)"
+kind = "model"
+scene = "hertz.toml"
+quantity = "contact.duration"
+printed = "3.2181*(m/k)^(2/5)*v0^(-1/5)"
+bind = {{ m = "impactor.mass", k = "contact.k", v0 = "impactor.v0" }}
+vary = ["impactor.v0=0.1:10:5:log"]
+rtol = {rtol}
+"#
+        )
+    };
+    let p = claims_file(
+        "model",
+        &format!("{}{}", claim("t.a", "2e-5"), claim("t.b", "5e-6")),
+    );
+    let v = verdicts(&p);
+    assert_eq!(v[0].1, Verdict::Holds, "{:?}", v[0]);
+    assert_eq!(v[1].1, Verdict::Fails, "{:?}", v[1]);
+    assert!(
+        v[1].2.contains("largest relative difference 1.07"),
+        "{}",
+        v[1].2
+    );
+}
+
+#[test]
+fn bound_holds_and_fails_with_the_worst_sample() {
+    // Hunt-Crossley damping dissipates (restitution < 1) but never below zero rebound speed
+    // (restitution > 0): true for every sample; restitution > 0.99 is false once
+    // alpha v0 > 0.015 (e ~ 1 - 2 alpha v0/3)
+    let claim = |id: &str, req: &str| {
+        format!(
+            r#"
+[[claim]]
+id = "{id}"
+equation = "(4)"
+quote = "{req}"
+kind = "bound"
+scene = "hertz.toml"
+sample = {{ "contact.damping" = "loguniform(0.01, 1)", "impactor.v0" = "uniform(0.5, 2)" }}
+count = 40
+seed = 3
+require = "{req}"
+"#
+        )
+    };
+    let p = claims_file(
+        "bound",
+        &format!(
+            "{}{}",
+            claim("t.a", "restitution < 1"),
+            claim("t.b", "restitution > 0.99")
+        ),
+    );
+    let v = verdicts(&p);
+    assert_eq!(v[0].1, Verdict::Holds, "{:?}", v[0]);
+    assert_eq!(v[1].1, Verdict::Fails, "{:?}", v[1]);
+    assert!(
+        v[1].2.contains("worst sample: contact.damping"),
+        "{}",
+        v[1].2
+    );
+}
+
+/// Runs `verify --claims FILE --out DIR` and returns (exit code, stderr, whether DIR exists).
+fn verify_bad(name: &str, body: &str) -> (i32, String, bool) {
+    let p = claims_file(name, body);
+    let out_dir = p.parent().expect("dir").join("out");
+    let out = Command::new(env!("CARGO_BIN_EXE_verify"))
+        .arg("--claims")
+        .arg(&p)
+        .arg("--out")
+        .arg(&out_dir)
+        .output()
+        .expect("verify runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).to_string(),
+        out_dir.exists(),
+    )
+}
+
+#[test]
+fn bad_claims_exit_2_naming_file_claim_and_key_and_write_nothing() {
+    let identity = |printed: &str, derived: &str| {
+        format!(
+            "[[claim]]\nid = \"t.bad\"\nequation = \"(1)\"\nquote = \"q\"\nkind = \"identity\"\nprinted = \"{printed}\"\nderived = \"{derived}\"\n"
+        )
+    };
+    let model = |extra: &str| {
+        format!(
+            "[[claim]]\nid = \"t.bad\"\nequation = \"(1)\"\nquote = \"q\"\nkind = \"model\"\nprinted = \"3.2181*(m/k)^(2/5)*v0^(-1/5)\"\nbind = {{ m = \"impactor.mass\", k = \"contact.k\", v0 = \"impactor.v0\" }}\nvary = [\"impactor.v0=0.1:10:3\"]\nrtol = 1e-4\n{extra}\n"
+        )
+    };
+    // (case, claims body, what the message must say)
+    let table: Vec<(&str, String, &str)> = vec![
+        (
+            "syntax",
+            identity("x + * y", "x"),
+            "claim t.bad: printed: `x + * y`: column 5: expected a number, a name, a function call or `(`",
+        ),
+        (
+            "unknown symbol",
+            identity("x + q", "x"),
+            "claim t.bad: printed: unknown symbol `q`: give its unit in [symbols]",
+        ),
+        (
+            "unknown kind",
+            "[[claim]]\nid = \"t.bad\"\nequation = \"(1)\"\nquote = \"q\"\nkind = \"identiy\"\n".into(),
+            "claim t.bad: kind: unknown kind `identiy`; allowed: identity, dimension, model, bound, check",
+        ),
+        (
+            "unknown derivation",
+            identity("x", "@galerkin.zz[m=1,n=1]"),
+            "claim t.bad: derived: unknown derivation `@galerkin.zz`",
+        ),
+        (
+            "missing key",
+            "[[claim]]\nid = \"t.bad\"\nequation = \"(1)\"\nquote = \"q\"\nkind = \"dimension\"\nprinted = \"x\"\n".into(),
+            "claim t.bad: expect: missing; kind `dimension` needs it",
+        ),
+        (
+            "missing scene",
+            model("scene = \"nope.toml\"\nquantity = \"contact.duration\""),
+            "claim t.bad: scene: `nope.toml`: no such file",
+        ),
+        (
+            "quantity not produced",
+            model("scene = \"hertz.toml\"\nquantity = \"contact.nothing\""),
+            "claim t.bad: quantity: `contact.nothing`: the model does not produce this number",
+        ),
+        (
+            "bad grid",
+            model("scene = \"hertz.toml\"\nquantity = \"contact.duration\"\nvary = [\"impactor.v0=1:2\"]").replace("vary = [\"impactor.v0=0.1:10:3\"]\n", ""),
+            "claim t.bad: vary: --vary: `impactor.v0=1:2`: give START:STOP:COUNT",
+        ),
+        (
+            "bad distribution",
+            "[[claim]]\nid = \"t.bad\"\nequation = \"(1)\"\nquote = \"q\"\nkind = \"bound\"\nscene = \"hertz.toml\"\nsample = { \"impactor.v0\" = \"gauss(1, 2)\" }\ncount = 3\nseed = 1\nrequire = \"restitution <= 1\"\n".into(),
+            "claim t.bad: sample.impactor.v0: `gauss(1, 2)`: expected uniform(a, b)",
+        ),
+        (
+            "inequality missing",
+            "[[claim]]\nid = \"t.bad\"\nequation = \"(1)\"\nquote = \"q\"\nkind = \"bound\"\nscene = \"hertz.toml\"\nsample = { \"impactor.v0\" = \"uniform(1, 2)\" }\ncount = 3\nseed = 1\nrequire = \"restitution\"\n".into(),
+            "claim t.bad: require: `restitution`: column 12: expected one of < <= > >=",
+        ),
+        (
+            "unknown key",
+            "[[claim]]\nid = \"t.bad\"\nequation = \"(1)\"\nquote = \"q\"\nkind = \"dimension\"\nprinted = \"x\"\nexpected = \"m\"\n".into(),
+            "unknown field `expected`",
+        ),
+    ];
+    for (case, body, want) in &table {
+        let (code, err, wrote) = verify_bad(&case.replace(' ', "-"), body);
+        assert_eq!(code, 2, "{case}: exit {code}; {err}");
+        assert!(err.contains(want), "{case}: expected `{want}` in: {err}");
+        assert!(
+            err.contains("claims.toml"),
+            "{case}: the file is not named: {err}"
+        );
+        assert!(!wrote, "{case}: wrote a report");
+    }
+}
+
+#[test]
+fn parse_errors_and_round_trips_of_paper_formulas() {
+    for text in [
+        "E*zeta*(m^2/a^2 + n^2/b^2)^2*h^3*a*b*pi^4/48",
+        "3.2181*(m/k)^(2/5)*v0^(-1/5)",
+        "exp(-zeta*pi/sqrt(1 - zeta^2))",
+        "-x^2 - -y",
+        "a/(b*c)/d",
+        "(a^b)^c",
+        "contact.peak_force*2",
+    ] {
+        let e = parse(text).expect(text);
+        assert_eq!(e.to_string(), text, "printing gives the text back");
+        assert_eq!(parse(&e.to_string()).expect("reparse"), e);
+    }
+    let i = parse_inequality("energy_lost >= 0").expect("inequality");
+    assert_eq!(i.to_string(), "energy_lost >= 0");
+}
+
+fn arb_expr() -> impl Strategy<Value = Expr> {
+    let names = prop::sample::select(vec![
+        "x",
+        "y",
+        "alpha",
+        "v0",
+        "E",
+        "m_s",
+        "contact.duration",
+        "a.b_c",
+        "_t",
+    ]);
+    let leaf = prop_oneof![
+        (0u64..100_000, 0u32..4).prop_map(|(n, d)| Expr::Num(num_rational::BigRational::new(
+            n.into(),
+            num_bigint::BigInt::from(10u32.pow(d))
+        ))),
+        names.prop_map(Expr::sym),
+        Just(Expr::Pi),
+    ];
+    leaf.prop_recursive(6, 64, 2, |inner| {
+        prop_oneof![
+            inner.clone().prop_map(|e| Expr::Neg(Box::new(e))),
+            (
+                prop::sample::select(vec![Op::Add, Op::Sub, Op::Mul, Op::Div, Op::Pow]),
+                inner.clone(),
+                inner.clone()
+            )
+                .prop_map(|(op, a, b)| Expr::Bin(op, Box::new(a), Box::new(b))),
+            (
+                prop::sample::select(vec![
+                    impactcheck::algebra::expr::Func::Sqrt,
+                    impactcheck::algebra::expr::Func::Exp,
+                    impactcheck::algebra::expr::Func::Sin,
+                ]),
+                inner
+            )
+                .prop_map(|(f, a)| Expr::Call(f, Box::new(a))),
+        ]
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+
+    /// parse(print(e)) == e for every tree the grammar can express.
+    #[test]
+    fn print_then_parse_is_the_identity(e in arb_expr()) {
+        let text = e.to_string();
+        let back = parse(&text);
+        prop_assert_eq!(back, Ok(e), "text: {}", text);
+    }
+
+    /// Arbitrary text never panics: a tree or an error with a column inside the text (+1 for
+    /// the end).
+    #[test]
+    fn arbitrary_text_gives_a_tree_or_a_located_error(s in "[ -~]{0,60}") {
+        match parse(&s) {
+            Ok(e) => prop_assert_eq!(parse(&e.to_string()), Ok(e)),
+            Err(err) => prop_assert!(err.column >= 1 && err.column <= s.chars().count() + 1),
+        }
+        let _ = parse_inequality(&s);
+    }
+
+    /// Formula-like text (the grammar's tokens in any order) never panics either.
+    #[test]
+    fn token_soup_gives_a_tree_or_an_error(toks in prop::collection::vec(
+        prop::sample::select(vec!["x", "2", "0.5", "1e-3", "+", "-", "*", "/", "^", "(", ")", "sqrt(", "pi", "a.b", "<=", " "]), 0..30)) {
+        let s: String = toks.concat();
+        if let Ok(e) = parse(&s) {
+            prop_assert_eq!(parse(&e.to_string()), Ok(e));
+        }
+    }
+}
+
+#[test]
+fn deep_nesting_is_an_error_not_a_stack_overflow() {
+    let s = format!("{}x{}", "(".repeat(5000), ")".repeat(5000));
+    assert!(parse(&s).is_err());
+    let s = format!("{}x", "-".repeat(5000));
+    assert!(parse(&s).is_err());
+    let s = format!("x{}", "^x".repeat(5000));
+    assert!(parse(&s).is_err());
+}
