@@ -110,6 +110,14 @@ pub fn render(papers: &[PaperClaims], outcomes: &[Outcome]) -> Vec<(String, Stri
             .collect::<Vec<_>>()
             .join(", ")
     ));
+    let generic = outcomes
+        .iter()
+        .filter(|o| !o.kind.is_empty() && !o.kind.starts_with("check"))
+        .count();
+    readme.push_str(&format!(
+        "{generic} of them are checked by a generic kind from formulas written as text in `verify/*.toml` \
+         (identity, dimension, model, bound: see `verify/README.md`); the others by a named Rust check.\n\n"
+    ));
     readme.push_str("| claim | paper | equation | verdict | detail |\n|---|---|---|---|---|\n");
     for p in papers {
         for o in by_paper.get(p.paper.as_str()).into_iter().flatten() {
@@ -151,8 +159,21 @@ pub fn render(papers: &[PaperClaims], outcomes: &[Outcome]) -> Vec<(String, Stri
         }
         md.push('\n');
         for o in &list {
+            let by = if o.kind.starts_with("check") {
+                format!(
+                    "a named Rust {} (not yet a formula in the claims file)",
+                    o.kind
+                )
+            } else if o.kind.is_empty() {
+                "a named Rust check".to_string()
+            } else {
+                format!(
+                    "the generic kind `{}`, from the formulas in the claims file",
+                    o.kind
+                )
+            };
             md.push_str(&format!(
-                "## {}\n\nEquation {}. The paper: `{}`\n\nVerdict: **{}**\n\n{}\n\n",
+                "## {}\n\nEquation {}. The paper: `{}`\n\nVerdict: **{}** (checked by {by})\n\n{}\n\n",
                 o.id,
                 o.equation,
                 o.quote,

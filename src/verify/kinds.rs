@@ -657,7 +657,7 @@ impl<'a> Checked<'a> {
         derived_text: &str,
         params: &[(String, Q)],
         der: &mut Derivations,
-    ) -> Result<Option<(RatFunc, RatFunc)>, VerifyError> {
+    ) -> Result<Option<(RatFunc, RatFunc, RatFunc)>, VerifyError> {
         let f = self.file;
         let (text, refs) = split_refs(derived_text).map_err(|m| claim_err(f, c, field, m))?;
         let subst = |e: &Expr| {
@@ -683,7 +683,7 @@ impl<'a> Checked<'a> {
                 )
             })?;
         }
-        Ok(Some((&d - &p, d)))
+        Ok(Some((&d - &p, d, p)))
     }
 
     fn identity(&self, c: &ClaimSpec, der: &mut Derivations) -> Result<Outcome, VerifyError> {
@@ -721,12 +721,18 @@ impl<'a> Checked<'a> {
                 )
             };
             match self.exact_difference(c, "derived", &printed, derived_text, params, der)? {
-                Some((diff, d)) if diff.is_zero() => {
+                Some((diff, d, _)) if diff.is_zero() => {
                     lines.push(format!("{at}printed = derived = {d}"))
                 }
-                Some((diff, d)) => {
+                Some((diff, d, p)) => {
                     all_printed = false;
                     let mut line = format!("{at}derived {d}; derived - printed = {diff}");
+                    // a ratio says more than a difference when it is shorter (a factor 2)
+                    if let Some(ratio) = d.div(&p).filter(|_| !d.is_zero())
+                        && ratio.to_text().len() < diff.to_text().len()
+                    {
+                        line.push_str(&format!("; derived/printed = {ratio}"));
+                    }
                     if let Some(k) = &c.corrected {
                         let ke = parse_formula(
                             f,
@@ -737,10 +743,10 @@ impl<'a> Checked<'a> {
                                 .0,
                         )?;
                         match self.exact_difference(c, "derived", &ke, derived_text, params, der)? {
-                            Some((kd, _)) if kd.is_zero() => {
+                            Some((kd, ..)) if kd.is_zero() => {
                                 line.push_str("; the corrected form holds exactly")
                             }
-                            Some((kd, _)) => {
+                            Some((kd, ..)) => {
                                 all_corrected = false;
                                 line.push_str(&format!("; the corrected form differs by {kd}"));
                             }
