@@ -194,8 +194,12 @@ fn cone_scene(v0: f64, effects: &str, extra: &str) -> String {
 }
 
 fn cone_model(text: &str) -> Result<crate::models::cone_plate::ConePlate, String> {
-    let Ok(crate::scene::Scene::ConePlate(s)) = crate::scene::parse(text, "bench.toml") else {
-        return Err("bench scene does not parse".into());
+    let scene = crate::scene::parse(text, "bench.toml").map_err(|e| e.to_string())?;
+    let Some(s) = scene
+        .get::<crate::models::cone_plate::ConePlateScene>()
+        .cloned()
+    else {
+        return Err("bench scene is not a cone-plate scene".into());
     };
     crate::models::cone_plate::ConePlate::new(s.params, s.effects, s.variant, s.law)
         .map_err(|e| e.to_string())

@@ -72,8 +72,9 @@ const KEYS: &[&str] = &[
 ];
 /// Model and effect names from the scene module, plus the other words scenes use and junk.
 fn words() -> Vec<String> {
-    impactcheck::scene::MODELS
-        .split(", ")
+    impactcheck::scene::REGISTRY
+        .iter()
+        .map(|(name, _)| *name)
         .chain(impactcheck::scene::EFFECTS.iter().copied())
         .chain([
             "as-printed",
@@ -145,9 +146,9 @@ fn value() -> impl Strategy<Value = toml::Value> {
 fn tree() -> impl Strategy<Value = toml::Table> {
     (
         proptest::sample::select(
-            impactcheck::scene::MODELS
-                .split(", ")
-                .map(String::from)
+            impactcheck::scene::REGISTRY
+                .iter()
+                .map(|(name, _)| name.to_string())
                 .collect::<Vec<_>>(),
         ),
         proptest::collection::vec((proptest::sample::select(KEYS), value()), 0..10),
@@ -161,10 +162,7 @@ fn tree() -> impl Strategy<Value = toml::Table> {
 }
 
 fn cheap(s: &Scene) -> bool {
-    matches!(
-        s,
-        Scene::DiskFriction(_) | Scene::BallsWall(_) | Scene::RigidImpact(_)
-    )
+    matches!(s.model(), "disk-friction" | "balls-wall" | "rigid-impact")
 }
 
 proptest! {

@@ -154,9 +154,10 @@ proptest! {
         let text = format!(
             "model = \"cone-plate\"\nvariant = \"corrected\"\nviscoelastic_law = \"constant-bulk\"\neffects = [\"viscoelastic\"]\n[impactor]\nmass = {mass:e}\ntheta_deg = {theta}\nv0 = {v0}\n[material]\nE = {e_mod:e}\nnu = {nu}\neta = {eta:e}\n[solve]\nrtol = 1e-12\natol = 1e-18\nmethod = \"dop853\"\nt_end = 1.0\n"
         );
-        let Ok(impactcheck::scene::Scene::ConePlate(s)) = parse(&text, "prop.toml") else {
-            panic!("scene");
-        };
+        let scene = parse(&text, "prop.toml").expect("scene");
+        let s = scene
+            .get::<impactcheck::models::cone_plate::ConePlateScene>()
+            .expect("a cone-plate scene");
         // the contact time of the elastic cone sets the window
         let elastic = run(&text.replace("constant-bulk", "constant-poisson"));
         let tc = get(&elastic, &["contact", "duration"]);

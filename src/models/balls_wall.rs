@@ -5,7 +5,10 @@
 //! balls have separated for good (both contacts open, ball 1 no faster towards the wall than
 //! ball 2, both moving away).
 
+use super::params::{Fields, SceneError};
+use super::{Curves, Model, RunError};
 use crate::integrate::{IntegrateError, Method, OdeSystem, Options, solve};
+use toml::Value;
 
 /// The chain: states x1, v1, x2, v2 (x towards the wall; the wall at x2 = 0).
 pub struct BallsWall {
@@ -52,4 +55,120 @@ pub fn rebound(kappa: f64, p: f64, rtol: f64) -> Result<(f64, f64), IntegrateErr
         }
     }
     Ok((y[1], y[3]))
+}
+
+/// The `balls-wall` scene: section 3's closing experiment of 002_b53e4779673eb6ed.txt.
+#[derive(Clone, Debug)]
+pub struct BallsWallScene {
+    /// Ball radius (m).
+    pub radius: f64,
+    /// Ball mass (kg).
+    pub mass: f64,
+    /// Exponent: 1.5 (Hertz) or 1 (linear).
+    pub exponent: f64,
+    /// Speed of the striking ball (m/s).
+    pub v0: f64,
+    /// Wall contact stiffness over ball-ball contact stiffness.
+    pub wall_stiffness_ratio: f64,
+    /// Ball-ball stiffness (N/m^p), if known (gives the contact time in seconds).
+    pub stiffness: Option<f64>,
+    /// Relative tolerance.
+    pub rtol: f64,
+}
+
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(dead_code)]
+struct RawScene {
+    model: Option<Value>,
+    radius: Option<Value>,
+    mass: Option<Value>,
+    contact_law: Option<Value>,
+    v0: Option<Value>,
+    wall_stiffness_ratio: Option<Value>,
+    stiffness: Option<Value>,
+    rtol: Option<Value>,
+}
+
+/// What `impact run` prints for a `balls-wall` scene.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct BallsWallOutcome {
+    /// `"balls-wall"`.
+    pub model: &'static str,
+    /// `"hertz"` or `"linear"`.
+    pub contact_law: &'static str,
+    /// Wall over ball-ball stiffness.
+    pub wall_stiffness_ratio: f64,
+    /// Velocity of the striking ball after, in units of v0.
+    pub v_striker_after: f64,
+    /// Velocity of the ball at the wall after, in units of v0.
+    pub v_wall_ball_after: f64,
+    /// The units.
+    pub units: &'static str,
+    /// Ball radius (m).
+    pub radius: f64,
+    /// The time unit (s), when the stiffness is given.
+    pub time_unit_s: Option<f64>,
+}
+
+impl Model for BallsWallScene {
+    const NAME: &'static str = "balls-wall";
+    type Outcome = BallsWallOutcome;
+
+    fn from_table(root: &toml::Table, path: &str) -> Result<Self, SceneError> {
+        let f = Fields { path };
+        let raw: RawScene = f.raw(root, "")?;
+        let law = f.choice(
+            raw.contact_law.as_ref(),
+            "contact_law",
+            &["hertz", "linear"],
+            "hertz",
+        )?;
+        let stiffness = match &raw.stiffness {
+            None => None,
+            Some(_) => Some(f.num(
+                raw.stiffness.as_ref(),
+                "stiffness",
+                None,
+                |v| v > 0.0,
+                "stiffness > 0 (N/m^1.5 for hertz, N/m for linear), the ball-ball contact",
+            )?),
+        };
+        Ok(BallsWallScene {
+            radius: f.num(raw.radius.as_ref(), "radius", None, |v| v > 0.0, "radius > 0 (m)")?,
+            mass: f.num(raw.mass.as_ref(), "mass", None, |v| v > 0.0, "mass > 0 (kg)")?,
+            exponent: if law == "hertz" { 1.5 } else { 1.0 },
+            v0: f.num(raw.v0.as_ref(), "v0", None, |v| v > 0.0, "v0 > 0 (m/s), toward the wall")?,
+            wall_stiffness_ratio: f.num(
+                raw.wall_stiffness_ratio.as_ref(),
+                "wall_stiffness_ratio",
+                Some(2.0 * 2f64.sqrt()),
+                |v| (1e-6..=1e8).contains(&v),
+                "1e-6 <= wall_stiffness_ratio <= 1e8 (2 sqrt(2): identical elastic balls, rigid wall, Hertz)",
+            )?,
+            stiffness,
+            rtol: f.rtol(raw.rtol.as_ref())?,
+        })
+    }
+
+    fn run(&self) -> Result<(BallsWallOutcome, Curves), RunError> {
+        let s = self;
+        let (v1, v2) = rebound(s.wall_stiffness_ratio, s.exponent, s.rtol)?;
+        // m x'' = -k d^p is scale-free: velocities in units of v0 depend on p and the
+        // stiffness ratio only; the time unit is (m v0^(1-p)/k)^(1/(p+1))
+        let time_unit = s
+            .stiffness
+            .map(|k| (s.mass * s.v0.powf(1.0 - s.exponent) / k).powf(1.0 / (s.exponent + 1.0)));
+        let out = BallsWallOutcome {
+            model: Self::NAME,
+            contact_law: if s.exponent > 1.0 { "hertz" } else { "linear" },
+            wall_stiffness_ratio: s.wall_stiffness_ratio,
+            v_striker_after: v1,
+            v_wall_ball_after: v2,
+            units: "velocities in units of v0, positive toward the wall",
+            radius: s.radius,
+            time_unit_s: time_unit,
+        };
+        Ok((out, vec![]))
+    }
 }

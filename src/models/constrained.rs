@@ -10,10 +10,9 @@
 
 use super::fixed_points::{Hold, b_star};
 use super::rigid_impact::{
-    Body, ImpactError, ImpactResult, SmoothSupport, b_matrix, impact, impact_general,
+    Body, ImpactError, ImpactResult, Law, SmoothSupport, b_matrix, impact, impact_general,
 };
 use super::support::{Classification, classify_at_rest, classify_sliding, matrices};
-use crate::scene::RigidImpactScene;
 use nalgebra::{Matrix3, Vector3};
 
 fn hold(body: &Body, go: &Vector3<f64>, axis: Option<Vector3<f64>>) -> Hold {
@@ -213,5 +212,425 @@ pub fn solve_scene(s: &RigidImpactScene) -> Result<SceneOutcome, ImpactError> {
             warnings.push("the support point slides: classified, not integrated (rough sliding support not implemented in the impulse integration)".into());
             Ok((None, Some(cl), warnings))
         }
+    }
+}
+
+/// The `rigid-impact` scene of 002_b53e4779673eb6ed.txt: two bodies, one contact, Coulomb
+/// friction; optionally a fixed point or axis of one body, or a support under the second.
+#[derive(Clone, Debug)]
+pub struct RigidImpactScene {
+    /// The two bodies.
+    pub bodies: [Body; 2],
+    /// Contact normal, into the first body.
+    pub normal: Vector3<f64>,
+    /// Friction coefficient.
+    pub mu: f64,
+    /// Restitution law.
+    pub law: Law,
+    /// Coefficient of restitution.
+    pub e: f64,
+    /// Relative velocity at C before impact (m/s).
+    pub v_rel: Vector3<f64>,
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// The second body's support, if any.
+    pub support: Option<super::support::Support>,
+    /// Velocity of the support point A before impact (m/s).
+    pub v_support: Vector3<f64>,
+    /// A fixed point or axis: (body index 0|1, G->O, optional axis).
+    pub fixed: Option<(usize, Vector3<f64>, Option<Vector3<f64>>)>,
+}
+
+type Value = toml::Value;
+
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(dead_code)]
+struct RawScene {
+    model: Option<Value>,
+    body: Option<Value>,
+    contact: Option<Value>,
+    initial: Option<Value>,
+    solve: Option<Value>,
+    support: Option<Value>,
+    fixed: Option<Value>,
+}
+
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBody {
+    mass: Option<Value>,
+    inertia: Option<Value>,
+    contact_offset: Option<Value>,
+}
+
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawContact {
+    normal: Option<Value>,
+    mu: Option<Value>,
+    law: Option<Value>,
+    e: Option<Value>,
+}
+
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawInitial {
+    v_rel: Option<Value>,
+    v_support: Option<Value>,
+}
+
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSupport {
+    offset: Option<Value>,
+    normal: Option<Value>,
+    mu: Option<Value>,
+}
+
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFixed {
+    offset: Option<Value>,
+    axis: Option<Value>,
+    body: Option<Value>,
+}
+
+/// What `impact run` prints for a `rigid-impact` scene. When the case is only classified (a
+/// rough support that slides, a Painleve-type case) the impulse is `null` and the fields of an
+/// integrated impact are absent.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct RigidImpactOutcome {
+    /// `"rigid-impact"`.
+    pub model: &'static str,
+    /// The restitution law.
+    pub law: &'static str,
+    /// The impulse on the first body (N s), `null` when not integrated.
+    pub impulse: Option<[f64; 3]>,
+    /// Relative velocity at C after (m/s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub v_rel_after: Option<[f64; 3]>,
+    /// Normal impulse at the end of compression (N s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub compression_impulse: Option<f64>,
+    /// Kinetic energy change (J).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy_change: Option<f64>,
+    /// The same by Kelvin's theorem (J).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kelvin_energy_change: Option<f64>,
+    /// Smallest eigenvalue of B.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda_min: Option<f64>,
+    /// Largest eigenvalue of B.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda_max: Option<f64>,
+    /// Upper bound (1.9) on |I|.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bound_upper: Option<f64>,
+    /// Lower bound (1.13) on |I|.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bound_lower: Option<f64>,
+    /// Stick/slip phases.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub phases: Option<Vec<super::rigid_impact::Phase>>,
+    /// Whether the impact was cut off (a fixed point).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cut_off: Option<bool>,
+    /// The support's classification, if any.
+    pub classification: Option<String>,
+    /// The support analysis, if any.
+    pub support_analysis: Option<Classification>,
+    /// Work done.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stats: Option<crate::integrate::Stats>,
+    /// What the user should know.
+    pub warnings: Vec<String>,
+}
+
+impl super::Model for RigidImpactScene {
+    const NAME: &'static str = "rigid-impact";
+    type Outcome = RigidImpactOutcome;
+
+    fn from_table(root: &toml::Table, path: &str) -> Result<Self, super::SceneError> {
+        use super::SceneError;
+        let f = super::params::Fields { path };
+        let raw: RawScene = f.raw(root, "")?;
+        let bodies = match &raw.body {
+            Some(Value::Array(a)) if a.len() == 2 => a,
+            other => {
+                return Err(f.out_of_range(
+                    "[[body]]",
+                    other.as_ref().map_or("missing".into(), |v| {
+                        format!("{} tables", v.as_array().map_or(0, |a| a.len()))
+                    }),
+                    "exactly two [[body]] tables",
+                ));
+            }
+        };
+        let mut out = Vec::new();
+        for (k, b) in bodies.iter().enumerate() {
+            let name = format!("body[{k}]");
+            let t = b
+                .as_table()
+                .ok_or_else(|| f.out_of_range(&name, b.to_string(), "a table"))?;
+            let rb: RawBody = f.raw(t, &name)?;
+            let mass = match &rb.mass {
+                Some(Value::String(s)) if s == "inf" => None,
+                _ => Some(f.num(
+                    rb.mass.as_ref(),
+                    &format!("{name}.mass"),
+                    None,
+                    |v| v > 0.0,
+                    "mass > 0 (kg), or \"inf\" for a fixed massive obstacle",
+                )?),
+            };
+            let inertia = match (mass, &rb.inertia) {
+                (None, None) => Matrix3::identity(),
+                (_, v) => {
+                    let err = |val: String| {
+                        f.out_of_range(
+                            &format!("{name}.inertia"),
+                            val,
+                            "a symmetric positive-definite 3x3 array (kg m^2)",
+                        )
+                    };
+                    let v = v.as_ref().ok_or_else(|| err("missing".into()))?;
+                    let rows = v.as_array().ok_or_else(|| err(v.to_string()))?;
+                    let mut m = Matrix3::zeros();
+                    if rows.len() != 3 {
+                        return Err(err(v.to_string()));
+                    }
+                    for (i, row) in rows.iter().enumerate() {
+                        let cols = row.as_array().ok_or_else(|| err(v.to_string()))?;
+                        if cols.len() != 3 {
+                            return Err(err(v.to_string()));
+                        }
+                        for (j, c) in cols.iter().enumerate() {
+                            m[(i, j)] = c
+                                .as_float()
+                                .or_else(|| c.as_integer().map(|x| x as f64))
+                                .filter(|x| x.is_finite())
+                                .ok_or_else(|| err(v.to_string()))?;
+                        }
+                    }
+                    let asym = (m - m.transpose()).abs().max();
+                    if asym > 1e-12 * m.abs().max() || m.cholesky().is_none() {
+                        return Err(err(format!("{v} (not symmetric positive-definite)")));
+                    }
+                    m
+                }
+            };
+            let offset = match (mass, &rb.contact_offset) {
+                (None, None) => Vector3::zeros(),
+                _ => f.vec3(
+                    rb.contact_offset.as_ref(),
+                    &format!("{name}.contact_offset"),
+                )?,
+            };
+            out.push(Body {
+                mass,
+                inertia,
+                offset,
+            });
+        }
+        if out.iter().all(|b| b.mass.is_none()) {
+            return Err(f.out_of_range(
+                "[[body]].mass",
+                "\"inf\" twice".into(),
+                "at least one body with finite mass",
+            ));
+        }
+        let c: RawContact = f.raw(f.table(raw.contact.as_ref(), "contact")?, "contact")?;
+        let normal = f.vec3(c.normal.as_ref(), "contact.normal")?;
+        if normal.norm() <= 0.0 || normal.norm().is_nan() {
+            return Err(f.out_of_range(
+                "contact.normal",
+                format!("{normal:?}"),
+                "a non-zero vector pointing into the first body",
+            ));
+        }
+        let law = match f
+            .choice(
+                c.law.as_ref(),
+                "law",
+                &["newton", "poisson", "energetic"],
+                "poisson",
+            )?
+            .as_str()
+        {
+            "newton" => Law::Newton,
+            "energetic" => Law::Energetic,
+            _ => Law::Poisson,
+        };
+        let mu = f.num(
+            c.mu.as_ref(),
+            "contact.mu",
+            Some(0.0),
+            |v| v >= 0.0,
+            "mu >= 0",
+        )?;
+        let e = f.num(
+            c.e.as_ref(),
+            "contact.e",
+            None,
+            |v| (0.0..=1.0).contains(&v),
+            "0 <= e <= 1",
+        )?;
+        let init: RawInitial = f.raw(f.table(raw.initial.as_ref(), "initial")?, "initial")?;
+        let v_rel = f.vec3(init.v_rel.as_ref(), "initial.v_rel")?;
+        let v_support = if init.v_support.is_some() {
+            f.vec3(init.v_support.as_ref(), "initial.v_support")?
+        } else {
+            Vector3::zeros()
+        };
+        let support = match &raw.support {
+            None => None,
+            Some(_) => {
+                let t: RawSupport = f.raw(f.table(raw.support.as_ref(), "support")?, "support")?;
+                let normal = f.vec3(t.normal.as_ref(), "support.normal")?;
+                if normal.norm() <= 0.0 {
+                    return Err(f.out_of_range(
+                        "support.normal",
+                        format!("{normal:?}"),
+                        "a non-zero vector from the support into the second body",
+                    ));
+                }
+                if out[1].mass.is_none() {
+                    return Err(f.out_of_range(
+                        "[support]",
+                        "second body with mass \"inf\"".into(),
+                        "a support under a second body of finite mass",
+                    ));
+                }
+                Some(super::support::Support {
+                    offset: f.vec3(t.offset.as_ref(), "support.offset")?,
+                    normal: normal.normalize(),
+                    mu: f.num(
+                        t.mu.as_ref(),
+                        "support.mu",
+                        Some(0.0),
+                        |v| v >= 0.0,
+                        "mu >= 0",
+                    )?,
+                })
+            }
+        };
+        let fixed = match &raw.fixed {
+            None => None,
+            Some(_) => {
+                let t: RawFixed = f.raw(f.table(raw.fixed.as_ref(), "fixed")?, "fixed")?;
+                let body = match &t.body {
+                    None => 0,
+                    Some(Value::Integer(1)) => 0,
+                    Some(Value::Integer(2)) => 1,
+                    Some(other) => {
+                        return Err(f.out_of_range("fixed.body", other.to_string(), "1 or 2"));
+                    }
+                };
+                if out[body].mass.is_none() {
+                    return Err(f.out_of_range(
+                        "fixed.body",
+                        (body + 1).to_string(),
+                        "a body of finite mass (an immovable body needs no fixed point)",
+                    ));
+                }
+                let axis = if t.axis.is_some() {
+                    let a = f.vec3(t.axis.as_ref(), "fixed.axis")?;
+                    if a.norm() <= 0.0 {
+                        return Err(f.out_of_range(
+                            "fixed.axis",
+                            format!("{a:?}"),
+                            "a non-zero direction",
+                        ));
+                    }
+                    Some(a.normalize())
+                } else {
+                    None
+                };
+                Some((body, f.vec3(t.offset.as_ref(), "fixed.offset")?, axis))
+            }
+        };
+        if support.is_some() && fixed.is_some() {
+            return Err(f.out_of_range(
+                "[support] and [fixed]",
+                "both present".into(),
+                "one of them",
+            ));
+        }
+        let n = normal.normalize();
+        if v_rel.dot(&n) >= 0.0 || v_rel.dot(&n).is_nan() {
+            return Err(SceneError::OutOfRange {
+                path: path.into(),
+                field: "initial.v_rel".into(),
+                value: format!("[{}, {}, {}]", v_rel.x, v_rel.y, v_rel.z),
+                allowed: "(v_rel, normal) < 0: the bodies approach at C".into(),
+            });
+        }
+        let solve = f.solve(raw.solve.as_ref(), "impact-end", false)?;
+        Ok(RigidImpactScene {
+            bodies: [out[0].clone(), out[1].clone()],
+            normal,
+            mu,
+            law,
+            e,
+            v_rel,
+            rtol: solve.rtol,
+            support,
+            v_support,
+            fixed,
+        })
+    }
+
+    fn run(&self) -> Result<(RigidImpactOutcome, super::Curves), super::RunError> {
+        let s = self;
+        let (r, classification, mut warnings) =
+            solve_scene(s).map_err(|e| super::RunError::BadArgument {
+                arg: "impact".into(),
+                message: e.to_string(),
+            })?;
+        let mut out = RigidImpactOutcome {
+            model: Self::NAME,
+            law: s.law.name(),
+            impulse: None,
+            v_rel_after: None,
+            compression_impulse: None,
+            energy_change: None,
+            kelvin_energy_change: None,
+            lambda_min: None,
+            lambda_max: None,
+            bound_upper: None,
+            bound_lower: None,
+            phases: None,
+            cut_off: None,
+            classification: classification.as_ref().map(|c| c.kind.clone()),
+            support_analysis: classification,
+            stats: None,
+            warnings: vec![],
+        };
+        if let Some(r) = r {
+            let scale = 0.5 * s.v_rel.norm_squared() / r.lambda_min.max(1e-300);
+            if r.energy_change > 1e-9 * scale {
+                warnings.push(format!(
+                    "kinetic energy grows by {:.6e} J: {} restitution with friction is not energetically consistent here",
+                    r.energy_change,
+                    s.law.name()
+                ));
+            }
+            out.impulse = Some(r.impulse);
+            out.v_rel_after = Some(r.v_rel_after);
+            out.compression_impulse = Some(r.compression_impulse);
+            out.energy_change = Some(r.energy_change);
+            out.kelvin_energy_change = Some(r.kelvin_energy_change);
+            out.lambda_min = Some(r.lambda_min);
+            out.lambda_max = Some(r.lambda_max);
+            out.bound_upper = Some(r.bound_upper);
+            out.bound_lower = Some(r.bound_lower);
+            out.phases = Some(r.phases);
+            out.cut_off = Some(r.cut_off);
+            out.stats = Some(r.stats);
+        }
+        out.warnings = warnings;
+        Ok((out, vec![]))
     }
 }

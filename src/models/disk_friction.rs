@@ -432,6 +432,154 @@ impl Plate {
     }
 }
 
+/// The `disk-friction` scene: 001_989b2e860c39ca83.txt (2.3), a disk of radius `a` sliding with
+/// speed `v` (along x) and spinning with `omega`; the centre of pressure at `c` along y.
+#[derive(Clone, Debug)]
+pub struct DiskFrictionScene {
+    /// Disk radius (m).
+    pub a: f64,
+    /// Sliding speed of the centre (m/s).
+    pub v: f64,
+    /// Spin (rad/s).
+    pub omega: f64,
+    /// Offset of the centre of pressure (m), 0 <= c <= a/4.
+    pub c: f64,
+}
+
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(dead_code)]
+struct RawScene {
+    model: Option<toml::Value>,
+    k: Option<toml::Value>,
+    v: Option<toml::Value>,
+    omega: Option<toml::Value>,
+    a: Option<toml::Value>,
+    c: Option<toml::Value>,
+}
+
+/// What `impact run` prints for a `disk-friction` scene.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct DiskFrictionOutcome {
+    /// `"disk-friction"`.
+    pub model: &'static str,
+    /// V/(a omega); `None` when omega = 0.
+    pub k: Option<f64>,
+    /// |F|/(f N).
+    pub force: f64,
+    /// |M|/(f N a).
+    pub moment: f64,
+    /// (2.3) with elliptic integrals, for c = 0.
+    pub force_elliptic: Option<f64>,
+    /// (2.3) with elliptic integrals, for c = 0.
+    pub moment_elliptic: Option<f64>,
+    /// F/(f N).
+    pub force_vector: [f64; 2],
+    /// M/(f N a), signed.
+    pub moment_signed: f64,
+    /// Estimated quadrature error.
+    pub quadrature_error: f64,
+    /// The units.
+    pub units: &'static str,
+}
+
+impl super::Model for DiskFrictionScene {
+    const NAME: &'static str = "disk-friction";
+    type Outcome = DiskFrictionOutcome;
+
+    fn from_table(root: &toml::Table, path: &str) -> Result<Self, super::SceneError> {
+        let f = super::params::Fields { path };
+        let raw: RawScene = f.raw(root, "")?;
+        let a = f.num(
+            raw.a.as_ref(),
+            "a",
+            Some(1.0),
+            |v| v > 0.0,
+            "a > 0 (m), the disk radius",
+        )?;
+        let has_vw = raw.v.is_some() || raw.omega.is_some();
+        let (v, omega) = match (raw.k.is_some(), has_vw) {
+            (true, true) => {
+                return Err(f.out_of_range(
+                    "k",
+                    "given together with v/omega".into(),
+                    "either k, or v and omega (with a)",
+                ));
+            }
+            (true, false) => {
+                let k = f.num(
+                    raw.k.as_ref(),
+                    "k",
+                    None,
+                    |v| v >= 0.0,
+                    "k = V/(a omega) >= 0",
+                )?;
+                (k * a, 1.0)
+            }
+            _ => {
+                let v = f.num(
+                    raw.v.as_ref(),
+                    "v",
+                    None,
+                    |v| v >= 0.0,
+                    "v >= 0 (m/s), sliding speed of the centre; or give k = V/(a omega)",
+                )?;
+                let w = f.num(
+                    raw.omega.as_ref(),
+                    "omega",
+                    None,
+                    |v| v >= 0.0,
+                    "omega >= 0 (rad/s)",
+                )?;
+                if v == 0.0 && w == 0.0 {
+                    return Err(f.out_of_range(
+                        "v",
+                        "0 with omega = 0".into(),
+                        "v > 0 or omega > 0 (a disk at rest has no kinetic friction)",
+                    ));
+                }
+                (v, w)
+            }
+        };
+        Ok(DiskFrictionScene {
+            a,
+            v,
+            omega,
+            c: f.num(
+                raw.c.as_ref(),
+                "c",
+                Some(0.0),
+                |v| (0.0..=a / 4.0).contains(&v),
+                &format!("0 <= c <= a/4 = {} (m), centre of pressure off the centre; beyond a/4 part of the disk lifts off (001 (1.8))", a / 4.0),
+            )?,
+        })
+    }
+
+    fn run(&self) -> Result<(DiskFrictionOutcome, super::Curves), super::RunError> {
+        let s = self;
+        let r = friction([s.v, 0.0], s.omega, [0.0, s.c], s.a, 1e-14);
+        let k = if s.omega > 0.0 {
+            s.v / (s.a * s.omega)
+        } else {
+            f64::INFINITY
+        };
+        let elliptic = (s.c == 0.0).then(|| force_moment_elliptic(k));
+        let out = DiskFrictionOutcome {
+            model: Self::NAME,
+            k: k.is_finite().then_some(k),
+            force: r.force[0].hypot(r.force[1]),
+            moment: r.moment.abs() / s.a,
+            force_elliptic: elliptic.map(|e| e.0),
+            moment_elliptic: elliptic.map(|e| e.1),
+            force_vector: r.force,
+            moment_signed: r.moment / s.a,
+            quadrature_error: r.error,
+            units: "F/(f N) and M/(f N a), N the normal load; the moment about the disk centre; the elliptic forms of (2.3) apply for c = 0",
+        };
+        Ok((out, vec![]))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

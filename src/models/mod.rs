@@ -1,4 +1,10 @@
-//! Physical models, one per file, named by the physics. Models know nothing of reports.
+//! Physical models, one per file, named by the physics. Models know nothing of reports or of the
+//! scene registry.
+//!
+//! A model that a scene can name implements [`Model`]: it owns its scene parameters (read from
+//! the scene table by serde into raw structs and validated with [`params::Fields`]), its run, its
+//! typed outcome (what `impact run`, sweeps and `model` claims read) and its plot curves. The
+//! registry of names is `crate::scene`; adding a model is one file here plus one line there.
 
 pub mod balls_wall;
 pub mod cone_plate;
@@ -6,7 +12,54 @@ pub mod constrained;
 pub mod disk_friction;
 pub mod fixed_points;
 pub mod hertz;
+pub mod params;
 pub mod pendulum_wall;
 pub mod relaxation;
 pub mod rigid_impact;
 pub mod support;
+
+pub use params::{SceneError, SolveSpec};
+
+/// Curves for `--plot`: `(name, points)`.
+pub type Curves = Vec<(String, Vec<(f64, f64)>)>;
+
+/// Why a run failed.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// The scene is bad.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// The solver could not meet its tolerance (with time and step size).
+    #[error("solver: {0}")]
+    Integrate(#[from] crate::integrate::IntegrateError),
+    /// The solver stopped because a non-passive model's solution grows without bound.
+    #[error(
+        "solver: {source}; the model is not passive: its operator has the growing mode exp({rate:.4e} t), so the solution grows without bound (use viscoelastic_law = \"constant-poisson\" or a shorter t_end)"
+    )]
+    NotPassive {
+        /// What the solver said.
+        source: crate::integrate::IntegrateError,
+        /// Growth rate (1/s).
+        rate: f64,
+    },
+    /// A bad argument.
+    #[error("{arg}: {message}")]
+    BadArgument {
+        /// Argument.
+        arg: String,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// A model a scene can name.
+pub trait Model: Sized + Send + Sync + 'static {
+    /// The name scenes give it (`model = "hertz"`).
+    const NAME: &'static str;
+    /// What one run gives; serialized once, by `impact run`, sweeps and claims.
+    type Outcome: serde::Serialize;
+    /// Reads and validates a scene table; `path` names the file in errors.
+    fn from_table(root: &toml::Table, path: &str) -> Result<Self, SceneError>;
+    /// Runs the scene: the outcome and the curves of `impact run --plot`.
+    fn run(&self) -> Result<(Self::Outcome, Curves), RunError>;
+}

@@ -9,7 +9,10 @@
 //! $\rho_O^2 = \rho^2 + 1$, relative to the pendulum's energy before impact $T_0 = (1+\rho^2)/8$
 //! ($|V_{Cn}^-| = 1$ with $|\mathbf{OC}\cdot\mathbf t| = 2$).
 
+use super::params::{Fields, SceneError};
+use super::{Curves, Model, RunError};
 use crate::integrate::{Direction, Event, IntegrateError, Method, OdeSystem, Options, Stop, solve};
+use toml::Value;
 
 /// (2.15) for given rho and sigma.
 pub struct PendulumWall {
@@ -162,5 +165,164 @@ impl ClosedForm {
             }
         }
         0.5 * (lo + hi)
+    }
+}
+
+/// The `pendulum-wall` scene: 002_b53e4779673eb6ed.txt (2.14)-(2.15), the paper's geometry
+/// (|GO| = |G'C| = `length`, |GG'| = |OO'|) with linear elements.
+#[derive(Clone, Debug)]
+pub struct PendulumWallScene {
+    /// Central radius of inertia (m).
+    pub rho: f64,
+    /// Stiffness ratio c1/c2 (contact over suspension).
+    pub sigma: f64,
+    /// |GO| (m).
+    pub length: f64,
+    /// Approach speed of the contact point (m/s).
+    pub v0: f64,
+    /// Mass (kg).
+    pub mass: f64,
+    /// Suspension stiffness c2 (N/m).
+    pub stiffness_o: f64,
+    /// Relative tolerance.
+    pub rtol: f64,
+}
+
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(dead_code)]
+struct RawScene {
+    model: Option<Value>,
+    rho: Option<Value>,
+    sigma: Option<Value>,
+    length: Option<Value>,
+    v0: Option<Value>,
+    mass: Option<Value>,
+    stiffness_o: Option<Value>,
+    rtol: Option<Value>,
+}
+
+/// Velocities after impact, (2.12).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct VelocitiesAfter {
+    /// Angular velocity (rad/s).
+    pub omega: f64,
+    /// Normal velocity of G (m/s).
+    pub v_gn: f64,
+    /// Tangential velocity of G (m/s).
+    pub v_gt: f64,
+}
+
+/// What `impact run` prints for a `pendulum-wall` scene.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct PendulumWallOutcome {
+    /// What the user should know.
+    pub warnings: Vec<String>,
+    /// `"pendulum-wall"`.
+    pub model: &'static str,
+    /// Energy lost while O is braked, over the energy before impact.
+    pub energy_loss_ratio: f64,
+    /// How the loss is counted.
+    pub energy_counted: &'static str,
+    /// Velocities when the contact element unloads.
+    pub v_after: VelocitiesAfter,
+    /// What `v_after` means.
+    pub v_after_note: &'static str,
+    /// Normal velocity of O after (m/s).
+    pub v_on_after: f64,
+    /// Normal velocity of C after (m/s).
+    pub v_cn_after: f64,
+    /// Contact duration (s).
+    pub contact_time: f64,
+    /// Whether (2.10) holds: rho = |GO|.
+    pub suspension_reaction_free: bool,
+}
+
+impl Model for PendulumWallScene {
+    const NAME: &'static str = "pendulum-wall";
+    type Outcome = PendulumWallOutcome;
+
+    fn from_table(root: &toml::Table, path: &str) -> Result<Self, SceneError> {
+        let f = Fields { path };
+        let raw: RawScene = f.raw(root, "")?;
+        let length = f.num(
+            raw.length.as_ref(),
+            "length",
+            Some(1.0),
+            |v| v > 0.0,
+            "length = |GO| > 0 (m)",
+        )?;
+        Ok(PendulumWallScene {
+            rho: f.num(
+                raw.rho.as_ref(),
+                "rho",
+                None,
+                |v| v > 0.0 && v / length >= 1e-3 && v / length <= 1e3,
+                "rho > 0 (m), central radius of inertia, 1e-3 <= rho/length <= 1e3",
+            )?,
+            sigma: f.num(
+                raw.sigma.as_ref(),
+                "sigma",
+                None,
+                |v| (1e-8..=1e8).contains(&v),
+                "1e-8 <= sigma <= 1e8, stiffness ratio c1/c2 (contact over suspension)",
+            )?,
+            length,
+            v0: f.num(
+                raw.v0.as_ref(),
+                "v0",
+                Some(1.0),
+                |v| v > 0.0,
+                "v0 > 0 (m/s), approach speed of C",
+            )?,
+            mass: f.num(
+                raw.mass.as_ref(),
+                "mass",
+                Some(1.0),
+                |v| v > 0.0,
+                "mass > 0 (kg)",
+            )?,
+            stiffness_o: f.num(
+                raw.stiffness_o.as_ref(),
+                "stiffness_o",
+                Some(1.0),
+                |v| v > 0.0,
+                "stiffness_o > 0 (N/m), the suspension element c2",
+            )?,
+            rtol: f.rtol(raw.rtol.as_ref())?,
+        })
+    }
+
+    fn run(&self) -> Result<(PendulumWallOutcome, Curves), RunError> {
+        let s = self;
+        // (2.15) is written with m = 1, |GO| = 1, c2 = 1, approach speed 1: lengths scale with
+        // |GO|, velocities with v0, times with sqrt(m/c2)
+        let r = impact(s.rho / s.length, s.sigma, s.rtol)?;
+        let mut warnings = Vec::new();
+        if r.v_cn.abs() < s.rtol.sqrt() {
+            // eps_Cn reaches zero with (nearly) zero slope: a multiple root, located in time
+            // only to about (tolerance)^(1/order); the after-velocities inherit that error
+            warnings.push(format!(
+                "the contact element unloads tangentially (V_Cn = {:.2e} v0 at release): the release instant is ill-conditioned, and the velocities after impact carry an error of about that size",
+                r.v_cn
+            ));
+        }
+        let out = PendulumWallOutcome {
+            warnings,
+            model: Self::NAME,
+            energy_loss_ratio: r.loss,
+            energy_counted: "kinetic energy lost while the suspension point O is braked after the contact unloads, (2.13), over the pendulum's kinetic energy before impact T0 = (1/2) m (rho^2 + |GO|^2) Omega0^2, Omega0 = v0/|OC.t| = v0/(2 |GO|)",
+            v_after: VelocitiesAfter {
+                omega: r.omega * s.v0 / s.length,
+                v_gn: (r.v_on - r.omega) * s.v0,
+                v_gt: 0.0,
+            },
+            v_after_note: "(2.12) at the instant the contact element unloads (before O is braked); n is the wall normal into the pendulum, t along the wall; v_gt = (GO, n) Omega - eps'_Ot = 0 in this geometry",
+            v_on_after: r.v_on * s.v0,
+            v_cn_after: r.v_cn * s.v0,
+            contact_time: r.duration * (s.mass / s.stiffness_o).sqrt(),
+            suspension_reaction_free: ((s.rho / s.length) - 1.0).abs() < 1e-12,
+        };
+        Ok((out, vec![]))
     }
 }

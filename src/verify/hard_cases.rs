@@ -217,7 +217,7 @@ fn hertz(
     match run {
         Err(e) => failed(id, what.into(), hard, e),
         Ok((v, scene)) => {
-            let crate::scene::Scene::Hertz(s) = scene else {
+            let Some(s) = scene.get::<crate::models::hertz::HertzScene>() else {
                 return failed(id, what.into(), hard, "not a hertz scene".into());
             };
             let model = crate::models::hertz::Hertz {

@@ -324,9 +324,7 @@ fn field_value(t: &toml::Table, path: &str) -> Option<f64> {
 
 fn run_table(t: &toml::Table, label: &str) -> Result<Value, String> {
     let scene = crate::scene::parse_table(t, label).map_err(|e| e.to_string())?;
-    crate::cli::run_validated(&scene)
-        .map(|(v, _)| v)
-        .map_err(|e| e.to_string())
+    scene.run().map(|(v, _)| v).map_err(|e| e.to_string())
 }
 
 fn g4(x: f64) -> String {

@@ -13,9 +13,9 @@ use super::{ClaimSpec, Outcome, PaperClaims, Verdict, VerifyError};
 use crate::algebra::eval::Evaluator;
 use crate::algebra::poly::{Q, parse_q};
 use crate::algebra::series::{self, SeriesParams, Viscous};
+use crate::models::cone_plate::ConePlateScene;
 use crate::models::cone_plate::{self, ConePlate, Variant};
 use crate::report::svg::{Scale, Series, plot};
-use crate::scene::Scene;
 use std::path::Path;
 
 const GRID: usize = 31;
@@ -94,18 +94,15 @@ pub fn series_params(p: &cone_plate::Params) -> Result<(SeriesParams, SeriesPara
 }
 
 /// The cone-plate scene a claim names.
-fn load_cone(
-    c: &ClaimSpec,
-    path: &Path,
-    what: &str,
-) -> Result<Box<crate::scene::ConePlateScene>, VerifyError> {
+fn load_cone(c: &ClaimSpec, path: &Path, what: &str) -> Result<Box<ConePlateScene>, VerifyError> {
     let err = |m: String| VerifyError::Scene {
         id: c.id.clone(),
         message: m,
     };
-    match crate::scene::load(path).map_err(|e| err(e.to_string()))? {
-        Scene::ConePlate(s) => Ok(s),
-        _ => Err(err(format!("the {what} claim needs a cone-plate scene"))),
+    let scene = crate::scene::load(path).map_err(|e| err(e.to_string()))?;
+    match scene.get::<ConePlateScene>() {
+        Some(s) => Ok(Box::new(s.clone())),
+        None => Err(err(format!("the {what} claim needs a cone-plate scene"))),
     }
 }
 
