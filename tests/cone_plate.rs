@@ -27,17 +27,7 @@ fn params() -> Params {
 fn fx(names: &[&str], modes: &[(u32, u32)]) -> Effects {
     let mut e = Effects::default();
     for n in names {
-        match *n {
-            "viscoelastic" => e.viscoelastic = true,
-            "plate" => e.plate = true,
-            "winkler" => e.winkler = true,
-            "pasternak" => e.pasternak = true,
-            "damper" => e.damper = true,
-            "membrane" => e.membrane = true,
-            "inplane" => e.inplane = true,
-            "relative-indentation" => e.relative_indentation = true,
-            _ => panic!("{n}"),
-        }
+        assert!(e.switch_on(n), "{n} is not an effect");
     }
     e.modes = modes.to_vec();
     e

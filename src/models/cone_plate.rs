@@ -77,6 +77,24 @@ pub struct Effects {
 }
 
 impl Effects {
+    /// Turns on the effect a scene names (`"plate"`, `"winkler"`, ...; `"modes"` is accepted and
+    /// does nothing: the modes come from `[plate]`); false for a name that is not an effect.
+    pub fn switch_on(&mut self, name: &str) -> bool {
+        match name {
+            "viscoelastic" => self.viscoelastic = true,
+            "plate" => self.plate = true,
+            "winkler" => self.winkler = true,
+            "pasternak" => self.pasternak = true,
+            "damper" => self.damper = true,
+            "membrane" => self.membrane = true,
+            "inplane" => self.inplane = true,
+            "modes" => {}
+            "relative-indentation" => self.relative_indentation = true,
+            _ => return false,
+        }
+        true
+    }
+
     /// Names of the active effects, for reports.
     pub fn names(&self) -> Vec<String> {
         let mut v = Vec::new();
@@ -918,19 +936,6 @@ struct RawInplane {
     p2: Option<Value>,
 }
 
-/// The contact of a run.
-#[derive(Clone, Debug, serde::Serialize)]
-pub struct ContactOutcome {
-    /// Contact ended inside the window.
-    pub ended: bool,
-    /// Contact duration (s), or the window.
-    pub duration: f64,
-    /// Largest contact force (N).
-    pub peak_force: f64,
-    /// Largest indentation (m).
-    pub max_indentation: f64,
-}
-
 /// The energy books of a run.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct EnergyOutcome {
@@ -971,7 +976,7 @@ pub struct ConePlateOutcome {
     /// Samples at the requested times.
     pub samples: Vec<Sample>,
     /// The contact.
-    pub contact: ContactOutcome,
+    pub contact: super::ContactOutcome,
     /// The energy books.
     pub energy: EnergyOutcome,
     /// Work done.
@@ -1036,28 +1041,17 @@ impl super::Model for ConePlateScene {
             }
         };
         for name in &names {
-            match name.as_str() {
-                "viscoelastic" => fx.viscoelastic = true,
-                "plate" => fx.plate = true,
-                "winkler" => fx.winkler = true,
-                "pasternak" => fx.pasternak = true,
-                "damper" => fx.damper = true,
-                "membrane" => fx.membrane = true,
-                "inplane" => fx.inplane = true,
-                "modes" => {}
-                "relative-indentation" => fx.relative_indentation = true,
-                other => {
-                    let near = EFFECTS
-                        .iter()
-                        .find(|e| super::params::edit_distance(e, other) <= 2)
-                        .map(|e| format!(" (did you mean \"{e}\"?)"))
-                        .unwrap_or_default();
-                    return Err(f.out_of_range(
-                        "effects",
-                        format!("\"{other}\"{near}"),
-                        &format!("names from: {}", EFFECTS.join(", ")),
-                    ));
-                }
+            if !fx.switch_on(name) {
+                let near = EFFECTS
+                    .iter()
+                    .find(|e| super::params::edit_distance(e, name) <= 2)
+                    .map(|e| format!(" (did you mean \"{e}\"?)"))
+                    .unwrap_or_default();
+                return Err(f.out_of_range(
+                    "effects",
+                    format!("\"{name}\"{near}"),
+                    &format!("names from: {}", EFFECTS.join(", ")),
+                ));
             }
         }
         let needs_plate = fx.winkler
@@ -1316,7 +1310,7 @@ impl super::Model for ConePlateScene {
             state_dim: sys.state_dim(),
             method: s.solve.method.name(),
             samples: r.samples,
-            contact: ContactOutcome {
+            contact: super::ContactOutcome {
                 ended: r.ended,
                 duration: r.duration,
                 peak_force: r.peak_force,

@@ -224,19 +224,6 @@ struct RawContact {
     law: Option<Value>,
 }
 
-/// The contact of a run.
-#[derive(Clone, Debug, serde::Serialize)]
-pub struct ContactOutcome {
-    /// Whether contact ended inside the window.
-    pub ended: bool,
-    /// Contact duration (s).
-    pub duration: f64,
-    /// Largest contact force (N).
-    pub peak_force: f64,
-    /// Largest indentation (m).
-    pub max_indentation: f64,
-}
-
 /// What `impact run` prints for a `hertz` scene.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct HertzOutcome {
@@ -251,7 +238,7 @@ pub struct HertzOutcome {
     /// States integrated.
     pub state_size: usize,
     /// The contact.
-    pub contact: ContactOutcome,
+    pub contact: super::ContactOutcome,
     /// Velocity at the end (m/s), negative when rebounding.
     pub v_out: f64,
     /// -v_out/v0.
@@ -360,7 +347,7 @@ impl Model for HertzScene {
             warnings,
             method: s.solve.method.name(),
             state_size: 2,
-            contact: ContactOutcome {
+            contact: super::ContactOutcome {
                 ended: r.ended,
                 duration: r.duration,
                 peak_force: r.peak_force,

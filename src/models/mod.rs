@@ -52,6 +52,19 @@ pub enum RunError {
     },
 }
 
+/// The contact of one impact, as every contact model reports it.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct ContactOutcome {
+    /// Whether contact ended inside the window.
+    pub ended: bool,
+    /// Contact duration (s), or the window if it did not end.
+    pub duration: f64,
+    /// Largest contact force (N).
+    pub peak_force: f64,
+    /// Largest indentation (m).
+    pub max_indentation: f64,
+}
+
 /// A model a scene can name.
 pub trait Model: Sized + Send + Sync + 'static {
     /// The name scenes give it (`model = "hertz"`).

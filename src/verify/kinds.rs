@@ -397,6 +397,14 @@ impl<'a> Checked<'a> {
         Ok(())
     }
 
+    /// The claim's scene as a table, and its path for messages.
+    fn scene_table(&self, c: &ClaimSpec) -> Result<(String, toml::Table), VerifyError> {
+        let path = self.scene_path(c)?;
+        let base = crate::scene::read_table(&path)
+            .map_err(|e| claim_err(self.file, c, "scene", e.to_string()))?;
+        Ok((path.display().to_string(), base))
+    }
+
     fn scene_path(&self, c: &ClaimSpec) -> Result<PathBuf, VerifyError> {
         let s = required(
             self.file,
@@ -838,10 +846,7 @@ impl<'a> Checked<'a> {
     fn model(&self, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
         use rayon::prelude::*;
         let f = self.file;
-        let path = self.scene_path(c)?;
-        let label = path.display().to_string();
-        let base =
-            crate::scene::read_table(&path).map_err(|e| claim_err(f, c, "scene", e.to_string()))?;
+        let (label, base) = self.scene_table(c)?;
         let axes: Vec<Axis> = c
             .vary
             .iter()
@@ -994,10 +999,7 @@ impl<'a> Checked<'a> {
     fn bound(&self, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
         use rayon::prelude::*;
         let f = self.file;
-        let path = self.scene_path(c)?;
-        let label = path.display().to_string();
-        let base =
-            crate::scene::read_table(&path).map_err(|e| claim_err(f, c, "scene", e.to_string()))?;
+        let (label, base) = self.scene_table(c)?;
         let text = c.require.as_deref().unwrap_or_default();
         let ineq: Inequality = expr::parse_inequality(text)
             .map_err(|e| claim_err(f, c, "require", format!("`{text}`: {e}")))?;
