@@ -298,9 +298,10 @@ fn lex(text: &str) -> Result<Vec<(Tok, usize)>, ParseError> {
                 while i < chars.len() && (chars[i].is_ascii_alphanumeric() || chars[i] == '_') {
                     i += 1;
                 }
+                // a dotted part is a name or an index (`contact.duration`, `impulse.0`)
                 let dotted_next = i + 1 < chars.len()
                     && chars[i] == '.'
-                    && (chars[i + 1].is_ascii_alphabetic() || chars[i + 1] == '_');
+                    && (chars[i + 1].is_ascii_alphanumeric() || chars[i + 1] == '_');
                 if dotted_next {
                     i += 1;
                 } else {
@@ -530,14 +531,43 @@ fn number_text(v: &Q) -> String {
     }
     digits += p2.max(p5);
     if digits == 0 {
-        return n.to_string();
+        let plain = n.to_string();
+        let sci = scientific(&n, 0);
+        return if sci.len() + 1 < plain.len() {
+            sci
+        } else {
+            plain
+        };
     }
     let scaled = &n * num_traits::pow(BigInt::from(10), digits) / &d;
     let s = scaled.abs().to_string();
     let s = format!("{s:0>width$}", width = digits + 1);
     let (int, frac) = s.split_at(s.len() - digits);
     let sign = if scaled.is_negative() { "-" } else { "" };
-    format!("{sign}{int}.{frac}")
+    let plain = format!("{sign}{int}.{frac}");
+    let sci = scientific(&scaled, -(digits as i64));
+    if sci.len() + 1 < plain.len() {
+        sci
+    } else {
+        plain
+    }
+}
+
+/// `m * 10^e` as `1.5e-9` (the mantissa's trailing zeros moved into the exponent).
+fn scientific(m: &BigInt, mut e: i64) -> String {
+    let mut digits = m.abs().to_string();
+    while digits.len() > 1 && digits.ends_with('0') {
+        digits.pop();
+        e += 1;
+    }
+    let sign = if m.is_negative() { "-" } else { "" };
+    let exp = e + digits.len() as i64 - 1;
+    let (head, tail) = digits.split_at(1);
+    if tail.is_empty() {
+        format!("{sign}{head}e{exp}")
+    } else {
+        format!("{sign}{head}.{tail}e{exp}")
+    }
 }
 
 impl Expr {
@@ -795,6 +825,10 @@ mod tests {
         assert_eq!(parse("1e-3").unwrap(), Expr::Num(q(1, 1000)));
         assert_eq!(parse("1e-3").unwrap().to_string(), "0.001");
         assert_eq!(parse("2.5E2").unwrap().to_string(), "250");
+        assert_eq!(parse("1e-9").unwrap().to_string(), "1e-9");
+        assert_eq!(parse("0.0000015").unwrap().to_string(), "1.5e-6");
+        assert_eq!(parse("2e9").unwrap().to_string(), "2e9");
+        assert_eq!(parse("100").unwrap().to_string(), "100");
     }
 
     #[test]

@@ -186,27 +186,82 @@ pub fn set_field(
     value: f64,
     path: &str,
 ) -> Result<(), SceneError> {
-    let mut parts: Vec<&str> = field.split('.').collect();
-    let last = parts.pop().unwrap_or(field);
-    let mut t = root;
-    for p in parts {
-        t = match t
-            .entry(p.to_string())
-            .or_insert_with(|| toml::Value::Table(toml::Table::new()))
-        {
-            toml::Value::Table(tt) => tt,
-            _ => {
-                return Err(SceneError::OutOfRange {
-                    path: path.into(),
-                    field: field.into(),
-                    value: value.to_string(),
-                    allowed: "a field inside a table".into(),
-                });
+    set_value(root, field, toml::Value::Float(value), path)
+}
+
+/// Sets a dotted field of a scene table to a value. A numeric part indexes an array that exists
+/// (`body.0.mass`, `initial.v_rel.2`); a missing table on the way is created.
+pub fn set_value(
+    root: &mut toml::Table,
+    field: &str,
+    value: toml::Value,
+    path: &str,
+) -> Result<(), SceneError> {
+    let bad = |value: &toml::Value, allowed: &str| SceneError::OutOfRange {
+        path: path.into(),
+        field: field.into(),
+        value: value.to_string(),
+        allowed: allowed.into(),
+    };
+    let parts: Vec<&str> = field.split('.').collect();
+    let mut slot: &mut toml::Value = match root.get_mut(parts[0]) {
+        Some(v) => v,
+        None if parts.len() == 1 => {
+            root.insert(parts[0].to_string(), value);
+            return Ok(());
+        }
+        None => root
+            .entry(parts[0].to_string())
+            .or_insert_with(|| toml::Value::Table(toml::Table::new())),
+    };
+    for (i, p) in parts.iter().enumerate().skip(1) {
+        let last = i + 1 == parts.len();
+        slot = match slot {
+            toml::Value::Table(t) => {
+                if last {
+                    t.insert(p.to_string(), value);
+                    return Ok(());
+                }
+                t.entry(p.to_string())
+                    .or_insert_with(|| toml::Value::Table(toml::Table::new()))
             }
+            toml::Value::Array(a) => {
+                let len = a.len();
+                let k = p
+                    .parse::<usize>()
+                    .ok()
+                    .filter(|k| *k < len)
+                    .ok_or_else(|| {
+                        bad(
+                            &value,
+                            &format!("an index 0..{len} of the array before `{p}`"),
+                        )
+                    })?;
+                &mut a[k]
+            }
+            _ => return Err(bad(&value, "a field inside a table or an array")),
         };
     }
-    t.insert(last.to_string(), toml::Value::Float(value));
+    *slot = value;
     Ok(())
+}
+
+/// The number at a dotted field of a scene table (numeric parts index arrays), if it is one.
+pub fn field_value(root: &toml::Table, field: &str) -> Option<f64> {
+    let mut parts = field.split('.');
+    let mut cur = root.get(parts.next()?)?;
+    for p in parts {
+        cur = match cur {
+            toml::Value::Table(t) => t.get(p)?,
+            toml::Value::Array(a) => a.get(p.parse::<usize>().ok()?)?,
+            _ => return None,
+        };
+    }
+    match cur {
+        toml::Value::Float(x) => Some(*x),
+        toml::Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    }
 }
 
 #[cfg(test)]
@@ -214,6 +269,27 @@ mod tests {
     use super::*;
 
     const OK: &str = "model = \"hertz\"\n[impactor]\nmass = 1.0\nv0 = 1.0\n[contact]\nk = 1.0\n";
+
+    #[test]
+    fn fields_inside_arrays_are_set_and_read() {
+        let mut t: toml::Table =
+            "[[body]]\nmass = 1.0\n[[body]]\nmass = 2.0\n[initial]\nv_rel = [0.0, 0.0, -1.0]\n"
+                .parse()
+                .expect("toml");
+        set_field(&mut t, "body.1.mass", 5.0, "s").expect("set");
+        set_field(&mut t, "initial.v_rel.2", -3.0, "s").expect("set");
+        set_value(
+            &mut t,
+            "contact.law",
+            toml::Value::String("newton".into()),
+            "s",
+        )
+        .expect("set");
+        assert_eq!(field_value(&t, "body.1.mass"), Some(5.0));
+        assert_eq!(field_value(&t, "body.0.mass"), Some(1.0));
+        assert_eq!(field_value(&t, "initial.v_rel.2"), Some(-3.0));
+        assert!(set_field(&mut t, "initial.v_rel.3", 1.0, "s").is_err());
+    }
 
     #[test]
     fn valid_scene_parses() {

@@ -304,22 +304,15 @@ pub fn lookup(v: &Value, path: &str) -> Option<f64> {
     }
 }
 
-/// The number at a dotted field of a scene table.
-fn field_value(t: &toml::Table, path: &str) -> Option<f64> {
-    let mut parts = path.split('.').peekable();
-    let mut table = t;
-    while let Some(p) = parts.next() {
-        let v = table.get(p)?;
-        if parts.peek().is_none() {
-            return match v {
-                toml::Value::Float(x) => Some(*x),
-                toml::Value::Integer(i) => Some(*i as f64),
-                _ => None,
-            };
-        }
-        table = v.as_table()?;
+use crate::scene::field_value;
+
+/// Sets every field of a `sample` key (one or more fields, separated by spaces, that share one
+/// draw: the two off-diagonal entries of a symmetric inertia).
+fn set_fields(t: &mut toml::Table, fields: &str, v: f64, label: &str) -> Result<(), String> {
+    for field in fields.split_whitespace() {
+        crate::scene::set_field(t, field, v, label).map_err(|e| e.to_string())?;
     }
-    None
+    Ok(())
 }
 
 fn run_table(t: &toml::Table, label: &str) -> Result<Value, String> {
@@ -400,9 +393,14 @@ impl<'a> Checked<'a> {
     /// The claim's scene as a table, and its path for messages.
     fn scene_table(&self, c: &ClaimSpec) -> Result<(String, toml::Table), VerifyError> {
         let path = self.scene_path(c)?;
-        let base = crate::scene::read_table(&path)
+        let mut base = crate::scene::read_table(&path)
             .map_err(|e| claim_err(self.file, c, "scene", e.to_string()))?;
-        Ok((path.display().to_string(), base))
+        let label = path.display().to_string();
+        for (field, v) in &c.set {
+            crate::scene::set_value(&mut base, field, v.clone(), &label)
+                .map_err(|e| claim_err(self.file, c, &format!("set.{field}"), e.to_string()))?;
+        }
+        Ok((label, base))
     }
 
     fn scene_path(&self, c: &ClaimSpec) -> Result<PathBuf, VerifyError> {
@@ -469,9 +467,7 @@ impl<'a> Checked<'a> {
             }
             "model" | "bound" => {
                 let path = self.scene_path(c)?;
-                let base = crate::scene::read_table(&path)
-                    .map_err(|e| claim_err(f, c, "scene", e.to_string()))?;
-                let mut table = base.clone();
+                let (_, mut table) = self.scene_table(c)?;
                 if c.kind == "model" {
                     required(
                         f,
@@ -522,13 +518,11 @@ impl<'a> Checked<'a> {
                             "missing; give at least one FIELD = \"uniform(a, b)\"".into(),
                         ));
                     }
-                    for (field, d) in &c.sample {
-                        let d = parse_dist(d)
-                            .map_err(|m| claim_err(f, c, &format!("sample.{field}"), m))?;
-                        crate::scene::set_field(&mut table, field, d.quantile(0.5), "scene")
-                            .map_err(|e| {
-                                claim_err(f, c, &format!("sample.{field}"), e.to_string())
-                            })?;
+                    for (fields, d) in &c.sample {
+                        let key = format!("sample.{fields}");
+                        let d = parse_dist(d).map_err(|m| claim_err(f, c, &key, m))?;
+                        set_fields(&mut table, fields, d.quantile(0.5), "scene")
+                            .map_err(|m| claim_err(f, c, &key, m))?;
                     }
                 }
                 for (sym, field) in &c.bind {
@@ -1027,9 +1021,8 @@ impl<'a> Checked<'a> {
             .par_iter()
             .map(|pt| {
                 let mut t = base.clone();
-                for (field, v) in pt {
-                    crate::scene::set_field(&mut t, field, *v, &label)
-                        .map_err(|e| e.to_string())?;
+                for (fields, v) in pt {
+                    set_fields(&mut t, fields, *v, &label)?;
                 }
                 let out = run_table(&t, &label)?;
                 let value = |s: &str| match c.bind.get(s) {

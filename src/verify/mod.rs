@@ -75,6 +75,10 @@ pub struct ClaimSpec {
     /// `model`: the dotted path of the outcome quantity compared.
     #[serde(default)]
     pub quantity: Option<String>,
+    /// `model`, `bound`: scene fields set before anything is varied or sampled (a number or a
+    /// string: `{ "contact.law" = "newton" }`).
+    #[serde(default)]
+    pub set: BTreeMap<String, toml::Value>,
     /// `model`, `bound`: formula symbol -> scene field.
     #[serde(default)]
     pub bind: BTreeMap<String, String>,

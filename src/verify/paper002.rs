@@ -4,7 +4,7 @@
 
 use super::{ClaimSpec, Outcome, PaperClaims, VerifyError, holds, outcome};
 use crate::integrate::{Method, OdeSystem, Options, solve};
-use crate::models::rigid_impact::{Body, ImpactResult, Law, b_matrix, impact, impact_with_matrix};
+use crate::models::rigid_impact::{Body, Law, b_matrix, impact_with_matrix};
 use crate::report::svg::{Scale, Series};
 use nalgebra::{Matrix3, SymmetricEigen, Vector3};
 
@@ -18,7 +18,6 @@ struct Config {
     b1: Body,
     b2: Body,
     v: Vector3<f64>,
-    mu: f64,
     e: f64,
 }
 
@@ -34,26 +33,17 @@ fn random_body(r: &mut Rng) -> Body {
 fn configs(seed: u64) -> Vec<Config> {
     let mut r = Rng(seed);
     (0..SAMPLES)
-        .map(|_| Config {
-            b1: random_body(&mut r),
-            b2: random_body(&mut r),
-            v: Vector3::new(r.range(-2.0, 2.0), r.range(-2.0, 2.0), -r.range(0.05, 3.0)),
-            mu: r.range(0.0, 1.5),
-            e: r.range(0.0, 1.0),
+        .map(|_| {
+            let b1 = random_body(&mut r);
+            let b2 = random_body(&mut r);
+            let v = Vector3::new(r.range(-2.0, 2.0), r.range(-2.0, 2.0), -r.range(0.05, 3.0));
+            // a friction coefficient is drawn (and unused by the checks left here) so that the
+            // seeded cases stay those of earlier reports
+            let _mu = r.range(0.0, 1.5);
+            let e = r.range(0.0, 1.0);
+            Config { b1, b2, v, e }
         })
         .collect()
-}
-
-fn run(c: &Config, law: Law) -> Option<ImpactResult> {
-    impact(&c.b1, &c.b2, Vector3::z(), c.v, c.mu, law, c.e, 1e-10).ok()
-}
-
-fn law_of(c: &ClaimSpec) -> Law {
-    match c.part.as_deref() {
-        Some("newton") => Law::Newton,
-        Some("energetic") => Law::Energetic,
-        _ => Law::Poisson,
-    }
 }
 
 fn fmt_m(m: &Matrix3<f64>) -> String {
@@ -121,74 +111,6 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
     };
     let cfgs = configs(0x5EED_0002);
     Ok(match c.check.as_str() {
-        "bound-upper" | "bound-lower" | "kelvin" | "energy" => {
-            let law = law_of(c);
-            let mut worst: f64 = f64::NEG_INFINITY;
-            let mut violations = 0usize;
-            let mut example = String::new();
-            let mut solved = 0usize;
-            for (k, cf) in cfgs.iter().enumerate() {
-                let Some(r) = run(cf, law) else { continue };
-                solved += 1;
-                let imp = Vector3::from(r.impulse).norm();
-                let t0 = 0.5 * cf.v.norm_squared() / r.lambda_min;
-                let (value, bad_case) = match c.check.as_str() {
-                    "bound-upper" => (imp / r.bound_upper, imp > r.bound_upper * (1.0 + 1e-9)),
-                    "bound-lower" => (r.bound_lower / imp, imp < r.bound_lower * (1.0 - 1e-9)),
-                    "kelvin" => {
-                        let d = (r.energy_change - r.kelvin_energy_change).abs() / t0;
-                        (d, d > 1e-8)
-                    }
-                    _ => (r.energy_change / t0, r.energy_change > 1e-9 * t0),
-                };
-                worst = worst.max(value);
-                if bad_case {
-                    violations += 1;
-                    if example.is_empty() {
-                        example = format!(
-                            "; first case #{k}: m1 = {:.3}, m2 = {:.3}, offsets {:?} and {:?}, V- = {:?}, mu = {:.3}, e = {:.3}: dT = {:.4e} J",
-                            cf.b1.mass.unwrap_or(f64::INFINITY),
-                            cf.b2.mass.unwrap_or(f64::INFINITY),
-                            cf.b1
-                                .offset
-                                .as_slice()
-                                .iter()
-                                .map(|x| (x * 1e3).round() / 1e3)
-                                .collect::<Vec<_>>(),
-                            cf.b2
-                                .offset
-                                .as_slice()
-                                .iter()
-                                .map(|x| (x * 1e3).round() / 1e3)
-                                .collect::<Vec<_>>(),
-                            cf.v.as_slice()
-                                .iter()
-                                .map(|x| (x * 1e3).round() / 1e3)
-                                .collect::<Vec<_>>(),
-                            cf.mu,
-                            cf.e,
-                            r.energy_change
-                        );
-                    }
-                }
-            }
-            let what = match c.check.as_str() {
-                "bound-upper" => "max |I| / (2|V-|/lambda)",
-                "bound-lower" => "max (|V-_n|/Lambda) / |I|",
-                "kelvin" => "max |dT_direct - dT_Kelvin| / T*",
-                _ => "max dT / T* (T* = |V-|^2/(2 lambda))",
-            };
-            outcome(
-                paper,
-                c,
-                holds(violations == 0),
-                format!(
-                    "{} law, {solved} seeded random impacts (two free bodies, SPD inertia, mu in [0, 1.5], e in [0, 1]): {what} = {:.3e}; violations: {violations}{example}",
-                    law.name(),
-                    worst
-                ),
-            )
-        }
         "pendulum-bstar" => {
             // (2.4): dV_C = (e*, I) e* /(m rho^2), e* = e x OC; compare with (2.5)
             let (m, rho) = (2.0, 0.3);
