@@ -36,6 +36,21 @@ pub const DERIVATIONS: &[(&str, &str, &str)] = &[
         "000 (2),(12): the projection of the bending term D~ Delta^2 w onto sin(m pi x/a) sin(n pi y/b), the coefficient of E~/(1-nu~^2)[f]",
     ),
     (
+        "galerkin.load_sign",
+        "m, n (odd)",
+        "000 (2),(12): the sign sin(m pi/2) sin(n pi/2) with which the point load under the cone enters the projected equation",
+    ),
+    (
+        "galerkin.airy_x",
+        "m, n (odd)",
+        "000 (3),(12): the coefficient of E~ f^2 cos(2 m pi x/a) in the Airy function solved from (3)",
+    ),
+    (
+        "galerkin.airy_y",
+        "m, n (odd)",
+        "000 (3),(12): the coefficient of E~ f^2 cos(2 n pi y/b) in the Airy function solved from (3)",
+    ),
+    (
         "galerkin.a3",
         "m, n (odd)",
         "000 (2),(8),(12): the projected coefficient of f (in-plane loads p1, p2, Winkler Kw, Pasternak KG)",
@@ -54,6 +69,16 @@ pub const DERIVATIONS: &[(&str, &str, &str)] = &[
         "galerkin.cubic",
         "m, n (odd)",
         "000 (2),(3),(12): the projected membrane coefficient of f E~[f^2], with the Airy function solved from (3)",
+    ),
+    (
+        "series.a1",
+        "",
+        "000 (18)-(20): the second term a1(t) of the Adomian series, an exponential polynomial in t, with the viscous term d(z^2)/dt = 2 z z'",
+    ),
+    (
+        "series.a1.zz",
+        "",
+        "000 (18)-(20): a1(t) with the viscous term z z' as printed in (18)",
     ),
     (
         "operator",
@@ -143,6 +168,17 @@ pub struct Derivations {
 }
 
 impl Derivations {
+    /// The exponential polynomials in t (`@series.*`); `None` for a rational derivation.
+    fn expo(&self, r: &DerivationRef) -> Option<crate::algebra::expo::Expo> {
+        use crate::algebra::series::{SeriesParams, Viscous, adomian_terms};
+        let visc = match r.name.as_str() {
+            "series.a1" => Viscous::TwoZZ,
+            "series.a1.zz" => Viscous::ZZ,
+            _ => return None,
+        };
+        Some(adomian_terms(&SeriesParams::symbolic(), 1, visc).remove(1))
+    }
+
     fn get(&mut self, r: &DerivationRef, defaults: &[(String, Q)]) -> Result<RatFunc, String> {
         let param = |k: &str| -> Result<u32, String> {
             let v = r
@@ -168,6 +204,9 @@ impl Derivations {
             };
             let p = &g.parts;
             return Ok(match part {
+                "load_sign" => RatFunc::from_q(Q::from_integer(g.load_sign.into())),
+                "airy_x" => g.airy_derived.0.clone(),
+                "airy_y" => g.airy_derived.1.clone(),
                 "bend" => p.bend.clone(),
                 "a3" => p.a3.clone(),
                 "ct" => p.ct.clone(),
@@ -189,6 +228,10 @@ impl Derivations {
 pub struct Checked<'a> {
     file: &'a PaperClaims,
     units: BTreeMap<String, Unit>,
+    /// The file's definitions, each expanded to symbols with units.
+    defs: BTreeMap<String, Expr>,
+    /// The unit of each definition, or why it has none.
+    def_units: BTreeMap<String, Result<Unit, String>>,
     dir: PathBuf,
 }
 
@@ -350,7 +393,57 @@ impl<'a> Checked<'a> {
             .parent()
             .map(Path::to_path_buf)
             .unwrap_or_else(|| PathBuf::from("."));
-        let me = Checked { file, units, dir };
+        let bad_def = |name: &str, message: String| VerifyError::BadClaims {
+            path: file.source.clone(),
+            message: format!("definitions.{name}: {message}"),
+        };
+        let mut raw = BTreeMap::new();
+        for (name, text) in &file.definitions {
+            let e = expr::parse(text).map_err(|e| bad_def(name, format!("`{text}`: {e}")))?;
+            raw.insert(name.clone(), e);
+        }
+        // expand each definition until no defined name is left (a cycle never ends: refused)
+        let mut defs = BTreeMap::new();
+        for (name, e) in &raw {
+            let mut cur = e.clone();
+            for round in 0.. {
+                if !cur.symbols().iter().any(|s| raw.contains_key(s)) {
+                    break;
+                }
+                if round == 50 {
+                    return Err(bad_def(
+                        name,
+                        "refers to itself (through other definitions)".into(),
+                    ));
+                }
+                cur = cur.substitute(&|s: &str| raw.get(s).cloned());
+            }
+            for s in cur.symbols() {
+                if !units.contains_key(&s) && !matches!(s.as_str(), "m" | "n") {
+                    return Err(bad_def(
+                        name,
+                        format!("unknown symbol `{s}`: give its unit in [symbols]"),
+                    ));
+                }
+            }
+            defs.insert(name.clone(), cur);
+        }
+        let mut me = Checked {
+            file,
+            units,
+            defs,
+            def_units: BTreeMap::new(),
+            dir,
+        };
+        let def_units = me
+            .defs
+            .iter()
+            .map(|(k, e)| {
+                let u = units::dimension(e, &me.unit_fn()).map_err(|e| e.to_string());
+                (k.clone(), u)
+            })
+            .collect();
+        me.def_units = def_units;
         for c in &file.claim {
             me.validate_claim(c)?;
         }
@@ -366,6 +459,7 @@ impl<'a> Checked<'a> {
     ) -> Result<(), VerifyError> {
         for s in e.symbols() {
             if !self.units.contains_key(&s)
+                && !self.defs.contains_key(&s)
                 && !also.contains(&s.as_str())
                 && !s.starts_with("at_ref_")
             {
@@ -444,6 +538,9 @@ impl<'a> Checked<'a> {
                     required(f, c, "printed", &c.printed, "a formula")?,
                 )?;
                 self.units_of(c, "printed", &p, &["m", "n"])?;
+                if let Some(sel) = &c.part {
+                    parse_formula(f, c, "part", sel)?;
+                }
                 let d = required(f, c, "derived", &c.derived, "a formula or @derivation")?;
                 let (text, _) = split_refs(d).map_err(|m| claim_err(f, c, "derived", m))?;
                 let de = parse_formula(f, c, "derived", &text)?;
@@ -557,8 +654,7 @@ impl<'a> Checked<'a> {
                     }
                     formulas.push((
                         "printed",
-                        parse_formula(
-                            f,
+                        self.formula(
                             c,
                             "printed",
                             required(f, c, "printed", &c.printed, "a formula")?,
@@ -568,8 +664,8 @@ impl<'a> Checked<'a> {
                     let text = c.require.as_deref().unwrap_or_default();
                     let ineq = expr::parse_inequality(text)
                         .map_err(|e| claim_err(f, c, "require", format!("`{text}`: {e}")))?;
-                    formulas.push(("require", ineq.lhs));
-                    formulas.push(("require", ineq.rhs));
+                    formulas.push(("require", self.expand(&ineq.lhs)));
+                    formulas.push(("require", self.expand(&ineq.rhs)));
                 }
                 for (field, e) in &formulas {
                     for s in e.symbols() {
@@ -614,6 +710,9 @@ impl<'a> Checked<'a> {
 
     fn unit_fn(&self) -> impl Fn(&str) -> Option<Unit> + '_ {
         |s: &str| {
+            if let Some(Ok(u)) = self.def_units.get(s) {
+                return Some(*u);
+            }
             if s == "m" || s == "n" {
                 self.units.get(s).copied().or(Some(Unit::one()))
             } else {
@@ -622,13 +721,63 @@ impl<'a> Checked<'a> {
         }
     }
 
+    /// A formula of a claim, with the file's definitions expanded.
+    fn formula(&self, c: &ClaimSpec, field: &str, text: &str) -> Result<Expr, VerifyError> {
+        Ok(self.expand(&parse_formula(self.file, c, field, text)?))
+    }
+
+    /// The file's definitions expanded in `e`.
+    fn expand(&self, e: &Expr) -> Expr {
+        e.substitute(&|s: &str| self.defs.get(s).cloned())
+    }
+
     fn dimension(&self, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
         let f = self.file;
         let text = c.printed.as_deref().unwrap_or_default();
         let p = parse_formula(f, c, "printed", text)?;
         let want = Unit::parse(c.expect.as_deref().unwrap_or_default())
             .map_err(|m| claim_err(f, c, "expect", m))?;
+        // a definition the formula uses that has no unit of its own is named first
+        let bad_defs: Vec<String> = p
+            .symbols()
+            .iter()
+            .filter_map(|s| match self.def_units.get(s) {
+                Some(Err(e)) => Some(format!(
+                    "`{s}` (defined as `{}`) has no single unit: {e}",
+                    self.defs[s]
+                )),
+                _ => None,
+            })
+            .collect();
+        // the unit of every term of the top-level sum, so that the odd one is seen
+        let terms = || -> String {
+            top_terms(&p)
+                .iter()
+                .map(|t| match units::dimension(t, &self.unit_fn()) {
+                    Ok(u) if u == want => format!("`{t}`: {u}"),
+                    Ok(u) => format!("`{t}`: {u} (not {want})"),
+                    Err(units::DimError::Unknown(s)) if self.defs.contains_key(&s) => {
+                        format!("`{t}`: none (`{s}` has none)")
+                    }
+                    Err(e) => format!("`{t}`: none ({e})"),
+                })
+                .collect::<Vec<_>>()
+                .join("; ")
+        };
+        let several = top_terms(&p).len() > 1;
         let (verdict, detail) = match units::dimension(&p, &self.unit_fn()) {
+            _ if !bad_defs.is_empty() => (
+                Verdict::Fails,
+                format!(
+                    "{}{}",
+                    bad_defs.join("; "),
+                    if several {
+                        format!("; the terms: {}", terms())
+                    } else {
+                        String::new()
+                    }
+                ),
+            ),
             Ok(u) if u == want => (Verdict::Holds, format!("`{p}` is {u}, as expected")),
             Ok(u) => (
                 Verdict::Fails,
@@ -636,6 +785,10 @@ impl<'a> Checked<'a> {
                     "`{p}` is {u}, not {want} (expected `{}`)",
                     c.expect.as_deref().unwrap_or_default()
                 ),
+            ),
+            Err(e) if several => (
+                Verdict::Fails,
+                format!("no single unit: {e}; the terms: {}", terms()),
             ),
             Err(e) => (Verdict::Fails, format!("`{p}` has no single unit: {e}")),
         };
@@ -668,7 +821,7 @@ impl<'a> Checked<'a> {
                     .map(|(_, v)| Expr::Num(v.clone()))
             })
         };
-        let d = subst(&parse_formula(f, c, field, &text)?);
+        let d = subst(&self.formula(c, field, &text)?);
         let (Some(p), Some(mut d)) = (subst(printed).to_ratfunc(), d.to_ratfunc()) else {
             return Ok(None);
         };
@@ -689,7 +842,7 @@ impl<'a> Checked<'a> {
     fn identity(&self, c: &ClaimSpec, der: &mut Derivations) -> Result<Outcome, VerifyError> {
         let f = self.file;
         let printed_text = c.printed.as_deref().unwrap_or_default();
-        let printed = parse_formula(f, c, "printed", printed_text)?;
+        let printed = self.formula(c, "printed", printed_text)?;
         let derived_text = c.derived.as_deref().unwrap_or_default();
         let modes: Vec<Vec<(String, Q)>> = if c.modes.is_empty() {
             vec![vec![]]
@@ -704,6 +857,9 @@ impl<'a> Checked<'a> {
                 })
                 .collect()
         };
+        if let Some(o) = self.expo_identity(c, &printed, derived_text, der)? {
+            return Ok(o);
+        }
         let mut lines = Vec::new();
         let mut all_printed = true;
         let mut all_corrected = true;
@@ -734,8 +890,7 @@ impl<'a> Checked<'a> {
                         line.push_str(&format!("; derived/printed = {ratio}"));
                     }
                     if let Some(k) = &c.corrected {
-                        let ke = parse_formula(
-                            f,
+                        let ke = self.formula(
                             c,
                             "corrected",
                             &split_refs(k)
@@ -781,6 +936,105 @@ impl<'a> Checked<'a> {
         Ok(o)
     }
 
+    /// An identity whose derived side is an exponential polynomial in t (`@series.a1`): the
+    /// printed side is read as one too, and compared whole or, with `part` (`"t^2"`,
+    /// `"exp(-alpha*t)"`), that part's coefficient alone. `None` when `derived` is not such a
+    /// derivation.
+    fn expo_identity(
+        &self,
+        c: &ClaimSpec,
+        printed: &Expr,
+        derived_text: &str,
+        der: &Derivations,
+    ) -> Result<Option<Outcome>, VerifyError> {
+        use crate::algebra::expo::Expo;
+        let f = self.file;
+        let (text, refs) = split_refs(derived_text).map_err(|m| claim_err(f, c, "derived", m))?;
+        let Some(d) = refs.first().and_then(|r| der.expo(r)) else {
+            return Ok(None);
+        };
+        if refs.len() != 1 || text.trim() != refs[0].placeholder {
+            return Err(claim_err(
+                f,
+                c,
+                "derived",
+                format!(
+                    "`@{}` is an exponential polynomial: write it alone",
+                    refs[0].name
+                ),
+            ));
+        }
+        let t = c.variable.clone().unwrap_or_else(|| "t".into());
+        let p = printed.to_expo(&t).ok_or_else(|| {
+            claim_err(
+                f,
+                c,
+                "printed",
+                format!("not an exponential polynomial in {t} (sums of c {t}^k exp(-b {t}))"),
+            )
+        })?;
+        let coeff = |e: &Expo, key: &(crate::algebra::poly::Poly, u32)| {
+            e.parts()
+                .find(|(k, _)| *k == key)
+                .map(|(_, v)| v.clone())
+                .unwrap_or_else(RatFunc::zero)
+        };
+        let (verdict, detail) = match &c.part {
+            Some(sel) => {
+                let key = parse_formula(f, c, "part", sel)?
+                    .to_expo(&t)
+                    .filter(|e| e.len() == 1)
+                    .and_then(|e| e.parts().next().map(|(k, _)| k.clone()))
+                    .ok_or_else(|| {
+                        claim_err(
+                            f,
+                            c,
+                            "part",
+                            format!("`{sel}`: expected one part such as {t}^2 or exp(-alpha*{t})"),
+                        )
+                    })?;
+                let (dp, pp) = (coeff(&d, &key), coeff(&p, &key));
+                let diff = &dp - &pp;
+                if diff.is_zero() {
+                    (
+                        Verdict::Holds,
+                        format!("the {sel} part: printed = derived = {dp}"),
+                    )
+                } else {
+                    (
+                        Verdict::Fails,
+                        format!(
+                            "the {sel} part: derived {dp}; printed {pp}; derived - printed = {diff}"
+                        ),
+                    )
+                }
+            }
+            None => {
+                let diff = &d - &p;
+                if diff.is_zero() {
+                    (
+                        Verdict::Holds,
+                        format!("printed = derived = {}", d.to_text()),
+                    )
+                } else {
+                    (
+                        Verdict::Fails,
+                        format!("derived - printed = {}", diff.to_text()),
+                    )
+                }
+            }
+        };
+        let mut o = outcome(f, c, verdict, detail);
+        o.extra_md = Some(format!(
+            "Kind `identity` (exponential polynomials in {t}). Printed: `{printed}`; derived: `{derived_text}`{}.",
+            c.part
+                .as_ref()
+                .map(|p| format!("; part `{p}`"))
+                .unwrap_or_default()
+        ));
+        Ok(Some(o))
+    }
+
     /// A non-rational identity (sqrt, exp of a non-linear argument, rational powers) compared in
     /// `f64` at seeded random points, each symbol in [0.5, 2]: holds when every relative
     /// difference is below 1e-12.
@@ -800,7 +1054,7 @@ impl<'a> Checked<'a> {
                 "a derivation can be compared only with a rational printed form".into(),
             ));
         }
-        let d = parse_formula(f, c, "derived", derived_text)?;
+        let d = self.formula(c, "derived", derived_text)?;
         let mut syms = printed.symbols();
         syms.extend(d.symbols());
         syms.sort();
@@ -846,7 +1100,7 @@ impl<'a> Checked<'a> {
             .iter()
             .map(|s| parse_axis(s).map_err(|m| claim_err(f, c, "vary", m)))
             .collect::<Result<_, _>>()?;
-        let printed = parse_formula(f, c, "printed", c.printed.as_deref().unwrap_or_default())?;
+        let printed = self.formula(c, "printed", c.printed.as_deref().unwrap_or_default())?;
         let quantity = c.quantity.clone().unwrap_or_default();
         let rtol = c.rtol.unwrap_or(0.0);
         // the full grid, first axis slowest
@@ -995,8 +1249,10 @@ impl<'a> Checked<'a> {
         let f = self.file;
         let (label, base) = self.scene_table(c)?;
         let text = c.require.as_deref().unwrap_or_default();
-        let ineq: Inequality = expr::parse_inequality(text)
+        let mut ineq: Inequality = expr::parse_inequality(text)
             .map_err(|e| claim_err(f, c, "require", format!("`{text}`: {e}")))?;
+        ineq.lhs = self.expand(&ineq.lhs);
+        ineq.rhs = self.expand(&ineq.rhs);
         let dists: Vec<(String, Dist)> = c
             .sample
             .iter()
@@ -1091,6 +1347,18 @@ impl<'a> Checked<'a> {
                 .join(", ")
         ));
         Ok(o)
+    }
+}
+
+/// The terms of a top-level sum (`a + b - c` gives `a`, `b`, `c`).
+fn top_terms(e: &Expr) -> Vec<Expr> {
+    match e {
+        Expr::Bin(expr::Op::Add | expr::Op::Sub, a, b) => {
+            let mut v = top_terms(a);
+            v.extend(top_terms(b));
+            v
+        }
+        other => vec![other.clone()],
     }
 }
 

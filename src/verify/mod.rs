@@ -33,6 +33,10 @@ pub struct PaperClaims {
     /// The unit of every symbol a formula uses (`"N/m^1.5"`, `"1"`).
     #[serde(default)]
     pub symbols: BTreeMap<String, String>,
+    /// Named formulas (`A1 = "E*zeta*..."`), written once in the paper's notation and used by
+    /// name in the claims; their units follow from their formulas.
+    #[serde(default)]
+    pub definitions: BTreeMap<String, String>,
     /// The claims.
     pub claim: Vec<ClaimSpec>,
     /// Where the file was read from (scenes of generic claims are relative to it).

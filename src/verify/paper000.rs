@@ -108,65 +108,6 @@ pub fn check(
             ));
             o
         }
-        "operator-constant" => {
-            let op = ctx.operator();
-            let agrees = op.derived_constant == op.printed_constant;
-            let mut o = outcome(
-                paper,
-                c,
-                holds(agrees),
-                format!(
-                    "with the printed alpha, gamma the operator is c [1 + D/lambda][L(alpha) - L(gamma)] with derived c = {}, printed c = E zeta = {}; derived/printed = {}",
-                    op.derived_constant, op.printed_constant, op.ratio
-                ),
-            );
-            o.printed_latex = Some(format!("c = E\\zeta = {}", op.printed_constant.to_latex()));
-            o.derived_latex = Some(format!("c = {}", op.derived_constant.to_latex()));
-            o
-        }
-        "operator-elastic-limit" => {
-            let op = ctx.operator();
-            let printed_ok = op.printed_elastic == op.elastic;
-            let derived_ok = op.derived_elastic == op.elastic;
-            let mut o = outcome(
-                paper,
-                c,
-                holds(printed_ok),
-                format!(
-                    "at D = 0: printed operator gives {}, derived gives {} (E/(1-nu^2) = {}: {}); printed/elastic = {}",
-                    op.printed_elastic,
-                    op.derived_elastic,
-                    op.elastic,
-                    if derived_ok {
-                        "derived agrees"
-                    } else {
-                        "derived differs"
-                    },
-                    op.printed_elastic
-                        .div(&op.elastic)
-                        .map(|r| r.to_text())
-                        .unwrap_or_default()
-                ),
-            );
-            o.printed_latex = Some(op.printed_elastic.to_latex());
-            o.derived_latex = Some(op.derived_elastic.to_latex());
-            o
-        }
-        "operator-dimension" => {
-            let op = ctx.operator();
-            let ok = op.printed_dim == Ok(Dim::PRESSURE);
-            outcome(
-                paper,
-                c,
-                holds(ok),
-                format!(
-                    "dimension of the printed operator: {}; of the derived one: {}; a modulus is {}",
-                    dim_text(&op.printed_dim),
-                    dim_text(&op.derived_dim),
-                    Dim::PRESSURE
-                ),
-            )
-        }
         "operator-growing-mode" => {
             // alpha as printed, as a function of nu at lambda = 1: its sign over nu in (-1, 1/2)
             let op = ctx.operator();
@@ -196,37 +137,6 @@ pub fn check(
                     sample.map(|v| crate::cli::q_text(&v)).unwrap_or_default()
                 ),
             )
-        }
-        "airy" => {
-            let mut lines = Vec::new();
-            let mut all = true;
-            for [m, n] in modes(c) {
-                let g = ctx.galerkin(&c.id, m, n)?;
-                let ok = g.airy_derived == g.airy_printed;
-                all &= ok;
-                lines.push(format!(
-                    "({m},{n}): {} (derived coefficients of E~ f^2 cos(2 m pi x/a), cos(2 n pi y/b): {}, {}; printed {}, {})",
-                    if ok { "agrees" } else { "differs" },
-                    g.airy_derived.0,
-                    g.airy_derived.1,
-                    g.airy_printed.0,
-                    g.airy_printed.1
-                ));
-            }
-            outcome(paper, c, holds(all), lines.join("; "))
-        }
-        "load-sign" => {
-            let mut lines = Vec::new();
-            let mut all = true;
-            for [m, n] in modes(c) {
-                let g = ctx.galerkin(&c.id, m, n)?;
-                all &= g.load_sign == 1;
-                lines.push(format!(
-                    "({m},{n}): sin(m pi/2) sin(n pi/2) = {}",
-                    g.load_sign
-                ));
-            }
-            outcome(paper, c, holds(all), lines.join("; "))
         }
         "galerkin" => {
             let name = c
@@ -274,47 +184,6 @@ pub fn check(
                 o.derived_latex = Some(format!("{name}^{{({m},{n})}} = {d}"));
             }
             o
-        }
-        "eq15-dimensions" => {
-            let g = ctx.galerkin(&c.id, 1, 1)?;
-            let force = Ok(Dim::FORCE);
-            let mut bad_printed = Vec::new();
-            let mut bad_corrected = Vec::new();
-            for k in &g.coefficients {
-                if k.printed_term_dim != force {
-                    bad_printed.push(format!(
-                        "{} term: {}",
-                        k.name,
-                        dim_text(&k.printed_term_dim)
-                    ));
-                }
-                if k.corrected_term_dim != force {
-                    bad_corrected.push(format!(
-                        "{} term: {}",
-                        k.name,
-                        dim_text(&k.corrected_term_dim)
-                    ));
-                }
-            }
-            outcome(
-                paper,
-                c,
-                holds(bad_printed.is_empty()),
-                format!(
-                    "a force is {}; with the printed coefficients (16): {}; with the derived operator constant: {}",
-                    Dim::FORCE,
-                    if bad_printed.is_empty() {
-                        "every term is a force".to_string()
-                    } else {
-                        bad_printed.join(", ")
-                    },
-                    if bad_corrected.is_empty() {
-                        "every term is a force".to_string()
-                    } else {
-                        bad_corrected.join(", ")
-                    }
-                ),
-            )
         }
         "eq17-coefficient" => {
             let printed = galerkin::printed_16(1, 1);
@@ -371,44 +240,6 @@ pub fn check(
                     format!("differs for k in {}", failed.join(", "))
                 },
             )
-        }
-        "a1-part" => {
-            let part = c.part.clone().ok_or_else(|| bad("needs `part`"))?;
-            let (rate, k) = match part.as_str() {
-                "t4" => (Poly::zero(), 4),
-                "t3" => (Poly::zero(), 3),
-                "t2" => (Poly::zero(), 2),
-                "t1" => (Poly::zero(), 1),
-                "t0" => (Poly::zero(), 0),
-                "exp-alpha" => (Poly::sym("alpha"), 0),
-                "exp-gamma" => (Poly::sym("gamma"), 0),
-                _ => return Err(bad("part must be t0..t4, exp-alpha or exp-gamma")),
-            };
-            let (two, one, printed) = ctx.a1(&c.id)?.clone();
-            let pick = |e: &Expo| {
-                e.parts()
-                    .find(|((r, kk), _)| *r == rate && *kk == k)
-                    .map_or(RatFunc::zero(), |(_, v)| v.clone())
-            };
-            let (d2, d1, p) = (pick(&two), pick(&one), pick(&printed));
-            let ok = d2 == p;
-            let detail = if ok {
-                format!("derived (B = 2 z z') and printed agree: {p}")
-            } else {
-                format!(
-                    "derived with B = 2 z z': {d2}; with B = z z' as printed in (18): {d1}{}; printed: {p}; printed - derived(2zz) = {}",
-                    if d1 == p {
-                        " (the printed part matches this reading)"
-                    } else {
-                        ""
-                    },
-                    &p - &d2
-                )
-            };
-            let mut o = outcome(paper, c, holds(ok), detail);
-            o.printed_latex = Some(p.to_latex());
-            o.derived_latex = Some(d2.to_latex());
-            o
         }
         "a1-initial" => {
             let (two, _, printed) = ctx.a1(&c.id)?.clone();
