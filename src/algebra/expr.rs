@@ -37,7 +37,9 @@ use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::fmt;
 
 /// The functions a formula may call.
-pub const FUNCTIONS: &[&str] = &["sqrt", "exp", "ln", "sin", "cos", "tan", "abs"];
+pub const FUNCTIONS: &[&str] = &[
+    "sqrt", "exp", "ln", "sin", "cos", "tan", "abs", "ellipk", "ellipe",
+];
 
 /// A function of one argument.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -56,6 +58,10 @@ pub enum Func {
     Tan,
     /// Absolute value.
     Abs,
+    /// The complete elliptic integral of the first kind $K(k)$, modulus $k$ in [0, 1).
+    EllipK,
+    /// The complete elliptic integral of the second kind $E(k)$, modulus $k$ in [0, 1].
+    EllipE,
 }
 
 impl Func {
@@ -68,6 +74,8 @@ impl Func {
             "cos" => Func::Cos,
             "tan" => Func::Tan,
             "abs" => Func::Abs,
+            "ellipk" => Func::EllipK,
+            "ellipe" => Func::EllipE,
             _ => return None,
         })
     }
@@ -82,6 +90,8 @@ impl Func {
             Func::Cos => "cos",
             Func::Tan => "tan",
             Func::Abs => "abs",
+            Func::EllipK => "ellipk",
+            Func::EllipE => "ellipe",
         }
     }
 
@@ -94,8 +104,27 @@ impl Func {
             Func::Cos => x.cos(),
             Func::Tan => x.tan(),
             Func::Abs => x.abs(),
+            Func::EllipK => complete_elliptic(x).0,
+            Func::EllipE => complete_elliptic(x).1,
         }
     }
+}
+
+/// $K(k)$ and $E(k)$ for modulus `k` in [0, 1] (NaN outside), from Carlson's symmetric forms
+/// (the `ellip` crate) with the complementary parameter $m_c = (1-k)(1+k)$: forming $m = k^2$
+/// near $k = 1$ would lose the digits that matter.
+pub fn complete_elliptic(k: f64) -> (f64, f64) {
+    if !(0.0..=1.0).contains(&k.abs()) {
+        return (f64::NAN, f64::NAN);
+    }
+    let mc = (1.0 - k) * (1.0 + k);
+    // K = R_F(0, mc, 1), E = R_F(0, mc, 1) - k^2 R_D(0, mc, 1)/3
+    let rf = ellip::elliprf(0.0, mc, 1.0).unwrap_or(f64::INFINITY);
+    let rd = ellip::elliprd(0.0, mc, 1.0).unwrap_or(f64::INFINITY);
+    if mc <= 0.0 {
+        return (f64::INFINITY, 1.0);
+    }
+    (rf, rf - k * k * rd / 3.0)
 }
 
 /// A binary operator.

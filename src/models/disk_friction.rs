@@ -10,11 +10,7 @@
 
 /// $K(k)$ and $E(k)$ for modulus `k` in [0, 1].
 pub fn k_e(k: f64) -> (f64, f64) {
-    let mc = (1.0 - k) * (1.0 + k);
-    // K = R_F(0, mc, 1), E = R_F(0, mc, 1) - k^2 R_D(0, mc, 1)/3
-    let rf = ellip::elliprf(0.0, mc, 1.0).unwrap_or(f64::INFINITY);
-    let rd = ellip::elliprd(0.0, mc, 1.0).unwrap_or(f64::INFINITY);
-    (rf, rf - k * k * rd / 3.0)
+    crate::algebra::expr::complete_elliptic(k)
 }
 
 /// $f_1$, $f_2$, $f_3$ of (2.3).

@@ -2,13 +2,12 @@
 //! moment of a sliding and spinning disk by direct quadrature against (2.3).
 
 use super::{ClaimSpec, Outcome, PaperClaims, Verdict, VerifyError, holds, outcome};
-use crate::models::disk_friction::{Plate, force_moment_elliptic, friction, quadrature};
-use crate::report::svg::{Scale, Series};
+use crate::models::disk_friction::Plate;
+use crate::report::svg::Scale;
 
 /// Checks one claim of paper 001.
 pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
     let (verdict, detail) = match c.check.as_str() {
-        "disk-friction" => return disk_friction(paper, c),
         "disk-centre-linear" => return disk_centre_linear(paper, c),
         "disk-centre-solution" => return disk_centre_solution(paper, c),
         "disk-no-transverse" => return disk_no_transverse(paper, c),
@@ -90,36 +89,6 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
                 ),
             )
         }
-        "disk-linear" => {
-            // the small-k limits of force and moment (f = 1, a = 1, unit normal load) by quadrature
-            let eps = 1e-3;
-            match c.part.as_deref() {
-                Some("a") => {
-                    // (2.4): V << a omega: m V' = -f V/Omega, J omega' = -2 a f/3
-                    let (f, m) = quadrature(eps, 1.0, 160, 1600);
-                    let (rf, rm) = (f.abs() / eps, m.abs() / (2.0 / 3.0));
-                    let ok = (rf - 1.0).abs() < 1e-4 && (rm - 1.0).abs() < 1e-4;
-                    (
-                        if ok { Verdict::Holds } else { Verdict::Fails },
-                        format!(
-                            "at V/Omega = {eps:e}: |F|/(f V/Omega) = {rf:.6}, |M|/(2 f a/3) = {rm:.6}; so dV/dOmega = (mu/2) V/Omega and V = V-(omega/omega-)^(mu/2) as printed"
-                        ),
-                    )
-                }
-                _ => {
-                    // (2.5): V >> a omega: m V' = -f, J omega' = -(5/6) f a Omega/V (printed)
-                    let (f, m) = quadrature(1.0, eps, 160, 1600);
-                    let (rf, coef) = (f.abs(), m.abs() / eps);
-                    let ok = (rf - 1.0).abs() < 1e-4 && (coef - 5.0 / 6.0).abs() < 1e-4;
-                    (
-                        if ok { Verdict::Holds } else { Verdict::Fails },
-                        format!(
-                            "at Omega/V = {eps:e}: |F|/f = {rf:.6}; |M|/(f a Omega/V) = {coef:.6} against the printed 5/6 = 0.833333 (the first-order expansion of the direction field gives 1/4: M = -f a (Omega/V) int x^2 dA/(pi a^4) = -f a Omega/(4V)); with 1/4, dV/dOmega = (4 mu/3) V/Omega and V = V-(omega/omega-)^(4 mu/3), where the printed (2.5) has exponent 'mu/s'"
-                        ),
-                    )
-                }
-            }
-        }
         other => {
             return Err(VerifyError::BadClaim {
                 id: c.id.clone(),
@@ -137,130 +106,6 @@ fn integration_failed(c: &ClaimSpec, e: crate::integrate::IntegrateError) -> Ver
     }
 }
 
-/// (2.3): force and moment of a uniformly pressed disk by quadrature about the instantaneous
-/// centre (exact in r, adaptive in angle) against the elliptic closed forms, with the
-/// two-dimensional grid quadrature as a second, independent method.
-fn disk_friction(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
-    let mut ks: Vec<f64> = vec![0.0, 1e-8, 1e-4, 0.01];
-    ks.extend((1..=19).map(|i| 0.05 * i as f64));
-    ks.extend([
-        0.99,
-        0.999_999,
-        1.0 - 1e-12,
-        1.0,
-        1.0 + 1e-12,
-        1.01,
-        1.25,
-        1.5,
-        2.0,
-        3.0,
-        5.0,
-        10.0,
-        1e3,
-    ]);
-    let (mut worst, mut est): (f64, f64) = (0.0, 0.0);
-    let mut rows = Vec::new();
-    let (mut curves_q, mut curves_e) = ((Vec::new(), Vec::new()), (Vec::new(), Vec::new()));
-    for &k in &ks {
-        let r = friction([k, 0.0], 1.0, [0.0, 0.0], 1.0, 1e-14);
-        let (fq, mq) = (r.force[0].hypot(r.force[1]), -r.moment);
-        let (fe, me) = force_moment_elliptic(k);
-        let d = (fq - fe).abs().max((mq - me).abs());
-        worst = worst.max(d);
-        est = est.max(r.error);
-        if k <= 5.0 {
-            curves_q.0.push((k, fq));
-            curves_q.1.push((k, mq));
-            curves_e.0.push((k, fe));
-            curves_e.1.push((k, me));
-        }
-        if [
-            0.0,
-            1e-8,
-            0.25,
-            0.5,
-            0.75,
-            0.999_999,
-            1.0 - 1e-12,
-            1.0,
-            2.0,
-            10.0,
-        ]
-        .contains(&k)
-        {
-            rows.push(format!(
-                "| {k} | {fq:.15} | {fe:.15} | {mq:.15} | {me:.15} | {d:.1e} |"
-            ));
-        }
-    }
-    // the grid quadrature (Gauss-Legendre x midpoint about O) as a second method, with its error
-    // estimated by halving the grid
-    let (mut grid_worst, mut grid_err): (f64, f64) = (0.0, 0.0);
-    for k in [0.1, 0.5, 0.9, 1.5] {
-        let (v, w) = if k <= 1.0 { (k, 1.0) } else { (1.0, 1.0 / k) };
-        let (f1, m1) = quadrature(v, w, 160, 1600);
-        let (f2, m2) = quadrature(v, w, 80, 800);
-        let (fe, me) = force_moment_elliptic(k);
-        grid_worst = grid_worst
-            .max((f1.abs() - fe).abs())
-            .max((m1.abs() - me).abs());
-        grid_err = grid_err.max((f1 - f2).abs()).max((m1 - m2).abs());
-    }
-    let dense: Vec<f64> = (0..=100).map(|i| 0.05 * i as f64).collect();
-    let line = |pick: fn((f64, f64)) -> f64| -> Vec<(f64, f64)> {
-        dense
-            .iter()
-            .map(|&k| (k, pick(force_moment_elliptic(k))))
-            .collect()
-    };
-    let (fl, ml) = (line(|x| x.0), line(|x| x.1));
-    let svg = crate::report::svg::scatter_with_lines(
-        "Disk under uniform pressure: friction force and moment against k = V/(a omega)",
-        "k = V/(a omega)",
-        "F/(f N), M/(f N a)",
-        &[
-            Series {
-                name: "F, elliptic (2.3)",
-                points: fl,
-            },
-            Series {
-                name: "M, elliptic (2.3)",
-                points: ml,
-            },
-        ],
-        &[
-            Series {
-                name: "F, quadrature",
-                points: curves_q.0,
-            },
-            Series {
-                name: "M, quadrature",
-                points: curves_q.1,
-            },
-        ],
-    );
-    let _ = curves_e;
-    let table = format!(
-        "| k = V/(a omega) | F/(fN) quadrature | F/(fN) elliptic | M/(fNa) quadrature | M/(fNa) elliptic | difference |\n|---|---|---|---|---|---|\n{}",
-        rows.join("\n")
-    );
-    let mut o = outcome(
-        paper,
-        c,
-        holds(worst <= 1e-10),
-        format!(
-            "F and M of a disk under uniform pressure, by quadrature in polar coordinates about the instantaneous centre (radial integrals exact, angle adaptive Gauss-Legendre to 1e-14, estimated error {est:.1e}) against the closed forms F = (4/(3 pi)) k f1(k), M = (4/(9 pi)) f3(k) (k <= 1) and F = (4/(3 pi)) f1(k1), M = (4/(9 pi)) f2(k1) (k1 = 1/k), whose ratios are (2.3)'s (3/a) k f1/f3 and (3/a) f1/f2; K, E from Carlson's R_F, R_D with m_c = (1-k)(1+k), series below k = 0.25; {} values of k from 0 to 1e3 including 1 - 1e-12, 1, 1 + 1e-12: max difference {worst:.1e}. Second method, a Gauss-Legendre x midpoint grid about the centre: within {grid_worst:.1e} (its own error by halving the grid: {grid_err:.1e})",
-            ks.len()
-        ),
-    )
-    .with_plot("force and moment against k", "001_disk_friction.svg".into(), svg);
-    o.extra_md = Some(format!("{table}\n\n{}", o.extra_md.unwrap_or_default()));
-    Ok(o)
-}
-
-/// (2.8)'s coefficients: derived from the plate model (a = 1) by differentiating dV/dOmega at
-/// V/Omega = 0 (central differences), against the closed forms that follow from the pure-spin
-/// force and moment (4 f c/(3a) and 2 f a/3 - 4 f c^2/(3a)) and their first derivatives in q.
 fn derived_delta_nu(zeta: f64, theta: f64) -> (f64, f64) {
     let s = 2.0 * zeta * zeta - 1.0;
     (
