@@ -521,6 +521,23 @@ impl<'a> Checked<'a> {
         let f = self.file;
         match c.kind.as_str() {
             "check" => {
+                // a named check may still read its printed formulas from the file
+                for (i, row) in c.printed_matrix.iter().enumerate() {
+                    for (j, text) in row.iter().enumerate() {
+                        let field = format!("printed_matrix[{i}][{j}]");
+                        let e = parse_formula(f, c, &field, text)?;
+                        self.units_of(c, &field, &e, &[])?;
+                    }
+                }
+                if let Some(text) = &c.printed {
+                    let e = parse_formula(f, c, "printed", text)?;
+                    self.units_of(c, "printed", &e, &[])?;
+                }
+                for (i, text) in c.printed_equations.iter().enumerate() {
+                    let field = format!("printed_equations[{i}]");
+                    let e = parse_formula(f, c, &field, text)?;
+                    self.units_of(c, &field, &e, &[])?;
+                }
                 if c.check.is_empty() {
                     return Err(claim_err(
                         f,
@@ -950,21 +967,43 @@ impl<'a> Checked<'a> {
         use crate::algebra::expo::Expo;
         let f = self.file;
         let (text, refs) = split_refs(derived_text).map_err(|m| claim_err(f, c, "derived", m))?;
-        let Some(d) = refs.first().and_then(|r| der.expo(r)) else {
+        let Some(d_ref) = refs.first().and_then(|r| der.expo(r)) else {
             return Ok(None);
         };
-        if refs.len() != 1 || text.trim() != refs[0].placeholder {
+        // the derivation enters as one added term (`v0*t + @series.a1`); the rest is a formula
+        let placeholder = Expr::sym(&refs[0].placeholder);
+        let whole = self.formula(c, "derived", &text)?;
+        let terms = top_terms(&whole);
+        let added_once = refs.len() == 1
+            && terms.iter().filter(|t| **t == placeholder).count() == 1
+            && !whole.symbols().is_empty()
+            && !matches!(&whole, Expr::Bin(expr::Op::Sub, _, b) if **b == placeholder);
+        if !added_once {
             return Err(claim_err(
                 f,
                 c,
                 "derived",
                 format!(
-                    "`@{}` is an exponential polynomial: write it alone",
-                    refs[0].name
+                    "`@{}` is an exponential polynomial: write it alone or as an added term (`v0*t + @{}`)",
+                    refs[0].name, refs[0].name
                 ),
             ));
         }
         let t = c.variable.clone().unwrap_or_else(|| "t".into());
+        let rest = whole
+            .substitute(&|s: &str| {
+                (s == refs[0].placeholder).then(|| Expr::Num(Q::from_integer(0.into())))
+            })
+            .to_expo(&t)
+            .ok_or_else(|| {
+                claim_err(
+                    f,
+                    c,
+                    "derived",
+                    format!("not an exponential polynomial in {t}"),
+                )
+            })?;
+        let d = &rest + &d_ref;
         let p = printed.to_expo(&t).ok_or_else(|| {
             claim_err(
                 f,
@@ -1017,9 +1056,18 @@ impl<'a> Checked<'a> {
                         format!("printed = derived = {}", d.to_text()),
                     )
                 } else {
+                    let mut keys: Vec<_> =
+                        d.parts().chain(p.parts()).map(|(k, _)| k.clone()).collect();
+                    keys.sort();
+                    keys.dedup();
                     (
                         Verdict::Fails,
-                        format!("derived - printed = {}", diff.to_text()),
+                        format!(
+                            "{} of {} parts (powers of {t} times exponentials) differ; derived - printed = {}",
+                            diff.len(),
+                            keys.len(),
+                            diff.to_text()
+                        ),
                     )
                 }
             }

@@ -63,6 +63,12 @@ pub struct ClaimSpec {
     /// The formula as printed, in the paper's notation (`identity`, `dimension`, `model`).
     #[serde(default)]
     pub printed: Option<String>,
+    /// Printed equations (their right-hand sides, in order), for checks of systems of equations.
+    #[serde(default)]
+    pub printed_equations: Vec<String>,
+    /// A printed matrix (rows of formulas), for checks of matrix equations.
+    #[serde(default)]
+    pub printed_matrix: Vec<Vec<String>>,
     /// `identity`: the derived side, a formula or `@name[k=v,...]` (a derivation of the algebra).
     #[serde(default)]
     pub derived: Option<String>,

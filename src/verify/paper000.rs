@@ -6,19 +6,17 @@
 use super::{ClaimSpec, Outcome, PaperClaims, VerifyError, holds, outcome};
 use crate::algebra::dims::{self, Dim};
 use crate::algebra::expo::Expo;
-use crate::algebra::galerkin::{self, Galerkin};
+use crate::algebra::galerkin;
 use crate::algebra::identity21;
 use crate::algebra::operator::{self, OperatorCheck};
 use crate::algebra::poly::{Poly, Sym, q};
 use crate::algebra::ratfunc::RatFunc;
 use crate::algebra::series::{self, SeriesParams, Viscous};
-use std::collections::BTreeMap;
 
 /// Expensive exact results shared between claims.
 pub struct Context {
     root: std::path::PathBuf,
     operator: Option<OperatorCheck>,
-    galerkin: BTreeMap<(u32, u32), Galerkin>,
     a1: Option<(Expo, Expo, Expo)>,
 }
 
@@ -28,24 +26,12 @@ impl Context {
         Context {
             root: root.to_path_buf(),
             operator: None,
-            galerkin: BTreeMap::new(),
             a1: None,
         }
     }
 
     fn operator(&mut self) -> &OperatorCheck {
         self.operator.get_or_insert_with(operator::check)
-    }
-
-    fn galerkin(&mut self, id: &str, m: u32, n: u32) -> Result<&Galerkin, VerifyError> {
-        if let std::collections::btree_map::Entry::Vacant(slot) = self.galerkin.entry((m, n)) {
-            let g = galerkin::derive(m, n).map_err(|source| VerifyError::Algebra {
-                id: id.into(),
-                source,
-            })?;
-            slot.insert(g);
-        }
-        Ok(&self.galerkin[&(m, n)])
     }
 
     /// (derived a1 with B = 2zz', derived a1 with B = zz', printed a1), all symbolic.
@@ -68,14 +54,6 @@ fn dim_text(d: &Result<Dim, dims::DimIssue>) -> String {
     match d {
         Ok(d) => d.to_string(),
         Err(e) => format!("inconsistent ({e})"),
-    }
-}
-
-fn modes(c: &ClaimSpec) -> Vec<[u32; 2]> {
-    if c.modes.is_empty() {
-        vec![[1, 1]]
-    } else {
-        c.modes.clone()
     }
 }
 
@@ -137,53 +115,6 @@ pub fn check(
                     sample.map(|v| crate::cli::q_text(&v)).unwrap_or_default()
                 ),
             )
-        }
-        "galerkin" => {
-            let name = c
-                .coefficient
-                .clone()
-                .ok_or_else(|| bad("needs `coefficient`"))?;
-            let mut lines = Vec::new();
-            let mut all = true;
-            let mut latex = None;
-            for [m, n] in modes(c) {
-                let g = ctx.galerkin(&c.id, m, n)?;
-                let k = g
-                    .coefficients
-                    .iter()
-                    .find(|k| k.name == name)
-                    .ok_or_else(|| bad("unknown coefficient"))?;
-                all &= k.agrees;
-                let mut line = format!(
-                    "({m},{n}): {}; derived {}; printed {}",
-                    if k.agrees { "agrees" } else { "differs" },
-                    k.derived,
-                    k.printed
-                );
-                if !k.agrees
-                    && let Some(r) = k.derived.div(&k.printed)
-                {
-                    line.push_str(&format!("; derived/printed = {r}"));
-                }
-                if k.derived_corrected_operator != k.derived {
-                    line.push_str(&format!(
-                        "; with the derived operator constant: {} (term dimension {}, printed term {})",
-                        k.derived_corrected_operator,
-                        dim_text(&k.corrected_term_dim),
-                        dim_text(&k.printed_term_dim)
-                    ));
-                }
-                lines.push(line);
-                if latex.is_none() {
-                    latex = Some((k.printed.to_latex(), k.derived.to_latex(), m, n));
-                }
-            }
-            let mut o = outcome(paper, c, holds(all), lines.join("; "));
-            if let Some((p, d, m, n)) = latex {
-                o.printed_latex = Some(format!("{name}^{{({m},{n})}} = {p}"));
-                o.derived_latex = Some(format!("{name}^{{({m},{n})}} = {d}"));
-            }
-            o
         }
         "eq17-coefficient" => {
             let printed = galerkin::printed_16(1, 1);
@@ -259,20 +190,6 @@ pub fn check(
                 format!(
                     "printed (22): {}; the derived a1 meets all three: {derived_ok}",
                     vals.join(", ")
-                ),
-            )
-        }
-        "eq23-sum" => {
-            let (two, _, printed) = ctx.a1(&c.id)?.clone();
-            let cmp = series::compare_parts(&two, &printed);
-            let differ = cmp.iter().filter(|x| !x.agrees).count();
-            outcome(
-                paper,
-                c,
-                holds(differ == 0),
-                format!(
-                    "(23) is a0 + a1 with a1 as printed in (22): {differ} of {} parts of a1 differ from the derived a1 (B = 2 z z'); see the (22) claims",
-                    cmp.len()
                 ),
             )
         }

@@ -87,6 +87,38 @@ fn billiard() -> (Matrix3<f64>, Matrix3<f64>, Matrix3<f64>, Matrix3<f64>, f64) {
     (b, ba, bt, bstar, r * r / rho2)
 }
 
+/// The values of the billiard configuration: m = 1, R = 1, rho^2 = 0.4 R^2.
+fn billiard_values(name: &str) -> Option<f64> {
+    match name {
+        "m" | "R" => Some(1.0),
+        "rho" => Some(0.4f64.sqrt()),
+        _ => None,
+    }
+}
+
+/// The claim's `printed_matrix`, each formula evaluated with `values`.
+fn printed_matrix(
+    c: &ClaimSpec,
+    values: &dyn Fn(&str) -> Option<f64>,
+) -> Result<Matrix3<f64>, VerifyError> {
+    let bad = |m: String| VerifyError::BadClaim {
+        id: c.id.clone(),
+        message: m,
+    };
+    if c.printed_matrix.len() != 3 || c.printed_matrix.iter().any(|r| r.len() != 3) {
+        return Err(bad("printed_matrix must be 3 rows of 3 formulas".into()));
+    }
+    let mut m = Matrix3::zeros();
+    for (i, row) in c.printed_matrix.iter().enumerate() {
+        for (j, text) in row.iter().enumerate() {
+            let e = crate::algebra::expr::parse(text)
+                .map_err(|e| bad(format!("printed_matrix[{i}][{j}]: {e}")))?;
+            m[(i, j)] = e.eval(values).map_err(bad)?;
+        }
+    }
+    Ok(m)
+}
+
 /// (3.13): $V_1' = 2/m$, $r' = -(\mu/m)(6 + \sin^2\varphi)$, $r\varphi' = -(\mu/2m)\sin 2\varphi$.
 struct Coriolis {
     mu: f64,
@@ -196,25 +228,14 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
         "billiard-matrix" => {
             let (b, ba, bt, bs, k) = billiard();
             let which = c.part.clone().ok_or_else(|| bad("needs `part`"))?;
-            let (derived, printed) = match which.as_str() {
-                "B" => (
-                    b,
-                    Matrix3::from_diagonal(&Vector3::new(1.0, k + 1.0, k + 1.0)) * 2.0,
-                ),
-                "BA" => (
-                    ba,
-                    Matrix3::from_diagonal(&Vector3::new(k + 1.0, k + 1.0, 1.0)) * 2.0,
-                ),
-                "Btilde" => (
-                    bt,
-                    Matrix3::new(1.0, 0.0, -k, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0) * 2.0,
-                ),
-                "Bstar" => (
-                    bs,
-                    Matrix3::from_diagonal(&Vector3::new(2.0, 2.0 * k + 2.0, 2.0 * k + 1.0)) * 2.0,
-                ),
+            let derived = match which.as_str() {
+                "B" => b,
+                "BA" => ba,
+                "Btilde" => bt,
+                "Bstar" => bs,
                 _ => return Err(bad("part must be B, BA, Btilde or Bstar")),
             };
+            let printed = printed_matrix(c, &billiard_values)?;
             let same = (derived - printed).abs().max() <= 1e-12 * printed.abs().max();
             let ratio = printed.abs().max() / derived.abs().max();
             outcome(
@@ -234,10 +255,12 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
             )
         }
         "billiard-312" => {
-            // m V' = m B* F with F = (1, -mu sin phi, -mu cos phi): coefficients of (3.12)
+            // m V' = m B* F with F = (1, -mu sin phi, -mu cos phi): the coefficients of (3.12) are
+            // the diagonal of m B*; the printed ones are read from the claim
             let (_, _, _, bs, _) = billiard();
             let derived = [bs[(0, 0)], bs[(1, 1)], bs[(2, 2)]];
-            let printed = [2.0, 7.0, 7.0];
+            let pm = printed_matrix(c, &billiard_values)?;
+            let printed = [pm[(0, 0)], pm[(1, 1)], pm[(2, 2)]];
             let diffs: Vec<String> = (0..3)
                 .filter(|i| (derived[*i] - printed[*i]).abs() > 1e-12)
                 .map(|i| {
@@ -254,10 +277,13 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
                 c,
                 holds(diffs.is_empty()),
                 format!(
-                    "m V' = m B* F with B* from (3.8): coefficients ({:.4}, {:.4}, {:.4}) against the printed (2, 7, 7){}; the polar form that follows (3.12) in the paper uses 6",
+                    "m V' = m B* F with B* from (3.8): coefficients ({:.4}, {:.4}, {:.4}) against the printed ({}, {}, {}){}; the polar form that follows (3.12) in the paper uses 6",
                     derived[0],
                     derived[1],
                     derived[2],
+                    printed[0],
+                    printed[1],
+                    printed[2],
                     if diffs.is_empty() {
                         String::new()
                     } else {
@@ -870,15 +896,37 @@ fn rolling_rates(phi: f64, xi: f64, mu: f64, mu_star: f64) -> [f64; 4] {
     ]
 }
 
-/// (4.6) as printed (the third equation read as m r*' = ...).
-fn rolling_printed(phi: f64, xi: f64, mu: f64, mu_star: f64) -> [f64; 4] {
-    let (sp, cp, sx, cx) = (phi.sin(), phi.cos(), xi.sin(), xi.cos());
-    [
-        -mu * (6.0 + sp * sp) + mu * mu_star * cp * (2.5 * cx * cp - sx * sp),
-        -mu * sp * cp - mu * mu_star * cp * (2.5 * cx * sp + sx * cp),
-        7.0 * mu_star * mu * cp - cx - mu * (2.5 * cx * cp - sx * sp),
-        sx + mu * (cx * sp + 2.5 * sx * cp),
-    ]
+/// The claim's `printed_equations` (the right-hand sides of (4.6), in m = 1 units) at a state.
+fn rolling_printed(
+    c: &ClaimSpec,
+    phi: f64,
+    xi: f64,
+    mu: f64,
+    mu_star: f64,
+) -> Result<[f64; 4], VerifyError> {
+    let bad = |m: String| VerifyError::BadClaim {
+        id: c.id.clone(),
+        message: m,
+    };
+    if c.printed_equations.len() != 4 {
+        return Err(bad(
+            "printed_equations must give the four right-hand sides of (4.6)".into(),
+        ));
+    }
+    let values = |s: &str| match s {
+        "phi" => Some(phi),
+        "xi" => Some(xi),
+        "mu" => Some(mu),
+        "mu_star" => Some(mu_star),
+        _ => None,
+    };
+    let mut out = [0.0; 4];
+    for (k, text) in c.printed_equations.iter().enumerate() {
+        let e = crate::algebra::expr::parse(text)
+            .map_err(|e| bad(format!("printed_equations[{k}]: {e}")))?;
+        out[k] = e.eval(&values).map_err(bad)?;
+    }
+    Ok(out)
 }
 
 fn rolling_ball(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
@@ -892,7 +940,7 @@ fn rolling_ball(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyErr
                 let (phi, xi) = (rng.range(1.7, 3.1), rng.range(-3.1, 3.1));
                 let (mu, ms) = (rng.range(0.01, 1.0), rng.range(0.01, 1.0));
                 let d = rolling_rates(phi, xi, mu, ms);
-                let p = rolling_printed(phi, xi, mu, ms);
+                let p = rolling_printed(c, phi, xi, mu, ms)?;
                 for k in 0..4 {
                     let e = (d[k] - p[k]).abs() / d[k].abs().max(1e-3);
                     if e > worst[k] {
