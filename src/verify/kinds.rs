@@ -967,43 +967,51 @@ impl<'a> Checked<'a> {
         use crate::algebra::expo::Expo;
         let f = self.file;
         let (text, refs) = split_refs(derived_text).map_err(|m| claim_err(f, c, "derived", m))?;
-        let Some(d_ref) = refs.first().and_then(|r| der.expo(r)) else {
+        let expo_ref = refs.first().and_then(|r| der.expo(r));
+        if expo_ref.is_none() && c.taylor.is_none() {
             return Ok(None);
-        };
-        // the derivation enters as one added term (`v0*t + @series.a1`); the rest is a formula
-        let placeholder = Expr::sym(&refs[0].placeholder);
-        let whole = self.formula(c, "derived", &text)?;
-        let terms = top_terms(&whole);
-        let added_once = refs.len() == 1
-            && terms.iter().filter(|t| **t == placeholder).count() == 1
-            && !whole.symbols().is_empty()
-            && !matches!(&whole, Expr::Bin(expr::Op::Sub, _, b) if **b == placeholder);
-        if !added_once {
-            return Err(claim_err(
-                f,
-                c,
-                "derived",
-                format!(
-                    "`@{}` is an exponential polynomial: write it alone or as an added term (`v0*t + @{}`)",
-                    refs[0].name, refs[0].name
-                ),
-            ));
         }
         let t = c.variable.clone().unwrap_or_else(|| "t".into());
-        let rest = whole
-            .substitute(&|s: &str| {
-                (s == refs[0].placeholder).then(|| Expr::Num(Q::from_integer(0.into())))
-            })
-            .to_expo(&t)
-            .ok_or_else(|| {
-                claim_err(
-                    f,
-                    c,
-                    "derived",
-                    format!("not an exponential polynomial in {t}"),
-                )
-            })?;
-        let d = &rest + &d_ref;
+        let whole = self.formula(c, "derived", &text)?;
+        let not_expo = |field: &str| {
+            claim_err(
+                f,
+                c,
+                field,
+                format!("not an exponential polynomial in {t} (sums of c {t}^k exp(-b {t}))"),
+            )
+        };
+        let d = match expo_ref {
+            None => whole.to_expo(&t).ok_or_else(|| not_expo("derived"))?,
+            Some(d_ref) => {
+                // the derivation enters as one added term (`v0*t + @series.a1`); the rest is a
+                // formula
+                let placeholder = Expr::sym(&refs[0].placeholder);
+                let added: Vec<bool> = signed_terms(&whole, true)
+                    .into_iter()
+                    .filter(|(_, e)| *e == placeholder)
+                    .map(|(plus, _)| plus)
+                    .collect();
+                if refs.len() != 1 || added != [true] {
+                    return Err(claim_err(
+                        f,
+                        c,
+                        "derived",
+                        format!(
+                            "`@{}` is an exponential polynomial: write it alone or as an added term (`v0*t + @{}`)",
+                            refs[0].name, refs[0].name
+                        ),
+                    ));
+                }
+                let rest = whole
+                    .substitute(&|s: &str| {
+                        (s == refs[0].placeholder).then(|| Expr::Num(Q::from_integer(0.into())))
+                    })
+                    .to_expo(&t)
+                    .ok_or_else(|| not_expo("derived"))?;
+                &rest + &d_ref
+            }
+        };
         let p = printed.to_expo(&t).ok_or_else(|| {
             claim_err(
                 f,
@@ -1019,6 +1027,25 @@ impl<'a> Checked<'a> {
                 .unwrap_or_else(RatFunc::zero)
         };
         let (verdict, detail) = match &c.part {
+            _ if c.taylor.is_some() => {
+                let n = c.taylor.unwrap_or(0);
+                let mut lines = Vec::new();
+                let mut all = true;
+                for k in 0..n {
+                    let (dk, pk) = (d.taylor_coeff(k), p.taylor_coeff(k));
+                    let same = (&dk - &pk).is_zero();
+                    all &= same;
+                    lines.push(if same {
+                        format!("coefficient of {t}^{k} at 0: printed = derived = {dk}")
+                    } else {
+                        format!("coefficient of {t}^{k} at 0: derived {dk}, printed {pk}")
+                    });
+                }
+                (
+                    if all { Verdict::Holds } else { Verdict::Fails },
+                    lines.join("; "),
+                )
+            }
             Some(sel) => {
                 let key = parse_formula(f, c, "part", sel)?
                     .to_expo(&t)
@@ -1395,6 +1422,24 @@ impl<'a> Checked<'a> {
                 .join(", ")
         ));
         Ok(o)
+    }
+}
+
+/// The terms of a top-level sum with their signs (`a - (b - c)` gives `+a`, `-b`, `+c`).
+fn signed_terms(e: &Expr, plus: bool) -> Vec<(bool, Expr)> {
+    match e {
+        Expr::Bin(expr::Op::Add, a, b) => {
+            let mut v = signed_terms(a, plus);
+            v.extend(signed_terms(b, plus));
+            v
+        }
+        Expr::Bin(expr::Op::Sub, a, b) => {
+            let mut v = signed_terms(a, plus);
+            v.extend(signed_terms(b, !plus));
+            v
+        }
+        Expr::Neg(a) => signed_terms(a, !plus),
+        other => vec![(plus, other.clone())],
     }
 }
 

@@ -76,6 +76,10 @@ pub struct ClaimSpec {
     /// verdict is `holds-with-correction`.
     #[serde(default)]
     pub corrected: Option<String>,
+    /// `identity` of exponential polynomials: compare the first `taylor` Taylor coefficients at
+    /// t = 0 (the values of the function and its derivatives there) instead of the functions.
+    #[serde(default)]
+    pub taylor: Option<u32>,
     /// `identity`: the time symbol of an exponential polynomial (default `t`).
     #[serde(default)]
     pub variable: Option<String>,

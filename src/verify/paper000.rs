@@ -11,13 +11,11 @@ use crate::algebra::identity21;
 use crate::algebra::operator::{self, OperatorCheck};
 use crate::algebra::poly::{Poly, Sym, q};
 use crate::algebra::ratfunc::RatFunc;
-use crate::algebra::series::{self, SeriesParams, Viscous};
 
 /// Expensive exact results shared between claims.
 pub struct Context {
     root: std::path::PathBuf,
     operator: Option<OperatorCheck>,
-    a1: Option<(Expo, Expo, Expo)>,
 }
 
 impl Context {
@@ -26,27 +24,11 @@ impl Context {
         Context {
             root: root.to_path_buf(),
             operator: None,
-            a1: None,
         }
     }
 
     fn operator(&mut self) -> &OperatorCheck {
         self.operator.get_or_insert_with(operator::check)
-    }
-
-    /// (derived a1 with B = 2zz', derived a1 with B = zz', printed a1), all symbolic.
-    fn a1(&mut self, id: &str) -> Result<&(Expo, Expo, Expo), VerifyError> {
-        if self.a1.is_none() {
-            let p = SeriesParams::symbolic();
-            let two = series::adomian_terms(&p, 1, Viscous::TwoZZ).remove(1);
-            let one = series::adomian_terms(&p, 1, Viscous::ZZ).remove(1);
-            let printed = series::printed_a1(&p).map_err(|source| VerifyError::Algebra {
-                id: id.into(),
-                source,
-            })?;
-            self.a1 = Some((two, one, printed));
-        }
-        Ok(self.a1.as_ref().expect("just set"))
     }
 }
 
@@ -170,27 +152,6 @@ pub fn check(
                 } else {
                     format!("differs for k in {}", failed.join(", "))
                 },
-            )
-        }
-        "a1-initial" => {
-            let (two, _, printed) = ctx.a1(&c.id)?.clone();
-            let derived_ok = (0..=2).all(|j| two.taylor_coeff(j).is_zero());
-            let vals: Vec<String> = (0..=2)
-                .map(|j| {
-                    let v = printed.taylor_coeff(j);
-                    let fact = [1, 1, 2][j as usize];
-                    format!("a1^({j})(0) = {}", v.scale(&q(fact, 1)))
-                })
-                .collect();
-            let ok = (0..=2).all(|j| printed.taylor_coeff(j).is_zero());
-            outcome(
-                paper,
-                c,
-                holds(ok),
-                format!(
-                    "printed (22): {}; the derived a1 meets all three: {derived_ok}",
-                    vals.join(", ")
-                ),
             )
         }
         "series-vs-numerics" => {
