@@ -176,6 +176,12 @@ fn run(args: Args) -> Result<bool> {
         return Ok(true);
     }
     let mut files = report::render(&papers, &outcomes);
+    // the coverage table opens the index, after its first paragraphs
+    let coverage = verify::coverage::table(&verify::coverage::compute(&papers), &outcomes);
+    if let Some((_, readme)) = files.iter_mut().find(|(n, _)| n == "README.md") {
+        let at = readme.find("| claim | paper |").unwrap_or(readme.len());
+        readme.insert_str(at, &format!("{coverage}## Every claim\n\n"));
+    }
     if !custom {
         if progress {
             eprintln!("verify: work-precision diagrams ...");

@@ -97,19 +97,30 @@ pub fn render(papers: &[PaperClaims], outcomes: &[Outcome]) -> Vec<(String, Stri
         "Also: [what accuracy costs in time](accuracy_cost.md) (work-precision of every model and method) and \
          [performance against SciPy](performance.md).\n\n",
     );
-    let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
-    for o in outcomes {
-        *counts.entry(o.verdict.as_str()).or_default() += 1;
-    }
-    readme.push_str(&format!(
-        "{} claims: {}.\n\n",
-        outcomes.len(),
-        counts
+    // the papers' claims, and apart from them the solver robustness cases (hard.*)
+    let count = |hard: bool| {
+        let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
+        let mut n = 0;
+        for o in outcomes.iter().filter(|o| (o.paper == "hard") == hard) {
+            *counts.entry(o.verdict.as_str()).or_default() += 1;
+            n += 1;
+        }
+        let list = counts
             .iter()
             .map(|(k, v)| format!("{v} {k}"))
             .collect::<Vec<_>>()
-            .join(", ")
-    ));
+            .join(", ");
+        (n, list)
+    };
+    let (n_papers, papers_list) = count(false);
+    let (n_hard, hard_list) = count(true);
+    readme.push_str(&format!("{n_papers} claims of the papers: {papers_list}."));
+    if n_hard > 0 {
+        readme.push_str(&format!(
+            " Apart from them, {n_hard} solver robustness cases (`hard.*`): {hard_list}."
+        ));
+    }
+    readme.push_str("\n\n");
     let generic = outcomes
         .iter()
         .filter(|o| !o.kind.is_empty() && !o.kind.starts_with("check"))
