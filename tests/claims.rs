@@ -242,7 +242,7 @@ fn bad_claims_exit_2_naming_file_claim_and_key_and_write_nothing() {
         (
             "unknown kind",
             "[[claim]]\nid = \"t.bad\"\nequation = \"(1)\"\nquote = \"q\"\nkind = \"identiy\"\n".into(),
-            "claim t.bad: kind: unknown kind `identiy`; allowed: identity, dimension, model, bound, check",
+            "claim t.bad: kind: unknown kind `identiy`; allowed: identity, dimension, model, bound, probability, map, check",
         ),
         (
             "unknown derivation",
@@ -399,4 +399,112 @@ fn deep_nesting_is_an_error_not_a_stack_overflow() {
     assert!(parse(&s).is_err());
     let s = format!("x{}", "^x".repeat(5000));
     assert!(parse(&s).is_err());
+}
+
+#[test]
+fn clopper_pearson_matches_published_intervals() {
+    // 95 % exact intervals for n = 10, k = 0..10, as tabulated (e.g. R's binom.test; k = 0 and
+    // k = n have the closed forms 1 - 0.025^(1/10) = 0.3085 and 0.025^(1/10) = 0.6915)
+    let table = [
+        (0, 0.0, 0.30850),
+        (1, 0.00253, 0.44502),
+        (2, 0.02521, 0.55610),
+        (3, 0.06674, 0.65245),
+        (4, 0.12155, 0.73762),
+        (5, 0.18708, 0.81292),
+        (6, 0.26238, 0.87845),
+        (7, 0.34755, 0.93326),
+        (8, 0.44390, 0.97479),
+        (9, 0.55498, 0.99747),
+        (10, 0.69150, 1.0),
+    ];
+    for (k, lo, hi) in table {
+        let (l, h) = impactcheck::verify::kinds::clopper_pearson(k, 10, 0.95);
+        assert!(
+            (l - lo).abs() < 2e-5 && (h - hi).abs() < 2e-5,
+            "k = {k}: [{l}, {h}] against [{lo}, {hi}]"
+        );
+    }
+}
+
+/// The linear spring-dashpot scene of the repository beside a claims file.
+fn spring_claims(name: &str, body: &str) -> PathBuf {
+    let p = claims_file(name, body);
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/spring_dashpot.toml");
+    std::fs::copy(scene, p.parent().expect("dir").join("spring.toml")).expect("copy scene");
+    p
+}
+
+#[test]
+fn map_share_matches_the_closed_form_region() {
+    // e = exp(-zeta pi/sqrt(1 - zeta^2)) >= 1/2 exactly when zeta <= ln 2/sqrt(pi^2 + ln^2 2), i.e.
+    // c <= 2 zeta* sqrt(k m) (k = 1e4 N/m in the scene): count the grid points by that closed form
+    let p = spring_claims(
+        "map",
+        r#"
+[[claim]]
+id = "t.map"
+equation = "(5)"
+quote = "e >= 1/2"
+kind = "map"
+scene = "spring.toml"
+require = "restitution >= 0.5"
+vary = ["contact.damping=1:120:13", "impactor.mass=0.1:2:11"]
+"#,
+    );
+    let papers = load_claims(&p).expect("claims");
+    let out = run_all(&papers, p.parent().expect("dir")).expect("run");
+    let share = out[0].extra["valid_fraction"].as_f64().expect("share");
+    let ln2 = std::f64::consts::LN_2;
+    let zeta_star = ln2 / (std::f64::consts::PI.powi(2) + ln2 * ln2).sqrt();
+    let mut inside = 0;
+    for i in 0..13 {
+        let c = 1.0 + 119.0 * i as f64 / 12.0;
+        for j in 0..11 {
+            let m = 0.1 + 1.9 * j as f64 / 10.0;
+            let bound = 2.0 * zeta_star * (1e4 * m).sqrt();
+            assert!(
+                (c - bound).abs() > 1e-6 * bound,
+                "a grid point sits on the boundary"
+            );
+            inside += usize::from(c <= bound);
+        }
+    }
+    assert_eq!(share, inside as f64 / 143.0, "{}", out[0].detail);
+    assert_eq!(out[0].verdict, Verdict::Fails);
+    assert!(out[0].files[0].1.contains("<svg"));
+}
+
+#[test]
+fn probability_interval_contains_the_closed_form() {
+    // c ~ uniform(0, 100), k = 1e4, m = 0.5: P(e >= 1/2) = 2 zeta* sqrt(k m)/100 = 0.3047
+    let p = spring_claims(
+        "probability",
+        r#"
+[[claim]]
+id = "t.p"
+equation = "(6)"
+quote = "P(e >= 1/2)"
+kind = "probability"
+scene = "spring.toml"
+sample = { "contact.damping" = "uniform(0, 100)" }
+count = 400
+seed = 11
+event = "restitution >= 0.5"
+expect = ">= 0.2"
+"#,
+    );
+    let papers = load_claims(&p).expect("claims");
+    let out = run_all(&papers, p.parent().expect("dir")).expect("run");
+    let pr = &out[0].extra["probability"];
+    let (lo, hi) = (
+        pr["lo"].as_f64().unwrap_or(1.0),
+        pr["hi"].as_f64().unwrap_or(0.0),
+    );
+    let ln2 = std::f64::consts::LN_2;
+    let exact = 2.0 * ln2 / (std::f64::consts::PI.powi(2) + ln2 * ln2).sqrt()
+        * (1e4f64 * 0.5).sqrt()
+        / 100.0;
+    assert!(lo <= exact && exact <= hi, "[{lo}, {hi}] misses {exact}");
+    assert_eq!(out[0].verdict, Verdict::Holds, "{}", out[0].detail);
 }

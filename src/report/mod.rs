@@ -24,6 +24,9 @@ pub struct SummaryClaim {
     pub verdict: Verdict,
     /// Detail.
     pub detail: String,
+    /// What a kind adds (`probability`: `{p, lo, hi, n}`; `valid_fraction`).
+    #[serde(flatten)]
+    pub extra: BTreeMap<String, serde_json::Value>,
 }
 
 /// `summary.json`: sorted by id, no timestamps or timings.
@@ -52,6 +55,7 @@ pub fn summary(outcomes: &[Outcome]) -> Summary {
             equation: o.equation.clone(),
             verdict: o.verdict,
             detail: o.detail.clone(),
+            extra: o.extra.clone(),
         })
         .collect();
     claims.sort_by(|a, b| a.id.cmp(&b.id));

@@ -204,3 +204,126 @@ pub fn plot_curves(
         .collect();
     plot(title, xlabel, ylabel, xs, ys, &series)
 }
+
+/// A short tick label: `0.5`, `20`, `1e-3` (no more digits than the value needs, to 3 figures).
+pub fn short_number(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let e = v.abs().log10().floor() as i32;
+    if (-3..=4).contains(&e) {
+        let digits = (2 - e).max(0) as usize;
+        let s = format!("{v:.digits$}");
+        let s = if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        };
+        return s;
+    }
+    let m = v / 10f64.powi(e);
+    let ms = format!("{m:.2}");
+    let ms = ms.trim_end_matches('0').trim_end_matches('.');
+    if ms == "1" {
+        format!("1e{e}")
+    } else {
+        format!("{ms}e{e}")
+    }
+}
+
+/// One axis of a region map: its label, grid values and whether the grid is logarithmic.
+pub struct MapAxis<'a> {
+    /// The axis title (with units).
+    pub label: &'a str,
+    /// The grid values.
+    pub values: &'a [f64],
+    /// Whether the values are spaced logarithmically.
+    pub log: bool,
+}
+
+/// A region map: the grid `xs` x `ys` (cells in row-major order, `y` slowest), each cell inside
+/// the region (`Some(true)`), outside it (`Some(false)`) or not computed (`None`); the legend sits
+/// to the right of the plot, outside the data. Colours from the Okabe-Ito palette.
+pub fn region_map(title: &str, x: &MapAxis, y: &MapAxis, cells: &[Option<bool>]) -> String {
+    let (xlabel, xs, x_log) = (x.label, x.values, x.log);
+    let (ylabel, ys, y_log) = (y.label, y.values, y.log);
+    let (w, h, left, right, top, bottom) = (760.0, 460.0, 80.0, 190.0, 40.0, 70.0);
+    let (pw, ph) = (w - left - right, h - top - bottom);
+    let (nx, ny) = (xs.len().max(1), ys.len().max(1));
+    let (cw, ch) = (pw / nx as f64, ph / ny as f64);
+    let mut out = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{w}\" height=\"{h}\" fill=\"white\"/>\n<text x=\"{}\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">{}</text>\n",
+        left + pw / 2.0,
+        escape(title)
+    );
+    for j in 0..ny {
+        for i in 0..nx {
+            let fill = match cells.get(j * nx + i).copied().flatten() {
+                Some(true) => "#0072B2",
+                Some(false) => "#E69F00",
+                None => "#999999",
+            };
+            out.push_str(&format!(
+                "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" fill=\"{fill}\" stroke=\"white\" stroke-width=\"0.5\"/>\n",
+                left + i as f64 * cw,
+                top + (ny - 1 - j) as f64 * ch,
+                cw,
+                ch
+            ));
+        }
+    }
+    // ticks at up to 5 grid values per axis, at cell centres
+    let picks = |n: usize| -> Vec<usize> {
+        if n <= 5 {
+            (0..n).collect()
+        } else {
+            (0..5).map(|k| k * (n - 1) / 4).collect()
+        }
+    };
+    for i in picks(xs.len()) {
+        out.push_str(&format!(
+            "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>\n",
+            left + (i as f64 + 0.5) * cw,
+            top + ph + 16.0,
+            short_number(xs[i])
+        ));
+    }
+    for j in picks(ys.len()) {
+        out.push_str(&format!(
+            "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}</text>\n",
+            left - 6.0,
+            top + (ny - 1 - j) as f64 * ch + ch / 2.0 + 4.0,
+            short_number(ys[j])
+        ));
+    }
+    let scale = |log: bool| if log { " (log grid)" } else { "" };
+    out.push_str(&format!(
+        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}{}</text>\n<text x=\"18\" y=\"{:.1}\" transform=\"rotate(-90 18 {:.1})\" text-anchor=\"middle\">{}{}</text>\n",
+        left + pw / 2.0,
+        h - 24.0,
+        escape(xlabel),
+        scale(x_log),
+        top + ph / 2.0,
+        top + ph / 2.0,
+        escape(ylabel),
+        scale(y_log)
+    ));
+    for (k, (fill, name)) in [
+        ("#0072B2", "holds"),
+        ("#E69F00", "fails"),
+        ("#999999", "did not run"),
+    ]
+    .iter()
+    .enumerate()
+    {
+        let y = top + 10.0 + 22.0 * k as f64;
+        out.push_str(&format!(
+            "<rect x=\"{:.1}\" y=\"{y:.1}\" width=\"14\" height=\"14\" fill=\"{fill}\"/>\n<text x=\"{:.1}\" y=\"{:.1}\">{name}</text>\n",
+            left + pw + 20.0,
+            left + pw + 40.0,
+            y + 12.0
+        ));
+    }
+    out.push_str("</svg>\n");
+    out
+}

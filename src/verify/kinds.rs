@@ -26,7 +26,15 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The kinds a claim may have.
-pub const KINDS: &[&str] = &["identity", "dimension", "model", "bound", "check"];
+pub const KINDS: &[&str] = &[
+    "identity",
+    "dimension",
+    "model",
+    "bound",
+    "probability",
+    "map",
+    "check",
+];
 
 /// The derivations `@name[...]` reaches, with their parameters and what they are.
 pub const DERIVATIONS: &[(&str, &str, &str)] = &[
@@ -579,24 +587,46 @@ impl<'a> Checked<'a> {
                 let e = required(f, c, "expect", &c.expect, "a unit such as \"N\"")?;
                 Unit::parse(e).map_err(|m| claim_err(f, c, "expect", m))?;
             }
-            "model" | "bound" => {
+            "model" | "bound" | "probability" | "map" => {
                 let path = self.scene_path(c)?;
                 let (_, mut table) = self.scene_table(c)?;
-                if c.kind == "model" {
-                    required(
-                        f,
-                        c,
-                        "quantity",
-                        &c.quantity,
-                        "a dotted path of the outcome",
-                    )?;
-                    let rtol = *required(f, c, "rtol", &c.rtol, "a relative tolerance")?;
-                    if !(rtol.is_finite() && rtol >= 0.0) {
+                let gridded = c.kind == "model" || c.kind == "map";
+                // which inequality a claim has, if any: bound `require`, probability `event`, a map
+                // of a region `require`
+                let ineq_field = match c.kind.as_str() {
+                    "bound" => Some("require"),
+                    "probability" => Some("event"),
+                    "map" if c.require.is_some() => Some("require"),
+                    _ => None,
+                };
+                if gridded {
+                    if ineq_field.is_none() {
+                        required(
+                            f,
+                            c,
+                            "quantity",
+                            &c.quantity,
+                            "a dotted path of the outcome",
+                        )?;
+                        let rtol = *required(f, c, "rtol", &c.rtol, "a relative tolerance")?;
+                        if !(rtol.is_finite() && rtol >= 0.0) {
+                            return Err(claim_err(
+                                f,
+                                c,
+                                "rtol",
+                                format!("{rtol} is not a tolerance >= 0"),
+                            ));
+                        }
+                    }
+                    if c.kind == "map" && c.vary.len() != 2 {
                         return Err(claim_err(
                             f,
                             c,
-                            "rtol",
-                            format!("{rtol} is not a tolerance >= 0"),
+                            "vary",
+                            format!(
+                                "a map has two axes, FIELD=START:STOP:COUNT[:log] each; {} given",
+                                c.vary.len()
+                            ),
                         ));
                     }
                     if c.vary.is_empty() {
@@ -613,7 +643,6 @@ impl<'a> Checked<'a> {
                             .map_err(|e| claim_err(f, c, "vary", e.to_string()))?;
                     }
                 } else {
-                    required(f, c, "require", &c.require, "an inequality")?;
                     let n = *required(f, c, "count", &c.count, "the number of samples")?;
                     if !(1..=1_000_000).contains(&n) {
                         return Err(claim_err(
@@ -639,6 +668,21 @@ impl<'a> Checked<'a> {
                             .map_err(|m| claim_err(f, c, &key, m))?;
                     }
                 }
+                if c.kind == "probability" {
+                    if let Some(e) = &c.expect {
+                        parse_expectation(e).map_err(|m| claim_err(f, c, "expect", m))?;
+                    }
+                    if let Some(conf) = c.confidence
+                        && !(conf > 0.0 && conf < 1.0)
+                    {
+                        return Err(claim_err(
+                            f,
+                            c,
+                            "confidence",
+                            format!("{conf} is out of range; allowed: 0 < confidence < 1"),
+                        ));
+                    }
+                }
                 for (sym, field) in &c.bind {
                     if field_value(&table, field).is_none() {
                         return Err(claim_err(
@@ -656,33 +700,40 @@ impl<'a> Checked<'a> {
                 let outcome = run_table(&table, &path.display().to_string())
                     .map_err(|m| claim_err(f, c, "scene", m))?;
                 let mut formulas: Vec<(&str, Expr)> = Vec::new();
-                if c.kind == "model" {
-                    let q = c.quantity.as_deref().unwrap_or_default();
-                    if lookup(&outcome, q).is_none() {
-                        return Err(claim_err(
-                            f,
-                            c,
-                            "quantity",
-                            format!(
-                                "`{q}`: the model does not produce this number; it produces: {}",
-                                numeric_paths(&outcome).join(", ")
-                            ),
+                match ineq_field {
+                    None => {
+                        let q = c.quantity.as_deref().unwrap_or_default();
+                        if lookup(&outcome, q).is_none() {
+                            return Err(claim_err(
+                                f,
+                                c,
+                                "quantity",
+                                format!(
+                                    "`{q}`: the model does not produce this number; it produces: {}",
+                                    numeric_paths(&outcome).join(", ")
+                                ),
+                            ));
+                        }
+                        formulas.push((
+                            "printed",
+                            self.formula(
+                                c,
+                                "printed",
+                                required(f, c, "printed", &c.printed, "a formula")?,
+                            )?,
                         ));
                     }
-                    formulas.push((
-                        "printed",
-                        self.formula(
-                            c,
-                            "printed",
-                            required(f, c, "printed", &c.printed, "a formula")?,
-                        )?,
-                    ));
-                } else {
-                    let text = c.require.as_deref().unwrap_or_default();
-                    let ineq = expr::parse_inequality(text)
-                        .map_err(|e| claim_err(f, c, "require", format!("`{text}`: {e}")))?;
-                    formulas.push(("require", self.expand(&ineq.lhs)));
-                    formulas.push(("require", self.expand(&ineq.rhs)));
+                    Some(field) => {
+                        let text = if field == "event" {
+                            &c.event
+                        } else {
+                            &c.require
+                        };
+                        required(f, c, field, text, "an inequality")?;
+                        let ineq = self.inequality(c, field)?;
+                        formulas.push((field, ineq.lhs));
+                        formulas.push((field, ineq.rhs));
+                    }
                 }
                 for (field, e) in &formulas {
                     for s in e.symbols() {
@@ -719,6 +770,8 @@ impl<'a> Checked<'a> {
             "identity" => self.identity(c, der)?,
             "dimension" => self.dimension(c)?,
             "model" => self.model(c)?,
+            "map" => self.map(c)?,
+            "probability" => self.probability(c)?,
             _ => self.bound(c)?,
         };
         o.kind = c.kind.clone();
@@ -1166,7 +1219,21 @@ impl<'a> Checked<'a> {
         ))
     }
 
-    fn model(&self, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+    /// The grid of `vary` (first axis slowest) and, at each point, the two sides compared: the
+    /// model's quantity and the printed formula, or both sides of an inequality.
+    #[allow(clippy::type_complexity)]
+    fn grid(
+        &self,
+        c: &ClaimSpec,
+        sides: &(Expr, Expr),
+    ) -> Result<
+        (
+            Vec<Axis>,
+            Vec<Vec<(String, f64)>>,
+            Vec<Result<(f64, f64), String>>,
+        ),
+        VerifyError,
+    > {
         use rayon::prelude::*;
         let f = self.file;
         let (label, base) = self.scene_table(c)?;
@@ -1175,10 +1242,6 @@ impl<'a> Checked<'a> {
             .iter()
             .map(|s| parse_axis(s).map_err(|m| claim_err(f, c, "vary", m)))
             .collect::<Result<_, _>>()?;
-        let printed = self.formula(c, "printed", c.printed.as_deref().unwrap_or_default())?;
-        let quantity = c.quantity.clone().unwrap_or_default();
-        let rtol = c.rtol.unwrap_or(0.0);
-        // the full grid, first axis slowest
         let mut points: Vec<Vec<(String, f64)>> = vec![vec![]];
         for a in &axes {
             points = points
@@ -1192,7 +1255,7 @@ impl<'a> Checked<'a> {
                 })
                 .collect();
         }
-        let rows: Vec<Result<(f64, f64), String>> = points
+        let rows = points
             .par_iter()
             .map(|pt| {
                 let mut t = base.clone();
@@ -1201,16 +1264,30 @@ impl<'a> Checked<'a> {
                         .map_err(|e| e.to_string())?;
                 }
                 let out = run_table(&t, &label)?;
-                let model = lookup(&out, &quantity)
-                    .ok_or_else(|| format!("no `{quantity}` in the outcome"))?;
                 let value = |s: &str| match c.bind.get(s) {
                     Some(field) => field_value(&t, field),
                     None => lookup(&out, s),
                 };
-                let formula = printed.eval(&value)?;
-                Ok((model, formula))
+                Ok((sides.0.eval(&value)?, sides.1.eval(&value)?))
             })
             .collect();
+        Ok((axes, points, rows))
+    }
+
+    /// The model's quantity (as a formula of one symbol) and the printed formula of a claim.
+    fn quantity_and_printed(&self, c: &ClaimSpec) -> Result<(Expr, Expr), VerifyError> {
+        let quantity = c.quantity.clone().unwrap_or_default();
+        let printed = self.formula(c, "printed", c.printed.as_deref().unwrap_or_default())?;
+        Ok((Expr::Sym(quantity), printed))
+    }
+
+    fn model(&self, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+        let f = self.file;
+        let sides = self.quantity_and_printed(c)?;
+        let printed = sides.1.clone();
+        let quantity = c.quantity.clone().unwrap_or_default();
+        let rtol = c.rtol.unwrap_or(0.0);
+        let (axes, points, rows) = self.grid(c, &sides)?;
         let mut worst: Option<(f64, usize)> = None;
         let mut errors = Vec::new();
         for (i, r) in rows.iter().enumerate() {
@@ -1319,15 +1396,31 @@ impl<'a> Checked<'a> {
         Ok(o)
     }
 
-    fn bound(&self, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+    /// The claim's inequality (`require`, or `event` for `probability`), definitions expanded.
+    fn inequality(&self, c: &ClaimSpec, field: &str) -> Result<Inequality, VerifyError> {
+        let text = if field == "event" {
+            c.event.as_deref()
+        } else {
+            c.require.as_deref()
+        }
+        .unwrap_or_default();
+        let mut ineq: Inequality = expr::parse_inequality(text)
+            .map_err(|e| claim_err(self.file, c, field, format!("`{text}`: {e}")))?;
+        ineq.lhs = self.expand(&ineq.lhs);
+        ineq.rhs = self.expand(&ineq.rhs);
+        Ok(ineq)
+    }
+
+    /// The seeded draws of `sample` and, for each, both sides of `ineq` (or why it did not run).
+    #[allow(clippy::type_complexity)]
+    fn sampled(
+        &self,
+        c: &ClaimSpec,
+        ineq: &Inequality,
+    ) -> Result<(Vec<Vec<(String, f64)>>, Vec<Result<(f64, f64), String>>), VerifyError> {
         use rayon::prelude::*;
         let f = self.file;
         let (label, base) = self.scene_table(c)?;
-        let text = c.require.as_deref().unwrap_or_default();
-        let mut ineq: Inequality = expr::parse_inequality(text)
-            .map_err(|e| claim_err(f, c, "require", format!("`{text}`: {e}")))?;
-        ineq.lhs = self.expand(&ineq.lhs);
-        ineq.rhs = self.expand(&ineq.rhs);
         let dists: Vec<(String, Dist)> = c
             .sample
             .iter()
@@ -1348,7 +1441,7 @@ impl<'a> Checked<'a> {
                     .collect()
             })
             .collect();
-        let rows: Vec<Result<(f64, f64), String>> = draws
+        let rows = draws
             .par_iter()
             .map(|pt| {
                 let mut t = base.clone();
@@ -1363,6 +1456,182 @@ impl<'a> Checked<'a> {
                 Ok((ineq.lhs.eval(&value)?, ineq.rhs.eval(&value)?))
             })
             .collect();
+        Ok((draws, rows))
+    }
+
+    fn probability(&self, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+        let f = self.file;
+        let ineq = self.inequality(c, "event")?;
+        let (draws, rows) = self.sampled(c, &ineq)?;
+        let n = rows.iter().filter(|r| r.is_ok()).count();
+        let failed = rows.len() - n;
+        let k = rows
+            .iter()
+            .filter(|r| matches!(r, Ok((l, r)) if ineq.rel.holds(*l, *r)))
+            .count();
+        let conf = c.confidence.unwrap_or(0.95);
+        let (lo, hi) = clopper_pearson(k, n, conf);
+        let p = if n > 0 { k as f64 / n as f64 } else { f64::NAN };
+        let mut detail = format!(
+            "`{ineq}` in {k} of {n} samples (seed {}): p = {}, {:.0} % Clopper-Pearson interval [{}, {}]",
+            c.seed.unwrap_or(0),
+            g4(p),
+            100.0 * conf,
+            g4(lo),
+            g4(hi)
+        );
+        let verdict = match &c.expect {
+            None => Verdict::Holds,
+            Some(e) => {
+                let (rel, x) = parse_expectation(e).map_err(|m| claim_err(f, c, "expect", m))?;
+                let meets = |v: f64| rel.holds(v, x);
+                if meets(lo) && meets(hi) {
+                    detail.push_str(&format!("; the whole interval is {e}"));
+                    Verdict::Holds
+                } else if !meets(lo) && !meets(hi) {
+                    detail.push_str(&format!("; no part of the interval is {e}"));
+                    Verdict::Fails
+                } else {
+                    // samples needed for the interval's half-width to reach |p - x| (normal
+                    // approximation, z of the confidence)
+                    use statrs::distribution::{ContinuousCDF, Normal};
+                    let z = Normal::new(0.0, 1.0).map_or(1.96, |d| d.inverse_cdf(0.5 + conf / 2.0));
+                    let gap = (p - x).abs().max(1e-6);
+                    let need = (z
+                        * z
+                        * p.max(1.0 / n.max(1) as f64)
+                        * (1.0 - p).max(1.0 / n.max(1) as f64)
+                        / (gap * gap))
+                        .ceil();
+                    detail.push_str(&format!(
+                        "; the interval straddles {e}: about {} samples (now {n}) would decide it",
+                        g4(need)
+                    ));
+                    Verdict::NotCheckable
+                }
+            }
+        };
+        if failed > 0 {
+            detail.push_str(&format!(
+                "; {failed} sample(s) did not run and are left out"
+            ));
+        }
+        let _ = draws;
+        let mut o = outcome(f, c, verdict, detail);
+        o.extra.insert(
+            "probability".into(),
+            serde_json::json!({"p": p, "lo": lo, "hi": hi, "n": n}),
+        );
+        o.extra_md = Some(format!(
+            "Kind `probability`. Scene `{}`; sampled: {}; event: `{ineq}`{}.",
+            c.scene.clone().unwrap_or_default(),
+            c.sample
+                .iter()
+                .map(|(k, v)| format!("{k} ~ {v}"))
+                .collect::<Vec<_>>()
+                .join(", "),
+            c.expect
+                .as_ref()
+                .map(|e| format!("; expected: p {e}"))
+                .unwrap_or_default()
+        ));
+        Ok(o)
+    }
+
+    fn map(&self, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+        let f = self.file;
+        // the region of an inequality, or where the printed formula is within rtol of the model
+        let ineq = match c.require {
+            Some(_) => Some(self.inequality(c, "require")?),
+            None => None,
+        };
+        let sides = match &ineq {
+            Some(i) => (i.lhs.clone(), i.rhs.clone()),
+            None => self.quantity_and_printed(c)?,
+        };
+        let rtol = c.rtol.unwrap_or(0.0);
+        let (axes, points, rows) = self.grid(c, &sides)?;
+        let inside = |l: f64, r: f64| match &ineq {
+            Some(i) => i.rel.holds(l, r),
+            None => (r - l).abs() <= rtol * l.abs(),
+        };
+        // cells in the order of the grid (first axis slowest): reorder so that y is slowest
+        let (nx, ny) = (axes[0].values.len(), axes[1].values.len());
+        let mut cells = vec![None; nx * ny];
+        for (idx, r) in rows.iter().enumerate() {
+            let (i, j) = (idx / ny, idx % ny);
+            cells[j * nx + i] = r.as_ref().ok().map(|(l, r)| inside(*l, *r));
+        }
+        let ran = cells.iter().filter(|c| c.is_some()).count();
+        let valid = cells.iter().filter(|c| **c == Some(true)).count();
+        let share = valid as f64 / points.len() as f64;
+        let what = match &ineq {
+            Some(i) => format!("`{i}` holds"),
+            None => format!(
+                "`{}` is within {} of the model's {}",
+                sides.1,
+                g4(rtol),
+                c.quantity.clone().unwrap_or_default()
+            ),
+        };
+        let bounds = |a: &Axis| {
+            format!(
+                "{} in [{}, {}]",
+                a.field,
+                g4(a.values[0]),
+                g4(*a.values.last().unwrap_or(&f64::NAN))
+            )
+        };
+        let mut detail = format!(
+            "{what} on {valid} of {} grid points ({:.1} %) over {} x {}",
+            points.len(),
+            100.0 * share,
+            bounds(&axes[0]),
+            bounds(&axes[1])
+        );
+        if ran < points.len() {
+            detail.push_str(&format!("; {} point(s) did not run", points.len() - ran));
+        }
+        let verdict = if valid == points.len() {
+            Verdict::Holds
+        } else {
+            Verdict::Fails
+        };
+        let name = format!("{}.svg", c.id.replace('.', "_"));
+        fn axis(a: &Axis) -> crate::report::svg::MapAxis<'_> {
+            crate::report::svg::MapAxis {
+                label: a.field.as_str(),
+                values: a.values.as_slice(),
+                log: a.log,
+            }
+        }
+        let svg = crate::report::svg::region_map(
+            &format!("{}: where {}", c.id, what.replace('`', "")),
+            &axis(&axes[0]),
+            &axis(&axes[1]),
+            &cells,
+        );
+        let mut o = outcome(f, c, verdict, detail);
+        o.extra
+            .insert("valid_fraction".into(), serde_json::json!(share));
+        o.extra_md = Some(format!(
+            "Kind `map`. Scene `{}`; grid {}.\n\n![{}: the region where {} (blue), over {} and {}]({name})",
+            c.scene.clone().unwrap_or_default(),
+            c.vary.join(" x "),
+            c.id,
+            what.replace('`', ""),
+            axes[0].field,
+            axes[1].field
+        ));
+        o.files.push((name, svg));
+        Ok(o)
+    }
+
+    fn bound(&self, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+        let f = self.file;
+        let ineq = self.inequality(c, "require")?;
+        let count = c.count.unwrap_or(0);
+        let (draws, rows) = self.sampled(c, &ineq)?;
         let mut violations = 0;
         let mut worst: Option<(f64, usize)> = None;
         let mut errors = Vec::new();
@@ -1423,6 +1692,51 @@ impl<'a> Checked<'a> {
         ));
         Ok(o)
     }
+}
+
+/// A claim on a probability: `<= 0.15`, `< 0.15`, `>= 0.9`, `> 0.9`.
+fn parse_expectation(text: &str) -> Result<(expr::Rel, f64), String> {
+    let t = text.trim();
+    let help = "expected <= p, < p, >= p or > p with 0 <= p <= 1, e.g. \"<= 0.15\"";
+    let (rel, rest) = if let Some(r) = t.strip_prefix("<=") {
+        (expr::Rel::Le, r)
+    } else if let Some(r) = t.strip_prefix(">=") {
+        (expr::Rel::Ge, r)
+    } else if let Some(r) = t.strip_prefix('<') {
+        (expr::Rel::Lt, r)
+    } else if let Some(r) = t.strip_prefix('>') {
+        (expr::Rel::Gt, r)
+    } else {
+        return Err(format!("`{text}`: {help}"));
+    };
+    let p: f64 = rest
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{text}`: {help}"))?;
+    if !(0.0..=1.0).contains(&p) {
+        return Err(format!("`{text}`: {help}"));
+    }
+    Ok((rel, p))
+}
+
+/// The Clopper-Pearson interval of a binomial proportion: `k` successes in `n` trials at
+/// `confidence` (the exact interval from the Beta quantiles, statrs):
+/// $[B^{-1}(\alpha/2; k, n-k+1),\ B^{-1}(1-\alpha/2; k+1, n-k)]$, with 0 and 1 at the ends.
+pub fn clopper_pearson(k: usize, n: usize, confidence: f64) -> (f64, f64) {
+    use statrs::distribution::{Beta, ContinuousCDF};
+    let alpha = 1.0 - confidence;
+    let (kf, nf) = (k as f64, n as f64);
+    let lo = if k == 0 {
+        0.0
+    } else {
+        Beta::new(kf, nf - kf + 1.0).map_or(f64::NAN, |b| b.inverse_cdf(alpha / 2.0))
+    };
+    let hi = if k >= n {
+        1.0
+    } else {
+        Beta::new(kf + 1.0, nf - kf).map_or(f64::NAN, |b| b.inverse_cdf(1.0 - alpha / 2.0))
+    };
+    (lo, hi)
 }
 
 /// The terms of a top-level sum with their signs (`a - (b - c)` gives `+a`, `-b`, `+c`).

@@ -84,7 +84,8 @@ pub struct ClaimSpec {
     /// `identity`: the time symbol of an exponential polynomial (default `t`).
     #[serde(default)]
     pub variable: Option<String>,
-    /// `dimension`: the expected unit.
+    /// `dimension`: the expected unit; `probability`: the claim on the probability
+    /// (`"<= 0.15"`, `">= 0.9"`).
     #[serde(default)]
     pub expect: Option<String>,
     /// `model`: the dotted path of the outcome quantity compared.
@@ -113,9 +114,15 @@ pub struct ClaimSpec {
     /// `bound`: seed of the generator.
     #[serde(default)]
     pub seed: Option<u64>,
-    /// `bound`: the inequality every sample must satisfy.
+    /// `bound`: the inequality every sample must satisfy (`map`: the region where it holds).
     #[serde(default)]
     pub require: Option<String>,
+    /// `probability`: the inequality whose probability is estimated.
+    #[serde(default)]
+    pub event: Option<String>,
+    /// `probability`: the confidence of the Clopper-Pearson interval (default 0.95).
+    #[serde(default)]
+    pub confidence: Option<f64>,
     /// Plate modes `(m, n)` to check, where relevant.
     #[serde(default)]
     pub modes: Vec<[u32; 2]>,
@@ -185,6 +192,8 @@ pub struct Outcome {
     pub files: Vec<(String, String)>,
     /// How the verdict was computed: the claim's kind, and for `check` the Rust check's name.
     pub kind: String,
+    /// Numbers a kind adds to the JSON of the claim (`probability`, `valid_fraction`).
+    pub extra: BTreeMap<String, serde_json::Value>,
 }
 
 /// Why verification could not run.
@@ -264,6 +273,7 @@ pub(crate) fn outcome(
         extra_md: None,
         files: vec![],
         kind: String::new(),
+        extra: BTreeMap::new(),
     }
 }
 

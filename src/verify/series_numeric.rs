@@ -301,6 +301,7 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outcome,
         extra_md: Some(md),
         files: vec![(svg_name, svg)],
         kind: String::new(),
+        extra: std::collections::BTreeMap::new(),
     })
 }
 
@@ -405,5 +406,6 @@ pub fn passivity(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outc
         )),
         files: vec![(svg_name, svg)],
         kind: String::new(),
+        extra: std::collections::BTreeMap::new(),
     })
 }
