@@ -98,8 +98,10 @@ pub fn render(papers: &[PaperClaims], outcomes: &[Outcome]) -> Vec<(String, Stri
          `holds-with-correction`, `not-checkable`.\n\n",
     );
     readme.push_str(
-        "Also: [what accuracy costs in time](accuracy_cost.md) (work-precision of every model and method) and \
-         [performance against SciPy](performance.md).\n\n",
+        "Also: [what accuracy costs in time](timing/accuracy_cost.md) (work-precision of every model and method) and \
+         [performance against SciPy](performance.md).\n\n\
+         Running `verify` twice gives byte-identical reports except the measured times, which are kept together in \
+         `timing/` (and `performance*`, written by `benches/peers/run.sh`, not by `verify`).\n\n",
     );
     // the papers' claims, and apart from them the solver robustness cases (hard.*)
     let count = |hard: bool| {
@@ -230,6 +232,10 @@ pub fn write_atomically(dir: &Path, files: &[(String, String)]) -> std::io::Resu
     std::fs::create_dir_all(&tmp)?;
     let staged = (|| {
         for (f, text) in files {
+            if let Some(sub) = Path::new(f).parent() {
+                std::fs::create_dir_all(tmp.join(sub))?;
+                std::fs::create_dir_all(dir.join(sub))?;
+            }
             std::fs::write(tmp.join(f), text)?;
         }
         std::fs::create_dir_all(dir)?;

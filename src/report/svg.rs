@@ -21,8 +21,9 @@ pub enum Scale {
     Log,
 }
 
+/// The Okabe-Ito palette (safe for the common colour-vision deficiencies), yellow last.
 const COLORS: [&str; 8] = [
-    "#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02", "#a6761d", "#666666",
+    "#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000", "#F0E442",
 ];
 
 fn tf(v: f64, s: Scale) -> Option<f64> {
@@ -32,14 +33,55 @@ fn tf(v: f64, s: Scale) -> Option<f64> {
     }
 }
 
-fn tick_label(v: f64, s: Scale) -> String {
-    match s {
-        Scale::Log => format!("1e{}", v.round() as i64),
-        Scale::Linear => format!("{v:.3e}"),
+/// Ticks over `[lo, hi]` (in the axis' own coordinate: log10 for a log axis) and the range they
+/// span: 1-2-5 steps on a linear axis, whole decades on a log axis; each with its label.
+fn ticks(lo: f64, hi: f64, scale: Scale) -> (f64, f64, Vec<(f64, String)>) {
+    match scale {
+        Scale::Log => {
+            let (a, b) = (lo.floor(), hi.ceil().max(lo.floor() + 1.0));
+            let n = (b - a) as i64;
+            let every = (n / 6 + 1).max(1);
+            let list = (0..=n)
+                .filter(|k| k % every == 0)
+                .map(|k| {
+                    let e = a as i64 + k;
+                    (e as f64, short_number(10f64.powi(e as i32)))
+                })
+                .collect();
+            (a, b, list)
+        }
+        Scale::Linear => {
+            let span = (hi - lo).max(f64::MIN_POSITIVE);
+            let raw = span / 5.0;
+            let mag = 10f64.powf(raw.log10().floor());
+            let step = [1.0, 2.0, 5.0, 10.0]
+                .iter()
+                .map(|m| m * mag)
+                .find(|s| *s >= raw)
+                .unwrap_or(10.0 * mag);
+            let (a, b) = ((lo / step).floor() * step, (hi / step).ceil() * step);
+            let decimals = (-step.log10().floor()).max(0.0) as usize;
+            let n = ((b - a) / step).round() as i64;
+            let list = (0..=n)
+                .map(|k| {
+                    let v = a + k as f64 * step;
+                    let v = if v.abs() < step * 1e-9 { 0.0 } else { v };
+                    let label = if v != 0.0 && (v.abs() >= 1e5 || v.abs() < 1e-3) {
+                        short_number(v)
+                    } else {
+                        format!("{v:.decimals$}")
+                    };
+                    (v, label)
+                })
+                .collect();
+            (a, b, list)
+        }
     }
 }
 
-/// Renders a plot with one or more series sharing axes.
+/// Renders a plot with one or more series sharing axes: 1-2-5 ticks (decades on a log axis)
+/// with the shortest labels, axis titles clear of the tick labels, and the legend in a column to
+/// the right of the plot area, outside the data.
 pub fn plot(
     title: &str,
     xlabel: &str,
@@ -48,7 +90,9 @@ pub fn plot(
     ys: Scale,
     series: &[Series],
 ) -> String {
-    let (w, h, pad) = (720.0, 440.0, 70.0);
+    let (w, h) = (800.0, 460.0);
+    let (left, right, top, bottom) = (84.0, 230.0, 44.0, 64.0);
+    let (pw, ph) = (w - left - right, h - top - bottom);
     let pts: Vec<(f64, f64)> = series
         .iter()
         .flat_map(|s| {
@@ -72,46 +116,53 @@ pub fn plot(
     if pts.is_empty() {
         (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
     }
-    if x1 - x0 <= f64::EPSILON * x0.abs().max(1.0) {
-        x1 = x0 + 1.0;
+    if x1 - x0 <= 1e-12 * x0.abs().max(1e-300) {
+        let d = if x0 == 0.0 { 1.0 } else { 0.1 * x0.abs() };
+        (x0, x1) = (x0 - d, x1 + d);
     }
-    if y1 - y0 <= f64::EPSILON * y0.abs().max(1.0) {
-        y1 = y0 + 1.0;
+    if y1 - y0 <= 1e-12 * y0.abs().max(1e-300) {
+        let d = if y0 == 0.0 { 1.0 } else { 0.1 * y0.abs() };
+        (y0, y1) = (y0 - d, y1 + d);
     }
-    let sx = |x: f64| pad + (x - x0) / (x1 - x0) * (w - 2.0 * pad);
-    let sy = |y: f64| h - pad - (y - y0) / (y1 - y0) * (h - 2.0 * pad);
+    let (x0, x1, xt) = ticks(x0, x1, xs);
+    let (y0, y1, yt) = ticks(y0, y1, ys);
+    let sx = |x: f64| left + (x - x0) / (x1 - x0) * pw;
+    let sy = |y: f64| top + ph - (y - y0) / (y1 - y0) * ph;
     let mut out = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{w}\" height=\"{h}\" fill=\"white\"/>\n<text x=\"{}\" y=\"20\" text-anchor=\"middle\" font-size=\"14\">{}</text>\n",
-        w / 2.0,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{w}\" height=\"{h}\" fill=\"white\"/>\n<text x=\"{:.1}\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">{}</text>\n",
+        left + pw / 2.0,
         escape(title)
     );
     out.push_str(&format!(
-        "<line x1=\"{pad}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/>\n<line x1=\"{pad}\" y1=\"{pad}\" x2=\"{pad}\" y2=\"{}\" stroke=\"black\"/>\n",
-        h - pad,
-        w - pad,
-        h - pad,
-        h - pad
+        "<rect x=\"{left}\" y=\"{top}\" width=\"{pw}\" height=\"{ph}\" fill=\"none\" stroke=\"black\"/>\n"
     ));
-    for i in 0..=4 {
-        let fx = x0 + (x1 - x0) * i as f64 / 4.0;
-        let fy = y0 + (y1 - y0) * i as f64 / 4.0;
+    for (v, label) in &xt {
+        let x = sx(*v);
         out.push_str(&format!(
-            "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>\n<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}</text>\n",
-            sx(fx),
-            h - pad + 16.0,
-            tick_label(fx, xs),
-            pad - 6.0,
-            sy(fy) + 4.0,
-            tick_label(fy, ys)
+            "<line x1=\"{x:.1}\" y1=\"{:.1}\" x2=\"{x:.1}\" y2=\"{:.1}\" stroke=\"black\"/>\n<text x=\"{x:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>\n",
+            top + ph,
+            top + ph + 5.0,
+            top + ph + 18.0,
+            escape(label)
+        ));
+    }
+    for (v, label) in &yt {
+        let y = sy(*v);
+        out.push_str(&format!(
+            "<line x1=\"{:.1}\" y1=\"{y:.1}\" x2=\"{left}\" y2=\"{y:.1}\" stroke=\"black\"/>\n<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}</text>\n",
+            left - 5.0,
+            left - 8.0,
+            y + 4.0,
+            escape(label)
         ));
     }
     out.push_str(&format!(
-        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n<text x=\"16\" y=\"{}\" transform=\"rotate(-90 16 {})\" text-anchor=\"middle\">{}</text>\n",
-        w / 2.0,
-        h - 20.0,
+        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>\n<text x=\"16\" y=\"{:.1}\" transform=\"rotate(-90 16 {:.1})\" text-anchor=\"middle\">{}</text>\n",
+        left + pw / 2.0,
+        h - 18.0,
         escape(xlabel),
-        h / 2.0,
-        h / 2.0,
+        top + ph / 2.0,
+        top + ph / 2.0,
         escape(ylabel)
     ));
     for (i, s) in series.iter().enumerate() {
@@ -121,11 +172,14 @@ pub fn plot(
             .iter()
             .filter_map(|(x, y)| Some(format!("{:.1},{:.1}", sx(tf(*x, xs)?), sy(tf(*y, ys)?))))
             .collect();
+        let ly = top + 8.0 + 20.0 * i as f64;
         out.push_str(&format!(
-            "<polyline points=\"{}\" fill=\"none\" stroke=\"{c}\" stroke-width=\"2\"/>\n<text x=\"{}\" y=\"{}\" fill=\"{c}\">{}</text>\n",
+            "<polyline points=\"{}\" fill=\"none\" stroke=\"{c}\" stroke-width=\"2\"/>\n<line x1=\"{:.1}\" y1=\"{ly:.1}\" x2=\"{:.1}\" y2=\"{ly:.1}\" stroke=\"{c}\" stroke-width=\"3\"/>\n<text x=\"{:.1}\" y=\"{:.1}\">{}</text>\n",
             d.join(" "),
-            w - pad - 200.0,
-            pad + 16.0 * i as f64,
+            left + pw + 14.0,
+            left + pw + 34.0,
+            left + pw + 40.0,
+            ly + 4.0,
             escape(s.name)
         ));
     }

@@ -148,7 +148,7 @@ pub fn render(repeats: usize) -> Result<Vec<(String, String)>, crate::integrate:
          point, relative for components above 1) against the time per solve and against the right-hand-side \
          evaluations, for each method at rtol = atol = 1e-3 ... 1e-13 (median of repeated solves on this machine; \
          timings are not part of `summary.json`). Lower-left is better: at a given accuracy, pick the method whose \
-         curve is furthest left. Side-by-side ratios against SciPy are in [performance.md](performance.md).\n\n",
+         curve is furthest left. Side-by-side ratios against SciPy are in [performance.md](../performance.md).\n\n",
     );
     for p in &problems {
         md.push_str(&format!("## {}\n\n{}.\n\n", p.name, p.description));
@@ -190,9 +190,9 @@ pub fn render(repeats: usize) -> Result<Vec<(String, String)>, crate::integrate:
         md.push_str(&format!(
             "\n![error against time]({ft})\n![error against evaluations]({fe})\n\n"
         ));
-        files.push((ft, diagram(p, true)));
-        files.push((fe, diagram(p, false)));
+        files.push((format!("timing/{ft}"), diagram(p, true)));
+        files.push((format!("timing/{fe}"), diagram(p, false)));
     }
-    files.push(("accuracy_cost.md".to_string(), md));
+    files.push(("timing/accuracy_cost.md".to_string(), md));
     Ok(files)
 }
