@@ -498,7 +498,6 @@ pub fn sweep(
     progress: bool,
 ) -> Result<String, RunError> {
     use rayon::prelude::*;
-    use std::sync::atomic::{AtomicUsize, Ordering};
     let base = crate::scene::read_table(path)?;
     let label = path.display().to_string();
     let param = sv.param.as_str();
@@ -514,16 +513,18 @@ pub fn sweep(
             )?)
         })
         .collect::<Result<_, RunError>>()?;
-    let done = AtomicUsize::new(0);
     let total = scenes.len();
-    let bar = |n: usize| {
-        let width = 40;
-        let filled = n * width / total.max(1);
-        eprint!(
-            "\rsweep {param} [{}{}] {n}/{total}",
-            "#".repeat(filled),
-            ".".repeat(width - filled)
+    let bar = if progress {
+        let b = indicatif::ProgressBar::new(total as u64);
+        b.set_style(
+            indicatif::ProgressStyle::with_template(&format!(
+                "sweep {param} [{{bar:40}}] {{pos}}/{{len}} ({{per_sec}}, {{eta}} left)"
+            ))
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
         );
+        b
+    } else {
+        indicatif::ProgressBar::hidden()
     };
     let results: Vec<Result<Value, String>> = scenes
         .par_iter()
@@ -531,16 +532,11 @@ pub fn sweep(
             let r = run_validated(scene)
                 .map(|(v, _)| v)
                 .map_err(|e| e.to_string());
-            let n = done.fetch_add(1, Ordering::Relaxed) + 1;
-            if progress && (n == total || n.is_multiple_of((total / 200).max(1))) {
-                bar(n);
-            }
+            bar.inc(1);
             r
         })
         .collect();
-    if progress {
-        eprintln!();
-    }
+    bar.finish_and_clear();
     let failed = results.iter().filter(|r| r.is_err()).count();
     if failed > 0 {
         eprintln!("sweep: {failed} of {total} points failed (their rows carry the error)");

@@ -102,13 +102,25 @@ fn run(args: Args) -> Result<bool> {
         .and_then(|p| p.parent().map(|x| x.to_path_buf()))
         .unwrap_or_else(|| PathBuf::from("."));
     let progress = std::io::stderr().is_terminal();
+    // every file checked before any claim runs: a bad claim exits 2 with nothing run or written
+    verify::validate_all(&papers)?;
+    let bar = if progress {
+        let b = indicatif::ProgressBar::new(papers.iter().map(|p| p.claim.len() as u64).sum());
+        b.set_style(
+            indicatif::ProgressStyle::with_template("verify [{bar:40}] {pos}/{len} claims: {msg}")
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        b
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
     let mut outcomes = Vec::new();
     for p in &papers {
-        if progress {
-            eprintln!("verify: paper {} ({} claims) ...", p.paper, p.claim.len());
-        }
+        bar.set_message(format!("paper {}", p.paper));
         outcomes.extend(verify::run_all(std::slice::from_ref(p), &root)?);
+        bar.inc(p.claim.len() as u64);
     }
+    bar.finish_and_clear();
     outcomes.sort_by(|a, b| a.id.cmp(&b.id));
     let fresh = report::summary(&outcomes);
     let format = match args.format {

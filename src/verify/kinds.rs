@@ -1382,15 +1382,21 @@ impl<'a> Checked<'a> {
                 scale,
                 crate::report::svg::Scale::Linear,
                 &[
-                    ("model".to_string(), model_curve),
-                    ("printed".to_string(), printed_curve),
+                    ("model".to_string(), model_curve.clone()),
+                    ("printed".to_string(), printed_curve.clone()),
                 ],
             );
+            let csv_name = format!("{}.csv", c.id.replace('.', "_"));
+            let mut csv = format!("{},model {quantity},printed\n", a.field);
+            for ((x, m), (_, p)) in model_curve.iter().zip(&printed_curve) {
+                csv.push_str(&format!("{x:e},{m:e},{p:e}\n"));
+            }
             md.push_str(&format!(
-                "\n\n![{}: the model's {quantity} and the printed formula against {}]({name})",
-                c.id, a.field
+                "\n\n![{}: the model's {quantity} and the printed formula against {}]({name})\n\n*Figure: claim {}, the model's {quantity} and the printed `{printed}` against {} (data: [{csv_name}]({csv_name})).*",
+                c.id, a.field, c.id, a.field
             ));
             o.files.push((name, svg));
+            o.files.push((csv_name, csv));
         }
         o.extra_md = Some(md);
         Ok(o)
@@ -1615,15 +1621,30 @@ impl<'a> Checked<'a> {
         o.extra
             .insert("valid_fraction".into(), serde_json::json!(share));
         o.extra_md = Some(format!(
-            "Kind `map`. Scene `{}`; grid {}.\n\n![{}: the region where {} (blue), over {} and {}]({name})",
+            "Kind `map`. Scene `{}`; grid {}.\n\n![{}: the region where {} (blue), over {} and {}]({name})\n\n*Figure: claim {}, where the claim holds (blue) and fails (orange) on the grid (data: {}.csv).*",
             c.scene.clone().unwrap_or_default(),
             c.vary.join(" x "),
             c.id,
             what.replace('`', ""),
             axes[0].field,
-            axes[1].field
+            axes[1].field,
+            c.id,
+            c.id.replace('.', "_")
         ));
         o.files.push((name, svg));
+        // the map's data: every grid point, inside (1), outside (0) or not run (empty)
+        let csv_name = format!("{}.csv", c.id.replace('.', "_"));
+        let mut csv = format!("{},{},inside\n", axes[0].field, axes[1].field);
+        for (idx, pt) in points.iter().enumerate() {
+            let (i, j) = (idx / ny, idx % ny);
+            let cell = match cells[j * nx + i] {
+                Some(true) => "1",
+                Some(false) => "0",
+                None => "",
+            };
+            csv.push_str(&format!("{:e},{:e},{cell}\n", pt[0].1, pt[1].1));
+        }
+        o.files.push((csv_name, csv));
         Ok(o)
     }
 

@@ -280,7 +280,10 @@ pub(crate) fn outcome(
 impl Outcome {
     /// Attaches a plot written beside the report, shown under `caption`.
     pub(crate) fn with_plot(mut self, caption: &str, name: String, svg: String) -> Outcome {
-        self.extra_md = Some(format!("![{caption}]({name})"));
+        self.extra_md = Some(format!(
+            "![{}: {caption}]({name})\n\n*Figure: {caption} (claim {}).*",
+            self.id, self.id
+        ));
         self.files = vec![(name, svg)];
         self
     }
@@ -338,6 +341,13 @@ pub fn select(papers: &[PaperClaims], only: Option<&str>) -> Vec<PaperClaims> {
             (!q.claim.is_empty()).then_some(q)
         })
         .collect()
+}
+
+/// Validates every claims file ([`kinds::Checked`]): a bad claim is found before any claim runs.
+pub fn validate_all(papers: &[PaperClaims]) -> Result<(), VerifyError> {
+    papers
+        .iter()
+        .try_for_each(|p| kinds::Checked::validate(p).map(|_| ()))
 }
 
 /// Checks every claim of every paper: first every file is validated ([`kinds::Checked`]: a bad
