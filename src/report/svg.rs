@@ -381,3 +381,28 @@ pub fn region_map(title: &str, x: &MapAxis, y: &MapAxis, cells: &[Option<bool>])
     out.push_str("</svg>\n");
     out
 }
+
+/// The data of a figure as CSV in long form: one row per point, `series,x,y`, with the axis
+/// titles in the header (so a reader can redraw or check any figure).
+pub fn csv(xlabel: &str, ylabel: &str, series: &[Series]) -> String {
+    let q = |t: &str| format!("\"{}\"", t.replace('"', "\"\""));
+    let mut out = format!("series,{},{}\n", q(xlabel), q(ylabel));
+    for s in series {
+        for (x, y) in &s.points {
+            out.push_str(&format!("{},{x:e},{y:e}\n", q(s.name)));
+        }
+    }
+    out
+}
+
+/// [`csv`] for curves held as `(name, points)` pairs.
+pub fn csv_curves(xlabel: &str, ylabel: &str, curves: &[(String, Vec<(f64, f64)>)]) -> String {
+    let series: Vec<Series> = curves
+        .iter()
+        .map(|(n, p)| Series {
+            name: n,
+            points: p.clone(),
+        })
+        .collect();
+    csv(xlabel, ylabel, &series)
+}

@@ -278,13 +278,20 @@ pub(crate) fn outcome(
 }
 
 impl Outcome {
-    /// Attaches a plot written beside the report, shown under `caption`.
-    pub(crate) fn with_plot(mut self, caption: &str, name: String, svg: String) -> Outcome {
+    /// Attaches a plot and its data (CSV, written beside it), shown under `caption`.
+    pub(crate) fn with_plot(
+        mut self,
+        caption: &str,
+        name: String,
+        svg: String,
+        csv: String,
+    ) -> Outcome {
+        let csv_name = name.replace(".svg", ".csv");
         self.extra_md = Some(format!(
-            "![{}: {caption}]({name})\n\n*Figure: {caption} (claim {}).*",
+            "![{}: {caption}]({name})\n\n*Figure: {caption} (claim {}; data: [{csv_name}]({csv_name})).*",
             self.id, self.id
         ));
-        self.files = vec![(name, svg)];
+        self.files = vec![(name, svg), (csv_name, csv)];
         self
     }
 }

@@ -251,7 +251,12 @@ fn disk_centre_solution(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, V
             details.join("; ")
         ),
     )
-    .with_plot("V against Omega, plate and (2.9)", "001_disk_centre.svg".into(), svg))
+    .with_plot(
+        "V against Omega, plate and (2.9)",
+        "001_disk_centre.svg".into(),
+        svg,
+        crate::report::svg::csv_curves("Omega = a omega (m/s)", "V (m/s)", &series),
+    ))
 }
 
 /// (2.10): with 2 (rho^2 + c^2) = a^2 the base centre stays at rest and

@@ -374,7 +374,12 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
                     "(3.13) integrated by DOP853 (rtol 1e-12) from r0 = 1, phi0 = 100..170 deg, mu = 0.3, until r = 1e-3: max relative difference from (3.14) {worst:.2e}; |phi| increases along every curve: {monotone}"
                 ),
             )
-            .with_plot("integral curves of (3.13)", svg_name, svg)
+            .with_plot(
+                "integral curves of (3.13)",
+                svg_name,
+                svg,
+                crate::report::svg::csv_curves("phi (degrees)", "r / r0", &series),
+            )
         }
         "billiard-fixed-angles" => {
             // zeros of sin(2 phi) on (-pi, pi]: where (3.13) keeps phi constant
@@ -848,7 +853,12 @@ fn plane_support(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyEr
                     "plane configurations on a 41 x 41 grid of (mu*, a3) with b3 = -0.6, rho2 = 0.5, b2 = +-0.5: {total} have beta < 0; the computed classification disagrees with 'two solutions if b2 > 0, none if b2 < 0' in {disagreements}"
                 ),
             )
-            .with_plot("classification map", svg_name, svg)
+            .with_plot(
+                "classification map",
+                svg_name,
+                svg,
+                crate::report::svg::csv("mu* (friction at the support)", "a3 (G2A, horizontal)", &series),
+            )
         }
         _ => return Err(bad("part must be beta, btilde or classification".into())),
     })
@@ -1039,7 +1049,12 @@ fn rolling_ball(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyErr
                     "with mu = mu*, xi = phi and cos phi = -2/(7 mu) (mu = 0.3, 0.5, 1, 2) the derived phi' and xi' vanish (max {worst:.2e}, including phi along an integrated trajectory from phi* for mu = 0.5); this uses only the second and fourth equations of (4.6), which the derivation confirms"
                 ),
             )
-            .with_plot("integral curves of (4.6)", svg_name, svg)
+            .with_plot(
+                "integral curves of (4.6)",
+                svg_name,
+                svg,
+                crate::report::svg::csv_curves("normal impulse I_n (m = 1)", "phi (degrees)", &curves),
+            )
         }
         _ => {
             return Err(VerifyError::BadClaim {
@@ -1220,7 +1235,12 @@ fn pendulum_wall(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyEr
                     lines.join("; ")
                 ),
             )
-            .with_plot("Fig. 2 recomputed", svg_name, svg);
+            .with_plot(
+                "Fig. 2 recomputed",
+                svg_name,
+                svg,
+                crate::report::svg::csv_curves("sigma = c1/c2", "-dT/T0", &curves),
+            );
             o.extra_md = Some(format!("{table}\n\n{}", o.extra_md.unwrap_or_default()));
             o
         }

@@ -251,7 +251,10 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outcome,
         ));
     }
     let svg_name = "000_series_error.svg".to_string();
-    md.push_str(&format!("\n![series error against t]({svg_name})\n"));
+    md.push_str(&format!(
+        "\n![series error against t]({svg_name})\n\n*Figure: claim {}, the relative error of the series against the integration (data: 000_series_error.csv).*\n",
+        c.id
+    ));
     let series_plot: Vec<Series> = curves
         .iter()
         .map(|cv| Series {
@@ -299,7 +302,13 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outcome,
         printed_latex: None,
         derived_latex: None,
         extra_md: Some(md),
-        files: vec![(svg_name, svg)],
+        files: vec![
+            (svg_name, svg),
+            (
+                "000_series_error.csv".into(),
+                crate::report::svg::csv("t (s)", "relative error", &series_plot),
+            ),
+        ],
         kind: String::new(),
         extra: std::collections::BTreeMap::new(),
     })
@@ -401,10 +410,18 @@ pub fn passivity(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outc
         derived_latex: None,
         extra_md: Some(format!(
             "Energy booked as integrated states (dissipated work, operator work) plus stored energy; a passive law \
-             never has the work done on the material turn negative. Scene `{}`.\n\n![energy against time]({svg_name})",
-            c.scene.clone().unwrap_or_default()
+             never has the work done on the material turn negative. Scene `{}`.\n\n![energy against time]({svg_name})\n\n\
+             *Figure: claim {}, energy against time (data: 000_energy.csv).*",
+            c.scene.clone().unwrap_or_default(),
+            c.id
         )),
-        files: vec![(svg_name, svg)],
+        files: vec![
+            (svg_name, svg),
+            (
+                "000_energy.csv".into(),
+                crate::report::svg::csv_curves("t (s)", "energy / impact energy", &curves),
+            ),
+        ],
         kind: String::new(),
         extra: std::collections::BTreeMap::new(),
     })
