@@ -639,8 +639,8 @@ impl<'a> Checked<'a> {
                     }
                     for spec in &c.vary {
                         let a = parse_axis(spec).map_err(|m| claim_err(f, c, "vary", m))?;
-                        crate::scene::set_field(&mut table, &a.field, a.values[0], "scene")
-                            .map_err(|e| claim_err(f, c, "vary", e.to_string()))?;
+                        set_fields(&mut table, &a.field, a.values[0], "scene")
+                            .map_err(|m| claim_err(f, c, "vary", m))?;
                     }
                 } else {
                     let n = *required(f, c, "count", &c.count, "the number of samples")?;
@@ -791,9 +791,52 @@ impl<'a> Checked<'a> {
         }
     }
 
-    /// A formula of a claim, with the file's definitions expanded.
+    /// A formula of a claim, with the claim's `where` and then the file's definitions expanded.
     fn formula(&self, c: &ClaimSpec, field: &str, text: &str) -> Result<Expr, VerifyError> {
-        Ok(self.expand(&parse_formula(self.file, c, field, text)?))
+        let e = parse_formula(self.file, c, field, text)?;
+        self.expand_all(c, &e)
+    }
+
+    /// The claim's and the file's definitions expanded in `e` until none is left (a local
+    /// definition may use a file definition that uses another local one).
+    fn expand_all(&self, c: &ClaimSpec, e: &Expr) -> Result<Expr, VerifyError> {
+        let mut cur = e.clone();
+        for _ in 0..20 {
+            let next = self.expand(&self.expand_local(c, &cur)?);
+            if next == cur {
+                return Ok(next);
+            }
+            cur = next;
+        }
+        Ok(cur)
+    }
+
+    /// The claim's own definitions (`where`) expanded in `e`, repeatedly (they may use each
+    /// other; a cycle is refused).
+    fn expand_local(&self, c: &ClaimSpec, e: &Expr) -> Result<Expr, VerifyError> {
+        if c.where_.is_empty() {
+            return Ok(e.clone());
+        }
+        let local: BTreeMap<String, Expr> = c
+            .where_
+            .iter()
+            .map(|(k, v)| {
+                parse_formula(self.file, c, &format!("where.{k}"), v).map(|x| (k.clone(), x))
+            })
+            .collect::<Result<_, _>>()?;
+        let mut cur = e.clone();
+        for _ in 0..50 {
+            if !cur.symbols().iter().any(|s| local.contains_key(s)) {
+                return Ok(cur);
+            }
+            cur = cur.substitute(&|s: &str| local.get(s).cloned());
+        }
+        Err(claim_err(
+            self.file,
+            c,
+            "where",
+            "a definition refers to itself".into(),
+        ))
     }
 
     /// The file's definitions expanded in `e`.
@@ -1259,9 +1302,8 @@ impl<'a> Checked<'a> {
             .par_iter()
             .map(|pt| {
                 let mut t = base.clone();
-                for (field, v) in pt {
-                    crate::scene::set_field(&mut t, field, *v, &label)
-                        .map_err(|e| e.to_string())?;
+                for (fields, v) in pt {
+                    set_fields(&mut t, fields, *v, &label)?;
                 }
                 let out = run_table(&t, &label)?;
                 let value = |s: &str| match c.bind.get(s) {
@@ -1343,8 +1385,9 @@ impl<'a> Checked<'a> {
         }
         let mut o = outcome(f, c, verdict, detail);
         let mut md = format!(
-            "Kind `model`. Scene `{}`; `{quantity}` against `{printed}`{}; grid {}.",
+            "Kind `model`. Scene `{}`; `{quantity}` against `{}`{}; grid {}.",
             c.scene.clone().unwrap_or_default(),
+            c.printed.as_deref().unwrap_or_default(),
             if c.bind.is_empty() {
                 String::new()
             } else {
@@ -1412,8 +1455,8 @@ impl<'a> Checked<'a> {
         .unwrap_or_default();
         let mut ineq: Inequality = expr::parse_inequality(text)
             .map_err(|e| claim_err(self.file, c, field, format!("`{text}`: {e}")))?;
-        ineq.lhs = self.expand(&ineq.lhs);
-        ineq.rhs = self.expand(&ineq.rhs);
+        ineq.lhs = self.expand_all(c, &ineq.lhs)?;
+        ineq.rhs = self.expand_all(c, &ineq.rhs)?;
         Ok(ineq)
     }
 
@@ -1575,7 +1618,7 @@ impl<'a> Checked<'a> {
             Some(i) => format!("`{i}` holds"),
             None => format!(
                 "`{}` is within {} of the model's {}",
-                sides.1,
+                c.printed.as_deref().unwrap_or_default(),
                 g4(rtol),
                 c.quantity.clone().unwrap_or_default()
             ),

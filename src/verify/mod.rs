@@ -95,6 +95,10 @@ pub struct ClaimSpec {
     /// string: `{ "contact.law" = "newton" }`).
     #[serde(default)]
     pub set: BTreeMap<String, toml::Value>,
+    /// Definitions for this claim only (`alpha = "-2*(nu + 1)*lambda/(1 - 2*nu)"`): expanded in
+    /// its formulas before the file's definitions, so they may use those and override symbols.
+    #[serde(default, rename = "where")]
+    pub where_: BTreeMap<String, String>,
     /// `model`, `bound`: formula symbol -> scene field.
     #[serde(default)]
     pub bind: BTreeMap<String, String>,
