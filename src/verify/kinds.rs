@@ -357,6 +357,27 @@ pub fn lookup(v: &Value, path: &str) -> Option<f64> {
 
 use crate::scene::field_value;
 
+/// Runs the scene `base` with the fields of one grid point or sample set, and evaluates two
+/// formulas there: a symbol is a bound scene field (`bind`) or a number the model produces.
+fn run_point(
+    c: &ClaimSpec,
+    base: &toml::Table,
+    label: &str,
+    pt: &[(String, f64)],
+    sides: (&Expr, &Expr),
+) -> Result<(f64, f64), String> {
+    let mut t = base.clone();
+    for (fields, v) in pt {
+        set_fields(&mut t, fields, *v, label)?;
+    }
+    let out = run_table(&t, label)?;
+    let value = |s: &str| match c.bind.get(s) {
+        Some(field) => field_value(&t, field),
+        None => lookup(&out, s),
+    };
+    Ok((sides.0.eval(&value)?, sides.1.eval(&value)?))
+}
+
 /// Sets every field of a `sample` key (one or more fields, separated by spaces, that share one
 /// draw: the two off-diagonal entries of a symmetric inertia).
 fn set_fields(t: &mut toml::Table, fields: &str, v: f64, label: &str) -> Result<(), String> {
@@ -1300,18 +1321,7 @@ impl<'a> Checked<'a> {
         }
         let rows = points
             .par_iter()
-            .map(|pt| {
-                let mut t = base.clone();
-                for (fields, v) in pt {
-                    set_fields(&mut t, fields, *v, &label)?;
-                }
-                let out = run_table(&t, &label)?;
-                let value = |s: &str| match c.bind.get(s) {
-                    Some(field) => field_value(&t, field),
-                    None => lookup(&out, s),
-                };
-                Ok((sides.0.eval(&value)?, sides.1.eval(&value)?))
-            })
+            .map(|pt| run_point(c, &base, &label, pt, (&sides.0, &sides.1)))
             .collect();
         Ok((axes, points, rows))
     }
@@ -1492,18 +1502,7 @@ impl<'a> Checked<'a> {
             .collect();
         let rows = draws
             .par_iter()
-            .map(|pt| {
-                let mut t = base.clone();
-                for (fields, v) in pt {
-                    set_fields(&mut t, fields, *v, &label)?;
-                }
-                let out = run_table(&t, &label)?;
-                let value = |s: &str| match c.bind.get(s) {
-                    Some(field) => field_value(&t, field),
-                    None => lookup(&out, s),
-                };
-                Ok((ineq.lhs.eval(&value)?, ineq.rhs.eval(&value)?))
-            })
+            .map(|pt| run_point(c, &base, &label, pt, (&ineq.lhs, &ineq.rhs)))
             .collect();
         Ok((draws, rows))
     }
