@@ -22,7 +22,8 @@ enum Fmt {
     long_about = "verify: the main job of impactcheck.\n\n\
         Reads the claims in verify/*.toml, computes each verdict (exact algebra or numerics with a \
         stated error) and writes reports/README.md, one Markdown report per paper, \
-        reports/accuracy_cost.md (work-precision of every model) and reports/summary.json. Reports \
+        reports/timing/accuracy_cost.md (work-precision of every model: the only files that hold \
+        measured times) and reports/summary.json. Reports \
         are written to a temporary folder first, so a failed run leaves the old ones untouched.\n\n\
         With --check nothing is written: the fresh verdicts are compared with the committed \
         summary (or --baseline PATH); a changed verdict, or a number in a detail that moved by more \
@@ -30,7 +31,7 @@ enum Fmt {
         With --only PAPER|PREFIX only those claims run (e.g. --only 002, --only 000.eq22); nothing \
         is written unless --check compares them.\n\n\
         With --claims PATH (a claims file or a folder of them) any paper's claims are checked: \
-        formulas as text, kinds identity, dimension, model and bound (see verify/README.md), scenes \
+        formulas as text, kinds identity, dimension, model, bound, probability and map (see verify/README.md), scenes \
         relative to the claims file. A bad claim (syntax, unknown symbol or kind, missing scene, a \
         quantity the model does not produce) exits 2 before anything runs, naming the file, the \
         claim and the key. Reports are written only with --out DIR (or for the default claims); \
