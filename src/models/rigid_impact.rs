@@ -253,14 +253,18 @@ fn stick_or_slide(
         let uu = Vector2::new(th.cos(), th.sin());
         (uu.x * wt.y - uu.y * wt.x, uu.dot(&wt), u)
     };
+    // a root where the cross product falls through zero as theta grows is stable: a slip
+    // direction near it turns towards it, so the slip grows along u instead of curling back to
+    // zero (an unstable root makes the slip stop again at once, and the switches chatter)
     let samples = 720;
-    let mut best: Option<(f64, Vector3<f64>)> = None;
+    let mut best: Option<(bool, f64, Vector3<f64>)> = None;
     let mut prev = f(0.0);
     for k in 1..=samples {
         let th1 = 2.0 * std::f64::consts::PI * k as f64 / samples as f64;
         let th0 = 2.0 * std::f64::consts::PI * (k - 1) as f64 / samples as f64;
         let cur = f(th1);
         if prev.0 == 0.0 || prev.0.signum() != cur.0.signum() {
+            let stable = prev.0 > 0.0 || (prev.0 == 0.0 && cur.0 < 0.0);
             // bisect the cross product
             let (mut a, mut bb) = (th0, th1);
             let fa0 = f(a).0;
@@ -273,13 +277,18 @@ fn stick_or_slide(
                 }
             }
             let (_, dot, u) = f(0.5 * (a + bb));
-            if dot > 0.0 && best.as_ref().is_none_or(|(d, _)| dot > *d) {
-                best = Some((dot, u));
+            // a stable root first, then the largest growth rate
+            if dot > 0.0
+                && best
+                    .as_ref()
+                    .is_none_or(|(st, d, _)| (stable, dot) > (*st, *d))
+            {
+                best = Some((stable, dot, u));
             }
         }
         prev = cur;
     }
-    Err(best.map_or(t1, |x| x.1))
+    Err(best.map_or(t1, |x| x.2))
 }
 
 fn out_of_range(field: &str, value: String, allowed: &str) -> ImpactError {
@@ -540,10 +549,13 @@ pub fn impact_general(
                     Err(u) => {
                         sys.u_hint = u;
                         sys.mode = Mode::Slip;
-                        // nudge past the floor in the new direction so the slip event re-arms
+                        // nudge past the floor in the new direction so the slip event re-arms:
+                        // 20 slip_stop, far above the absolute tolerance (1e-3 rtol scale), so
+                        // that integration noise cannot take the slip back under the stop (the
+                        // switches then chatter), and at most 0.2 rtol scale, under the tolerance
                         let v = Vector3::new(y[0], y[1], y[2]);
                         let vt = sys.tangential(&v);
-                        let vnew = v - vt + u * (2.0 * slip_stop);
+                        let vnew = v - vt + u * (20.0 * slip_stop);
                         y[0] = vnew.x;
                         y[1] = vnew.y;
                         y[2] = vnew.z;
