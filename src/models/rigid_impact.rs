@@ -245,7 +245,34 @@ fn stick_or_slide(
             return Ok(t1 * x[0] + t2 * x[1]);
         }
     }
-    // slide: find u on the unit circle with P_t B (n - mu u) parallel to u, positive
+    // slide: the direction u on the unit circle with P_t B (n - mu u) parallel to u, growing;
+    // a stable root first, then the largest growth rate
+    let best = slide_rays(b, n, mu, 720)
+        .into_iter()
+        .filter(|r| r.rate > 0.0)
+        .max_by(|x, y| {
+            (x.stable, x.rate)
+                .partial_cmp(&(y.stable, y.rate))
+                .unwrap_or(std::cmp::Ordering::Equal)
+        });
+    Err(best.map_or(t1, |r| r.u))
+}
+
+/// A ray of slip directions: `u` on the unit circle with $P_t\mathbf B(\mathbf n - \mu\mathbf u)$
+/// parallel to `u`; `rate` is the slip speed's rate along it (positive: the slip grows), `stable`
+/// whether nearby directions turn towards it.
+#[derive(Clone, Copy, Debug)]
+struct SlipRay {
+    u: Vector3<f64>,
+    rate: f64,
+    stable: bool,
+}
+
+/// Every slip ray, found by scanning the circle and bisecting the cross product
+/// $\mathbf u \times P_t\mathbf B(\mathbf n - \mu\mathbf u)$. A root where it falls through zero
+/// as the angle grows is stable: a slip direction near it turns towards it.
+fn slide_rays(b: &Matrix3<f64>, n: &Vector3<f64>, mu: f64, samples: usize) -> Vec<SlipRay> {
+    let (t1, t2) = tangent_basis(n);
     let f = |th: f64| {
         let u = t1 * th.cos() + t2 * th.sin();
         let w = b * (n - u * mu);
@@ -253,11 +280,7 @@ fn stick_or_slide(
         let uu = Vector2::new(th.cos(), th.sin());
         (uu.x * wt.y - uu.y * wt.x, uu.dot(&wt), u)
     };
-    // a root where the cross product falls through zero as theta grows is stable: a slip
-    // direction near it turns towards it, so the slip grows along u instead of curling back to
-    // zero (an unstable root makes the slip stop again at once, and the switches chatter)
-    let samples = 720;
-    let mut best: Option<(bool, f64, Vector3<f64>)> = None;
+    let mut rays = Vec::new();
     let mut prev = f(0.0);
     for k in 1..=samples {
         let th1 = 2.0 * std::f64::consts::PI * k as f64 / samples as f64;
@@ -265,10 +288,9 @@ fn stick_or_slide(
         let cur = f(th1);
         if prev.0 == 0.0 || prev.0.signum() != cur.0.signum() {
             let stable = prev.0 > 0.0 || (prev.0 == 0.0 && cur.0 < 0.0);
-            // bisect the cross product
             let (mut a, mut bb) = (th0, th1);
             let fa0 = f(a).0;
-            for _ in 0..100 {
+            for _ in 0..60 {
                 let mid = 0.5 * (a + bb);
                 if f(mid).0.signum() == fa0.signum() {
                     a = mid;
@@ -276,19 +298,27 @@ fn stick_or_slide(
                     bb = mid;
                 }
             }
-            let (_, dot, u) = f(0.5 * (a + bb));
-            // a stable root first, then the largest growth rate
-            if dot > 0.0
-                && best
-                    .as_ref()
-                    .is_none_or(|(st, d, _)| (stable, dot) > (*st, *d))
-            {
-                best = Some((stable, dot, u));
-            }
+            let (_, rate, u) = f(0.5 * (a + bb));
+            rays.push(SlipRay { u, rate, stable });
         }
         prev = cur;
     }
-    Err(best.map_or(t1, |x| x.2))
+    rays
+}
+
+/// The stable ray along which a slip dies out (its speed falls at a constant rate there), if any:
+/// a slip that settles on it reaches zero at a simple root of $(\mathbf V_t, \mathbf u) -
+/// \text{stop}$, where $|\mathbf V_t|$ only touches zero between two samples of a step.
+fn decay_ray(b: &Matrix3<f64>, n: &Vector3<f64>, mu: f64) -> Option<Vector3<f64>> {
+    slide_rays(b, n, mu, 180)
+        .into_iter()
+        .filter(|r| r.stable && r.rate < 0.0)
+        .max_by(|x, y| {
+            x.rate
+                .partial_cmp(&y.rate)
+                .unwrap_or(std::cmp::Ordering::Equal)
+        })
+        .map(|r| r.u)
 }
 
 fn out_of_range(field: &str, value: String, allowed: &str) -> ImpactError {
@@ -444,6 +474,12 @@ pub fn impact_general(
             normal_impulse: 0.0,
         });
     }
+    // B* (or B) and mu are fixed for the impact: the ray a dying slip settles on is found once
+    let ray = if mu > 0.0 {
+        decay_ray(&b_stick, &n, mu).unwrap_or_else(Vector3::zeros)
+    } else {
+        Vector3::zeros()
+    };
     let mut chi_c: Option<f64> = None;
     let mut w_c = 0.0;
     let mut cut_off = false;
@@ -496,10 +532,22 @@ pub fn impact_general(
         if stage_done_already {
             break;
         }
+        // when the slip dies out along a stable ray, |V_t| reaches zero with a corner and the
+        // integrator overshoots it by more than slip_stop within a step, so |V_t| - slip_stop
+        // may never be seen negative; the speed along the ray falls through zero at a simple root
+        let ray_g = |_chi: f64, y: &[f64]| Vector3::new(y[0], y[1], y[2]).dot(&ray) - slip_stop;
         let mut events = vec![Event::new("stage end", &end_g, Direction::Rising, true)];
         let slipping = matches!(sys.mode, Mode::Slip) && mu > 0.0;
         if slipping {
             events.push(Event::new("slip stops", &slip_g, Direction::Falling, true));
+            if ray.norm() > 0.0 {
+                events.push(Event::new(
+                    "slip dies on its ray",
+                    &ray_g,
+                    Direction::Falling,
+                    true,
+                ));
+            }
         }
         let opts = Options {
             rtol,
@@ -535,6 +583,12 @@ pub fn impact_general(
                     continue;
                 }
                 break;
+            }
+            Stop::Event { index: 2, .. }
+                if sys.tangential(&Vector3::new(y[0], y[1], y[2])).norm() > 10.0 * slip_stop =>
+            {
+                // the slip crossed the ray's normal line off the ray, away from zero: slip on
+                continue;
             }
             Stop::Event { .. } => {
                 // slip stopped: stick or slide again
