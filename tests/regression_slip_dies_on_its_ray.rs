@@ -14,7 +14,11 @@ fn slip_that_dies_on_its_ray_sticks() {
     assert_eq!(kinds, ["slip", "stick"], "{kinds:?}");
     // Poisson's law: the normal impulse ends at (1 + e) times the compression impulse
     let chi_end = (1.0 + e) * r.compression_impulse;
-    assert!((r.impulse[2] - chi_end).abs() <= 1e-8 * chi_end, "{} vs {chi_end}", r.impulse[2]);
+    assert!(
+        (r.impulse[2] - chi_end).abs() <= 1e-8 * chi_end,
+        "{} vs {chi_end}",
+        r.impulse[2]
+    );
     assert!(r.energy_change <= 1e-9 * v.norm_squared());
     assert!(nalgebra::Vector3::from(r.impulse).norm() <= r.bound_upper * (1.0 + 1e-9));
 }

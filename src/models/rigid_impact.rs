@@ -146,6 +146,8 @@ pub enum ImpactError {
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Mode {
     Slip,
+    /// Slip held along a ray it has settled on (the friction direction frozen).
+    Ray(Vector3<f64>),
     Stick(Vector3<f64>),
 }
 
@@ -179,6 +181,7 @@ impl Keller {
     fn rate(&self, v: &Vector3<f64>) -> Vector3<f64> {
         match self.mode {
             Mode::Stick(tau) => self.n + tau,
+            Mode::Ray(u) => self.n - u * self.mu,
             Mode::Slip => {
                 let vt = self.tangential(v);
                 let s = vt.norm();
@@ -536,8 +539,22 @@ pub fn impact_general(
         // integrator overshoots it by more than slip_stop within a step, so |V_t| - slip_stop
         // may never be seen negative; the speed along the ray falls through zero at a simple root
         let ray_g = |_chi: f64, y: &[f64]| Vector3::new(y[0], y[1], y[2]).dot(&ray) - slip_stop;
+        // once the slip lies on that ray to within 1e-2 rtol of the velocity scale and 1e-6 rad
+        // (its component across the ray), the friction direction is frozen along it: the true
+        // direction only converges further, while keeping it free makes the system ever stiffer
+        // as |V_t| goes to zero (the turning rate grows like 1/|V_t|)
+        let across = 1e-2 * rtol * scale;
+        let aligned_g = |_chi: f64, y: &[f64]| {
+            let v = Vector3::new(y[0], y[1], y[2]);
+            let vt = v - n * v.dot(&n);
+            if vt.dot(&ray) <= 0.0 {
+                return scale;
+            }
+            // across the ray: below 1e-2 rtol scale, and a small angle (not merely a small slip)
+            (vt - ray * vt.dot(&ray)).norm() - across.min(1e-6 * vt.norm())
+        };
         let mut events = vec![Event::new("stage end", &end_g, Direction::Rising, true)];
-        let slipping = matches!(sys.mode, Mode::Slip) && mu > 0.0;
+        let slipping = matches!(sys.mode, Mode::Slip | Mode::Ray(_)) && mu > 0.0;
         if slipping {
             events.push(Event::new("slip stops", &slip_g, Direction::Falling, true));
             if ray.norm() > 0.0 {
@@ -547,6 +564,14 @@ pub fn impact_general(
                     Direction::Falling,
                     true,
                 ));
+                if sys.mode == Mode::Slip {
+                    events.push(Event::new(
+                        "slip settles on its ray",
+                        &aligned_g,
+                        Direction::Falling,
+                        true,
+                    ));
+                }
             }
         }
         let opts = Options {
@@ -583,6 +608,10 @@ pub fn impact_general(
                     continue;
                 }
                 break;
+            }
+            Stop::Event { index: 3, .. } => {
+                sys.mode = Mode::Ray(ray);
+                continue;
             }
             Stop::Event { index: 2, .. }
                 if sys.tangential(&Vector3::new(y[0], y[1], y[2])).norm() > 10.0 * slip_stop =>
