@@ -483,6 +483,7 @@ pub fn impact_general(
     } else {
         Vector3::zeros()
     };
+    let mut ray_armed = true;
     let mut chi_c: Option<f64> = None;
     let mut w_c = 0.0;
     let mut cut_off = false;
@@ -538,7 +539,15 @@ pub fn impact_general(
         // when the slip dies out along a stable ray, |V_t| reaches zero with a corner and the
         // integrator overshoots it by more than slip_stop within a step, so |V_t| - slip_stop
         // may never be seen negative; the speed along the ray falls through zero at a simple root
-        let ray_g = |_chi: f64, y: &[f64]| Vector3::new(y[0], y[1], y[2]).dot(&ray) - slip_stop;
+        // (disarmed, constant, after it fired off the ray, until the slip settles or stops)
+        let armed = ray_armed;
+        let ray_g = move |_chi: f64, y: &[f64]| {
+            if armed {
+                Vector3::new(y[0], y[1], y[2]).dot(&ray) - slip_stop
+            } else {
+                scale
+            }
+        };
         // once the slip lies on that ray to within 1e-2 rtol of the velocity scale and 1e-6 rad
         // (its component across the ray), the friction direction is frozen along it: the true
         // direction only converges further, while keeping it free makes the system ever stiffer
@@ -583,6 +592,7 @@ pub fn impact_general(
             ..Options::default()
         };
         let sol = solve(&sys, chi, &y, chi_max, &opts)?;
+
         stats = stats + sol.stats;
         path.extend(sol.trajectory.iter().map(|(c, y)| (*c, [y[0], y[1], y[2]])));
         chi = sol.t;
@@ -611,15 +621,19 @@ pub fn impact_general(
             }
             Stop::Event { index: 3, .. } => {
                 sys.mode = Mode::Ray(ray);
+                ray_armed = true;
                 continue;
             }
             Stop::Event { index: 2, .. }
                 if sys.tangential(&Vector3::new(y[0], y[1], y[2])).norm() > 10.0 * slip_stop =>
             {
-                // the slip crossed the ray's normal line off the ray, away from zero: slip on
+                // the slip crossed the ray's normal line off the ray, away from zero: slip on,
+                // without the ray event (it would fire again at once) until the slip settles
+                ray_armed = false;
                 continue;
             }
             Stop::Event { .. } => {
+                ray_armed = true;
                 // slip stopped: stick or slide again
                 match stick_or_slide(&b_stick, &n, mu) {
                     Ok(tau) => {
