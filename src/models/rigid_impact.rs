@@ -199,20 +199,35 @@ impl OdeSystem for Keller {
     fn rhs(&self, _chi: f64, y: &[f64], dy: &mut [f64]) {
         let v = Vector3::new(y[0], y[1], y[2]);
         let d = self.rate(&v);
-        let mut dv = self.b * d;
-        let mut fs = Vector3::zeros();
-        if let Some(s) = &self.support {
-            // (3.7)-(3.8): F_N* = max(0, -alpha/beta), alpha = -(B~ F, N)
-            let fn_star = ((s.b_tilde * d).dot(&s.normal) / s.beta).max(0.0);
-            fs = s.normal * fn_star;
-            dv -= s.b_tilde.transpose() * fs;
-        }
+        let (dv, fs) = velocity_rate(&self.b, self.support.as_ref(), &d);
         dy[..3].copy_from_slice(dv.as_slice());
         dy[3..6].copy_from_slice(d.as_slice());
         dy[6] = v.dot(&self.n);
         dy[7..10].copy_from_slice(fs.as_slice());
     }
 }
+
+/// The rate of the relative velocity at C per unit normal impulse, $\mathbf B\mathbf F$, for the
+/// contact force direction `f`, less the support's reaction while it pushes ((3.7)-(3.8):
+/// $F_N^* = \max(0, -\alpha/\beta)$, $\alpha = -(\tilde{\mathbf B}\mathbf F, \mathbf N)$); and
+/// that reaction.
+fn velocity_rate(
+    b: &Matrix3<f64>,
+    support: Option<&SmoothSupport>,
+    f: &Vector3<f64>,
+) -> (Vector3<f64>, Vector3<f64>) {
+    let mut dv = b * f;
+    let mut fs = Vector3::zeros();
+    if let Some(s) = support {
+        let fn_star = ((s.b_tilde * f).dot(&s.normal) / s.beta).max(0.0);
+        fs = s.normal * fn_star;
+        dv -= s.b_tilde.transpose() * fs;
+    }
+    (dv, fs)
+}
+
+/// The rate of the relative velocity at C for a contact force direction (see [`velocity_rate`]).
+type Rate<'a> = &'a dyn Fn(&Vector3<f64>) -> Vector3<f64>;
 
 /// Orthonormal tangent basis of the plane normal to `n`.
 fn tangent_basis(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
@@ -228,6 +243,7 @@ fn tangent_basis(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
 /// At zero slip: stick (with the tangential rate that keeps $V_t = 0$) or the direction to slide.
 fn stick_or_slide(
     b: &Matrix3<f64>,
+    rate: Rate,
     n: &Vector3<f64>,
     mu: f64,
 ) -> Result<Vector3<f64>, Vector3<f64>> {
@@ -248,9 +264,9 @@ fn stick_or_slide(
             return Ok(t1 * x[0] + t2 * x[1]);
         }
     }
-    // slide: the direction u on the unit circle with P_t B (n - mu u) parallel to u, growing;
-    // a stable root first, then the largest growth rate
-    let best = slide_rays(b, n, mu, 720)
+    // slide: the direction u on the unit circle with P_t B (n - mu u) parallel to u, growing
+    // (with the support's reaction where it pushes); a stable root first, then the largest rate
+    let best = slide_rays(rate, n, mu, 720)
         .into_iter()
         .filter(|r| r.rate > 0.0)
         .max_by(|x, y| {
@@ -274,11 +290,11 @@ struct SlipRay {
 /// Every slip ray, found by scanning the circle and bisecting the cross product
 /// $\mathbf u \times P_t\mathbf B(\mathbf n - \mu\mathbf u)$. A root where it falls through zero
 /// as the angle grows is stable: a slip direction near it turns towards it.
-fn slide_rays(b: &Matrix3<f64>, n: &Vector3<f64>, mu: f64, samples: usize) -> Vec<SlipRay> {
+fn slide_rays(rate: Rate, n: &Vector3<f64>, mu: f64, samples: usize) -> Vec<SlipRay> {
     let (t1, t2) = tangent_basis(n);
     let f = |th: f64| {
         let u = t1 * th.cos() + t2 * th.sin();
-        let w = b * (n - u * mu);
+        let w = rate(&(n - u * mu));
         let wt = Vector2::new(t1.dot(&w), t2.dot(&w));
         let uu = Vector2::new(th.cos(), th.sin());
         (uu.x * wt.y - uu.y * wt.x, uu.dot(&wt), u)
@@ -312,8 +328,8 @@ fn slide_rays(b: &Matrix3<f64>, n: &Vector3<f64>, mu: f64, samples: usize) -> Ve
 /// The stable ray along which a slip dies out (its speed falls at a constant rate there), if any:
 /// a slip that settles on it reaches zero at a simple root of $(\mathbf V_t, \mathbf u) -
 /// \text{stop}$, where $|\mathbf V_t|$ only touches zero between two samples of a step.
-fn decay_ray(b: &Matrix3<f64>, n: &Vector3<f64>, mu: f64) -> Option<Vector3<f64>> {
-    slide_rays(b, n, mu, 180)
+fn decay_ray(rate: Rate, n: &Vector3<f64>, mu: f64) -> Option<Vector3<f64>> {
+    slide_rays(rate, n, mu, 180)
         .into_iter()
         .filter(|r| r.stable && r.rate < 0.0)
         .max_by(|x, y| {
@@ -432,6 +448,9 @@ pub fn impact_general(
         }
         _ => b,
     };
+    // the slip's rate for a friction direction, with the support as the integration has it
+    let support_rate = support.clone();
+    let rate_of = move |f: &Vector3<f64>| velocity_rate(&b, support_rate.as_ref(), f).0;
     let mut sys = Keller {
         support,
         b,
@@ -451,7 +470,7 @@ pub fn impact_general(
     // initial mode
     let vt0 = sys.tangential(&v_minus);
     if vt0.norm() <= sys.floor || mu == 0.0 {
-        match (mu > 0.0).then(|| stick_or_slide(&b_stick, &n, mu)) {
+        match (mu > 0.0).then(|| stick_or_slide(&b_stick, &rate_of, &n, mu)) {
             Some(Ok(tau)) => {
                 sys.mode = Mode::Stick(tau);
                 phases.push(Phase {
@@ -479,7 +498,7 @@ pub fn impact_general(
     }
     // B* (or B) and mu are fixed for the impact: the ray a dying slip settles on is found once
     let ray = if mu > 0.0 {
-        decay_ray(&b_stick, &n, mu).unwrap_or_else(Vector3::zeros)
+        decay_ray(&rate_of, &n, mu).unwrap_or_else(Vector3::zeros)
     } else {
         Vector3::zeros()
     };
@@ -635,7 +654,7 @@ pub fn impact_general(
             Stop::Event { .. } => {
                 ray_armed = true;
                 // slip stopped: stick or slide again
-                match stick_or_slide(&b_stick, &n, mu) {
+                match stick_or_slide(&b_stick, &rate_of, &n, mu) {
                     Ok(tau) => {
                         sys.mode = Mode::Stick(tau);
                         phases.push(Phase {
