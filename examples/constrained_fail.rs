@@ -5,21 +5,6 @@
 use impactcheck::models::constrained::{RigidImpactScene, solve_scene};
 use impactcheck::models::rigid_impact::{Body, Law};
 use nalgebra::{Matrix3, Vector3};
-/// SplitMix64 (as `src/rng.rs`, which is crate-private).
-struct R(u64);
-impl R {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn r(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next()
-    }
-}
 fn main() {
     let n: u64 = std::env::args()
         .nth(1)
@@ -28,15 +13,15 @@ fn main() {
     let mut bad = 0;
     let mut classified = 0;
     for i in 0..n {
-        let mut r = R(i.wrapping_mul(0x2545F4914F6CDD1D) ^ 0x5A5A);
-        let body = |r: &mut R| Body {
-            mass: Some(r.r(0.1, 10.0)),
+        let mut r = impactcheck::rng::Rng(i.wrapping_mul(0x2545F4914F6CDD1D) ^ 0x5A5A);
+        let body = |r: &mut impactcheck::rng::Rng| Body {
+            mass: Some(r.range(0.1, 10.0)),
             inertia: Matrix3::from_diagonal(&Vector3::new(
-                r.r(0.01, 0.2),
-                r.r(0.01, 0.2),
-                r.r(0.01, 0.2),
+                r.range(0.01, 0.2),
+                r.range(0.01, 0.2),
+                r.range(0.01, 0.2),
             )),
-            offset: Vector3::new(r.r(-0.5, 0.5), r.r(-0.5, 0.5), r.r(-0.5, 0.5)),
+            offset: Vector3::new(r.range(-0.5, 0.5), r.range(-0.5, 0.5), r.range(-0.5, 0.5)),
         };
         let b1 = body(&mut r);
         let b2 = body(&mut r);
@@ -44,13 +29,13 @@ fn main() {
         let kind = i % 4;
         let fixed = if kind == 1 || kind == 2 {
             let axis = if kind == 2 {
-                Some(Vector3::new(r.r(-1., 1.), r.r(-1., 1.), r.r(-1., 1.)).normalize())
+                Some(Vector3::new(r.range(-1., 1.), r.range(-1., 1.), r.range(-1., 1.)).normalize())
             } else {
                 None
             };
             Some((
                 0usize,
-                Vector3::new(r.r(-0.5, 0.5), r.r(-0.5, 0.5), r.r(-0.5, 0.5)),
+                Vector3::new(r.range(-0.5, 0.5), r.range(-0.5, 0.5), r.range(-0.5, 0.5)),
                 axis,
             ))
         } else {
@@ -58,20 +43,24 @@ fn main() {
         };
         let support = if kind == 3 {
             Some(impactcheck::models::support::Support {
-                offset: Vector3::new(r.r(-0.5, 0.5), r.r(-0.5, 0.5), -r.r(0.1, 0.6)),
-                normal: Vector3::new(r.r(-0.2, 0.2), r.r(-0.2, 0.2), 1.0).normalize(),
-                mu: if r.next() < 0.5 { 0.0 } else { r.r(0.0, 1.5) },
+                offset: Vector3::new(r.range(-0.5, 0.5), r.range(-0.5, 0.5), -r.range(0.1, 0.6)),
+                normal: Vector3::new(r.range(-0.2, 0.2), r.range(-0.2, 0.2), 1.0).normalize(),
+                mu: if r.next() < 0.5 {
+                    0.0
+                } else {
+                    r.range(0.0, 1.5)
+                },
             })
         } else {
             None
         };
-        let v = Vector3::new(r.r(-2., 2.), r.r(-2., 2.), -r.r(0.05, 3.0));
+        let v = Vector3::new(r.range(-2., 2.), r.range(-2., 2.), -r.range(0.05, 3.0));
         let s = RigidImpactScene {
             bodies: [b1, b2],
             normal: Vector3::z(),
-            mu: r.r(0.0, 1.5),
+            mu: r.range(0.0, 1.5),
             law,
-            e: r.r(0.0, 1.0),
+            e: r.range(0.0, 1.0),
             v_rel: v,
             rtol: 1e-10,
             support,

@@ -22,6 +22,6 @@ pub mod integrate;
 pub mod models;
 pub mod perf;
 pub mod report;
-mod rng;
+pub mod rng;
 pub mod scene;
 pub mod verify;

@@ -4,10 +4,12 @@
 use nalgebra::Matrix3;
 
 /// SplitMix64: a seeded generator, so every run checks (and times) the same cases.
-pub(crate) struct Rng(pub(crate) u64);
+pub struct Rng(pub u64);
 
 impl Rng {
-    pub(crate) fn next(&mut self) -> f64 {
+    /// The next draw, uniform in [0, 1) (an infinite stream, not an `Iterator`).
+    #[allow(clippy::should_implement_trait)]
+    pub fn next(&mut self) -> f64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -15,12 +17,13 @@ impl Rng {
         z ^= z >> 31;
         (z >> 11) as f64 / (1u64 << 53) as f64
     }
-    pub(crate) fn range(&mut self, a: f64, b: f64) -> f64 {
+    /// A draw uniform in [a, b).
+    pub fn range(&mut self, a: f64, b: f64) -> f64 {
         a + (b - a) * self.next()
     }
     /// A random symmetric positive-definite matrix L L^T, diagonal of L in `diag`, the rest in
     /// (-off, off).
-    pub(crate) fn spd(&mut self, diag: (f64, f64), off: f64) -> Matrix3<f64> {
+    pub fn spd(&mut self, diag: (f64, f64), off: f64) -> Matrix3<f64> {
         let l = Matrix3::new(
             self.range(diag.0, diag.1),
             0.0,

@@ -6,19 +6,9 @@
 //! the chatter around V_t = 0. The speed along the ray, (V_t, u) - slip_stop, falls through zero at
 //! a simple root: that event now stops the slip (mu = 0.88 allows sticking there).
 
+mod common;
+
 #[test]
 fn slip_that_dies_on_its_ray_sticks() {
-    let (_, v, _, e) = impactcheck::perf::rigid_inputs(72_793);
-    let r = impactcheck::perf::rigid_case(72_793).expect("the impact ends");
-    let kinds: Vec<&str> = r.phases.iter().map(|p| p.kind.as_str()).collect();
-    assert_eq!(kinds, ["slip", "stick"], "{kinds:?}");
-    // Poisson's law: the normal impulse ends at (1 + e) times the compression impulse
-    let chi_end = (1.0 + e) * r.compression_impulse;
-    assert!(
-        (r.impulse[2] - chi_end).abs() <= 1e-8 * chi_end,
-        "{} vs {chi_end}",
-        r.impulse[2]
-    );
-    assert!(r.energy_change <= 1e-9 * v.norm_squared());
-    assert!(nalgebra::Vector3::from(r.impulse).norm() <= r.bound_upper * (1.0 + 1e-9));
+    common::check_case(72_793, &["slip", "stick"]);
 }

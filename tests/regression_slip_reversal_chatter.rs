@@ -6,22 +6,10 @@
 //! integration noise took it back under the stop at once, over and over. The restart is now 20
 //! slip_stop (still under 0.2 rtol of the velocity scale), and the root chosen is the stable one.
 
+mod common;
+
 #[test]
 fn slip_reversal_below_the_stick_threshold_ends() {
-    let (_, v, _, e) = impactcheck::perf::rigid_inputs(102_926);
-    let r = impactcheck::perf::rigid_case(102_926).expect("the impact ends");
     // one reversal, then slip to the end (no chatter)
-    let kinds: Vec<&str> = r.phases.iter().map(|p| p.kind.as_str()).collect();
-    assert_eq!(kinds, ["slip", "reversal"], "{kinds:?}");
-    // Poisson's law: the normal impulse ends at (1 + e) times the compression impulse, and the
-    // impulse's normal component is the normal impulse (independent of the stick/slip history)
-    let chi_end = (1.0 + e) * r.compression_impulse;
-    assert!(
-        (r.impulse[2] - chi_end).abs() <= 1e-8 * chi_end,
-        "{} vs {chi_end}",
-        r.impulse[2]
-    );
-    // energy never grows, and |I| stays within Proposition 1's bound 2|V-|/lambda_min
-    assert!(r.energy_change <= 1e-9 * v.norm_squared());
-    assert!(nalgebra::Vector3::from(r.impulse).norm() <= r.bound_upper * (1.0 + 1e-9));
+    common::check_case(102_926, &["slip", "reversal"]);
 }

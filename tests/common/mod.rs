@@ -1,0 +1,23 @@
+//! What every regression test of a seeded random impact checks once it ends: the phases it went
+//! through, Poisson's normal impulse (1 + e) times the compression impulse (independent of the
+//! stick/slip history), energy never gained, and Proposition 1's bound |I| <= 2|V-|/lambda_min.
+
+/// Runs seeded impact `case` of the sweep benchmark and checks the above; `phases` as expected.
+pub fn check_case(case: u64, phases: &[&str]) -> impactcheck::models::rigid_impact::ImpactResult {
+    let (_, v, _, e) = impactcheck::perf::rigid_inputs(case);
+    let r = impactcheck::perf::rigid_case(case).unwrap_or_else(|err| panic!("case {case}: {err}"));
+    let kinds: Vec<&str> = r.phases.iter().map(|p| p.kind.as_str()).collect();
+    assert_eq!(kinds, phases, "case {case}");
+    let chi_end = (1.0 + e) * r.compression_impulse;
+    assert!(
+        (r.impulse[2] - chi_end).abs() <= 1e-8 * chi_end,
+        "case {case}: {} vs {chi_end}",
+        r.impulse[2]
+    );
+    assert!(r.energy_change <= 1e-9 * v.norm_squared(), "case {case}");
+    assert!(
+        nalgebra::Vector3::from(r.impulse).norm() <= r.bound_upper * (1.0 + 1e-9),
+        "case {case}"
+    );
+    r
+}
