@@ -240,6 +240,17 @@ pub fn scatter_with_lines(
     out
 }
 
+/// Curves held as `(name, points)` pairs, as [`Series`].
+fn as_series(curves: &[(String, Vec<(f64, f64)>)]) -> Vec<Series<'_>> {
+    curves
+        .iter()
+        .map(|(n, p)| Series {
+            name: n,
+            points: p.clone(),
+        })
+        .collect()
+}
+
 /// [`plot`] for curves held as `(name, points)` pairs.
 pub fn plot_curves(
     title: &str,
@@ -249,14 +260,7 @@ pub fn plot_curves(
     ys: Scale,
     curves: &[(String, Vec<(f64, f64)>)],
 ) -> String {
-    let series: Vec<Series> = curves
-        .iter()
-        .map(|(n, p)| Series {
-            name: n,
-            points: p.clone(),
-        })
-        .collect();
-    plot(title, xlabel, ylabel, xs, ys, &series)
+    plot(title, xlabel, ylabel, xs, ys, &as_series(curves))
 }
 
 /// A short tick label: `0.5`, `20`, `1e-3` (no more digits than the value needs, to 3 figures).
@@ -397,12 +401,5 @@ pub fn csv(xlabel: &str, ylabel: &str, series: &[Series]) -> String {
 
 /// [`csv`] for curves held as `(name, points)` pairs.
 pub fn csv_curves(xlabel: &str, ylabel: &str, curves: &[(String, Vec<(f64, f64)>)]) -> String {
-    let series: Vec<Series> = curves
-        .iter()
-        .map(|(n, p)| Series {
-            name: n,
-            points: p.clone(),
-        })
-        .collect();
-    csv(xlabel, ylabel, &series)
+    csv(xlabel, ylabel, &as_series(curves))
 }
