@@ -15,6 +15,8 @@
 //! unary    := "-" unary | power
 //! power    := atom ("^" unary)?
 //! atom     := number | name | function "(" expr ")" | "(" expr ")"
+//!           | "diff(" expr "," name ")" | "int(" expr "," name "," expr "," expr ")"
+//!           | "at(" expr "," name "," expr ")"
 //! ```
 //! Numbers (`3`, `3.2181`, `1e-3`) are read as exact rationals; names are
 //! `[A-Za-z_][A-Za-z0-9_]*` with dotted parts (`contact.duration`, an outcome quantity); `pi` is
@@ -33,6 +35,7 @@ use super::expo::Expo;
 use super::poly::{Poly, Q, Sym};
 use super::ratfunc::RatFunc;
 use num_bigint::BigInt;
+use num_integer::Integer;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::fmt;
 
@@ -95,7 +98,7 @@ impl Func {
         }
     }
 
-    fn apply(self, x: f64) -> f64 {
+    pub(crate) fn apply(self, x: f64) -> f64 {
         match self {
             Func::Sqrt => x.sqrt(),
             Func::Exp => x.exp(),
@@ -125,6 +128,33 @@ pub fn complete_elliptic(k: f64) -> (f64, f64) {
         return (f64::INFINITY, 1.0);
     }
     (rf, rf - k * k * rd / 3.0)
+}
+
+/// $\sin(c\pi)$ (or $\cos(c\pi)$) exactly, when the argument is a rational multiple $c\pi$ and
+/// the value is rational ($6c$ an integer, the value then in $\{0, \pm 1/2, \pm 1\}$): a mode
+/// shape $\sin(m\pi x/a)$ at an edge or the centre, with $m$ given.
+fn sin_cos_of_pi_multiple(cos: bool, arg: &RatFunc) -> Option<Q> {
+    let c = if arg.is_zero() {
+        Q::zero()
+    } else {
+        arg.div(&RatFunc::sym("pi"))?.as_constant()?
+    };
+    let six = c * Q::from_integer(6.into());
+    if !six.denom().is_one() {
+        return None;
+    }
+    // sin(k pi/6) for k mod 12; cos(x) = sin(x + pi/2)
+    let k: BigInt =
+        (six.to_integer() + BigInt::from(if cos { 3 } else { 0 })).mod_floor(&BigInt::from(12));
+    let half = Q::new(1.into(), 2.into());
+    Some(match k.to_u8()? {
+        0 | 6 => Q::zero(),
+        1 | 5 => half,
+        3 => Q::one(),
+        7 | 11 => -half,
+        9 => -Q::one(),
+        _ => return None,
+    })
 }
 
 /// A binary operator.
@@ -176,6 +206,50 @@ pub enum Expr {
     Bin(Op, Box<Expr>, Box<Expr>),
     /// A function call.
     Call(Func, Box<Expr>),
+    /// A calculus operation on a formula with respect to a variable (`diff(e, x)`,
+    /// `int(e, x, lo, hi)`, `at(e, x, v)`): the operation, the formula, the variable and the
+    /// further arguments (`[lo, hi]` or `[v]`). See [`super::calculus`].
+    Calc(Calc, Box<Expr>, String, Vec<Expr>),
+}
+
+/// A calculus operation of a formula.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Calc {
+    /// `diff(e, x)`: the derivative of `e` with respect to `x`.
+    Diff,
+    /// `int(e, x, lo, hi)`: the definite integral of `e` over `x` from `lo` to `hi`.
+    Int,
+    /// `at(e, x, v)`: `e` with `x` replaced by `v`.
+    At,
+}
+
+impl Calc {
+    fn from_name(name: &str) -> Option<Calc> {
+        Some(match name {
+            "diff" => Calc::Diff,
+            "int" => Calc::Int,
+            "at" => Calc::At,
+            _ => return None,
+        })
+    }
+
+    /// The name as written.
+    pub fn name(self) -> &'static str {
+        match self {
+            Calc::Diff => "diff",
+            Calc::Int => "int",
+            Calc::At => "at",
+        }
+    }
+
+    /// How many arguments follow the formula and the variable.
+    pub fn extra_args(self) -> usize {
+        match self {
+            Calc::Diff => 0,
+            Calc::Int => 2,
+            Calc::At => 1,
+        }
+    }
 }
 
 /// A comparison.
@@ -261,6 +335,7 @@ enum Tok {
     Rel(Rel),
     LParen,
     RParen,
+    Comma,
     End,
 }
 
@@ -273,6 +348,7 @@ impl Tok {
             Tok::Rel(r) => format!("`{}`", r.symbol()),
             Tok::LParen => "`(`".into(),
             Tok::RParen => "`)`".into(),
+            Tok::Comma => "`,`".into(),
             Tok::End => "the end of the formula".into(),
         }
     }
@@ -348,6 +424,7 @@ fn lex(text: &str) -> Result<Vec<(Tok, usize)>, ParseError> {
             ('>', _) => (Tok::Rel(Rel::Gt), 1),
             ('(', _) => (Tok::LParen, 1),
             (')', _) => (Tok::RParen, 1),
+            (',', _) => (Tok::Comma, 1),
             ('+' | '-' | '*' | '/' | '^', _) => (Tok::Op(c), 1),
             _ => {
                 return Err(ParseError {
@@ -471,6 +548,9 @@ impl Parser {
                     self.bump();
                     return Ok(Expr::Call(f, Box::new(arg)));
                 }
+                if let Some(calc) = Calc::from_name(&n) {
+                    return self.calc(calc, &n);
+                }
                 if *self.peek() == Tok::LParen {
                     return Err(ParseError {
                         column: self.col(),
@@ -494,6 +574,40 @@ impl Parser {
             }
             _ => Err(self.err(WHAT)),
         }
+    }
+
+    /// `diff(e, x)`, `int(e, x, lo, hi)`, `at(e, x, v)`, after the name.
+    fn calc(&mut self, calc: Calc, n: &str) -> Result<Expr, ParseError> {
+        if *self.peek() != Tok::LParen {
+            return Err(self.err(&format!("`(` after `{n}`")));
+        }
+        self.bump();
+        let body = self.expr()?;
+        if *self.peek() != Tok::Comma {
+            return Err(self.err(&format!("`,` and the variable of `{n}(`")));
+        }
+        self.bump();
+        let Tok::Name(var) = self.peek().clone() else {
+            return Err(self.err(&format!("the name of the variable of `{n}(`")));
+        };
+        self.bump();
+        let mut extra = Vec::new();
+        for _ in 0..calc.extra_args() {
+            if *self.peek() != Tok::Comma {
+                let what = match calc {
+                    Calc::Int => "`,` and the bounds of `int(e, x, lo, hi)`",
+                    _ => "`,` and the value of `at(e, x, v)`",
+                };
+                return Err(self.err(what));
+            }
+            self.bump();
+            extra.push(self.expr()?);
+        }
+        if *self.peek() != Tok::RParen {
+            return Err(self.err(&format!("`)` closing `{n}(`")));
+        }
+        self.bump();
+        Ok(Expr::Calc(calc, Box::new(body), var, extra))
     }
 
     fn finish(&self) -> Result<(), ParseError> {
@@ -610,7 +724,7 @@ impl Expr {
         match self {
             Expr::Num(v) if v.is_negative() => 3,
             Expr::Num(v) if !v.denom().is_one() && number_text(v).contains('/') => 2,
-            Expr::Num(_) | Expr::Sym(_) | Expr::Pi | Expr::Call(..) => 5,
+            Expr::Num(_) | Expr::Sym(_) | Expr::Pi | Expr::Call(..) | Expr::Calc(..) => 5,
             Expr::Neg(_) => 3,
             Expr::Bin(op, ..) => op.prec(),
         }
@@ -638,6 +752,18 @@ impl Expr {
                 out.push_str(f.name());
                 out.push('(');
                 a.write(out);
+                out.push(')');
+            }
+            Expr::Calc(c, body, var, extra) => {
+                out.push_str(c.name());
+                out.push('(');
+                body.write(out);
+                out.push_str(", ");
+                out.push_str(var);
+                for e in extra {
+                    out.push_str(", ");
+                    e.write(out);
+                }
                 out.push(')');
             }
             Expr::Bin(op, l, r) => {
@@ -673,6 +799,14 @@ impl Expr {
                     go(a, out);
                     go(b, out);
                 }
+                // the variable is listed too: it needs a unit like any symbol
+                Expr::Calc(_, body, var, extra) => {
+                    go(body, out);
+                    out.push(var.clone());
+                    for e in extra {
+                        go(e, out);
+                    }
+                }
             }
         }
         let mut v = Vec::new();
@@ -694,6 +828,13 @@ impl Expr {
                 Box::new(a.substitute(with)),
                 Box::new(b.substitute(with)),
             ),
+            // the variable is local to the operation: it is not replaced inside
+            Expr::Calc(c, body, var, extra) => Expr::Calc(
+                *c,
+                Box::new(body.substitute(&|s: &str| if s == var { None } else { with(s) })),
+                var.clone(),
+                extra.iter().map(|e| e.substitute(with)).collect(),
+            ),
         }
     }
 
@@ -710,7 +851,15 @@ impl Expr {
             Expr::Sym(s) => RatFunc::sym(s),
             Expr::Pi => RatFunc::sym("pi"),
             Expr::Neg(a) => -&a.to_ratfunc()?,
+            Expr::Call(f @ (Func::Sin | Func::Cos), a) => {
+                return RatFunc::from_q(sin_cos_of_pi_multiple(*f == Func::Cos, &a.to_ratfunc()?)?)
+                    .into();
+            }
             Expr::Call(..) => return None,
+            Expr::Calc(Calc::Int, body, var, extra) => {
+                super::calculus::integral_ratfunc(&body.lower().ok()?, var, &extra[0], &extra[1])?
+            }
+            Expr::Calc(..) => return self.lower().ok()?.to_ratfunc(),
             Expr::Bin(op, a, b) => {
                 if *op == Op::Pow {
                     let e = b.exact_constant()?;
@@ -764,6 +913,8 @@ impl Expr {
                 Expo::part(RatFunc::one(), 0, rate)
             }
             Expr::Call(..) => Expo::monomial(free(self)?, 0),
+            Expr::Calc(Calc::Int, ..) => Expo::monomial(free(self)?, 0),
+            Expr::Calc(..) => return self.lower().ok()?.to_expo(t),
             Expr::Bin(op, a, b) => match op {
                 Op::Add => &a.to_expo(t)? + &b.to_expo(t)?,
                 Op::Sub => &a.to_expo(t)? - &b.to_expo(t)?,
@@ -795,6 +946,16 @@ impl Expr {
             Expr::Pi => std::f64::consts::PI,
             Expr::Neg(a) => -a.eval(value)?,
             Expr::Call(f, a) => f.apply(a.eval(value)?),
+            Expr::Calc(Calc::Int, body, var, extra) => {
+                let body = body.lower()?;
+                let (lo, hi) = (extra[0].eval(value)?, extra[1].eval(value)?);
+                super::calculus::integral_f64(
+                    &|x: f64| body.eval(&|s: &str| if s == var { Some(x) } else { value(s) }),
+                    lo,
+                    hi,
+                )?
+            }
+            Expr::Calc(..) => self.lower()?.eval(value)?,
             Expr::Bin(op, a, b) => {
                 let (x, y) = (a.eval(value)?, b.eval(value)?);
                 match op {
@@ -906,5 +1067,17 @@ mod tests {
         assert_eq!(e.len(), 2);
         assert!(parse("exp(-a*t^2)").unwrap().to_expo("t").is_none());
         assert!(parse("1/t").unwrap().to_expo("t").is_none());
+    }
+
+    #[test]
+    fn sines_at_rational_multiples_of_pi_are_exact() {
+        // by hand: sin(3 pi/2) = -1, cos(pi) = -1, sin(pi/6) = 1/2, sin(m pi x/a) at x = a, m = 3
+        let v = |t: &str| parse(t).unwrap().to_ratfunc().map(|r| r.to_text());
+        assert_eq!(v("sin(3*pi/2)").as_deref(), Some("-1"));
+        assert_eq!(v("cos(pi)").as_deref(), Some("-1"));
+        assert_eq!(v("sin(pi/6)*2").as_deref(), Some("1"));
+        assert_eq!(v("at(sin(3*pi*x/a), x, a)").as_deref(), Some("0"));
+        assert_eq!(v("sin(pi/4)"), None);
+        assert_eq!(v("sin(x)"), None);
     }
 }

@@ -5,7 +5,7 @@
 //! is a force exactly, and [`dimension`] of a formula either gives its unit or names the first
 //! term whose units do not match.
 
-use super::expr::{Expr, Func, Op};
+use super::expr::{Calc, Expr, Func, Op};
 use num_rational::Rational64;
 use num_traits::{ToPrimitive, Zero};
 use std::fmt;
@@ -152,6 +152,27 @@ pub fn dimension(e: &Expr, unit: &dyn Fn(&str) -> Option<Unit>) -> Result<Unit, 
                 Ok(Unit::one())
             }
         },
+        Expr::Calc(c, body, x, extra) => {
+            let ux = unit(x).ok_or_else(|| DimError::Unknown(x.clone()))?;
+            for v in extra {
+                let uv = dimension(v, unit)?;
+                if uv != ux {
+                    return Err(DimError::Mismatch {
+                        whole: e.to_string(),
+                        left: x.clone(),
+                        left_unit: ux.to_string(),
+                        right: v.to_string(),
+                        right_unit: uv.to_string(),
+                    });
+                }
+            }
+            let ub = dimension(body, unit)?;
+            Ok(match c {
+                Calc::Diff => ub.times(ux, (-1).into()),
+                Calc::Int => ub.times(ux, 1.into()),
+                Calc::At => ub,
+            })
+        }
         Expr::Bin(op, a, b) => match op {
             Op::Add | Op::Sub => {
                 let (ua, ub) = (dimension(a, unit)?, dimension(b, unit)?);

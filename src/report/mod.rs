@@ -95,7 +95,8 @@ pub fn render(papers: &[PaperClaims], outcomes: &[Outcome]) -> Vec<(String, Stri
     let mut readme = String::from(
         "# impactcheck reports\n\nWritten by `cargo run --release --bin verify`; every verdict below is computed \
          (exact algebra, or numerics with a stated error), none is typed in. Verdicts: `holds`, `fails`, \
-         `holds-with-correction`, `not-checkable`.\n\n",
+         `holds-with-correction`, `holds-with-assumption` (the assumption is named), `definition` (a definition whose \
+         units and uses were checked), `not-checkable` (what is missing is named).\n\n",
     );
     readme.push_str(
         "Also: [what accuracy costs in time](timing/accuracy_cost.md) (work-precision of every model and method) and \

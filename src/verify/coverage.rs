@@ -128,8 +128,8 @@ pub fn table(cov: &[Coverage], outcomes: &[Outcome]) -> String {
         "## Coverage of the papers\n\nNumbered equations are the `\\tag{...}` labels of each paper's text; a claim covers the \
          labels in parentheses in its `equation` field. Computed by `verify` on every run. The solver robustness \
          cases (`hard.*`) are not counted here.\n\n\
-         | paper | numbered equations | with a claim | claims | holds | fails | holds-with-correction | not-checkable | equations without a claim |\n\
-         |---|---|---|---|---|---|---|---|---|\n",
+         | paper | numbered equations | with a claim | claims | holds | fails | holds-with-correction | holds-with-assumption | definition | not-checkable | equations without a claim |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for c in cov {
         let mine: Vec<&Outcome> = outcomes.iter().filter(|o| o.paper == c.paper).collect();
@@ -154,7 +154,7 @@ pub fn table(cov: &[Coverage], outcomes: &[Outcome]) -> String {
             )
         };
         md.push_str(&format!(
-            "| {} | {} | {}{share} | {} | {} | {} | {} | {} | {} |\n",
+            "| {} | {} | {}{share} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
             c.paper,
             c.equations.len(),
             c.covered(),
@@ -162,6 +162,8 @@ pub fn table(cov: &[Coverage], outcomes: &[Outcome]) -> String {
             count("holds"),
             count("fails"),
             count("holds-with-correction"),
+            count("holds-with-assumption"),
+            count("definition"),
             count("not-checkable"),
             missing
         ));

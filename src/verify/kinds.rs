@@ -33,6 +33,8 @@ pub const KINDS: &[&str] = &[
     "bound",
     "probability",
     "map",
+    "definition",
+    "not-checkable",
     "check",
 ];
 
@@ -608,6 +610,85 @@ impl<'a> Checked<'a> {
                 let e = required(f, c, "expect", &c.expect, "a unit such as \"N\"")?;
                 Unit::parse(e).map_err(|m| claim_err(f, c, "expect", m))?;
             }
+            "definition" => {
+                let p = parse_formula(
+                    f,
+                    c,
+                    "printed",
+                    required(f, c, "printed", &c.printed, "the defining formula")?,
+                )?;
+                self.units_of(c, "printed", &p, &["m", "n"])?;
+                if let Some(d) = &c.defines
+                    && !self.units.contains_key(d)
+                {
+                    return Err(claim_err(
+                        f,
+                        c,
+                        "defines",
+                        format!("`{d}`: give its unit in [symbols]"),
+                    ));
+                }
+                if c.defines.is_none() && c.agrees.is_empty() {
+                    return Err(claim_err(
+                        f,
+                        c,
+                        "agrees",
+                        "a definition needs `defines` (the symbol, whose unit is checked) or `agrees` (identities from the equations that use it), or both".into(),
+                    ));
+                }
+                for (i, [l, r]) in c.agrees.iter().enumerate() {
+                    for (side, text) in [("printed", l), ("derived", r)] {
+                        let field = format!("agrees[{i}].{side}");
+                        let e = parse_formula(f, c, &field, text)?;
+                        self.units_of(c, &field, &e, &["m", "n"])?;
+                    }
+                }
+            }
+            "not-checkable" => {
+                required(f, c, "reason", &c.reason, "what the text lacks for a check")?;
+            }
+            "bound" if c.scene.is_none() => {
+                // a bound on formulas alone: the samples are the symbols' values
+                let n = *required(f, c, "count", &c.count, "the number of samples")?;
+                if !(1..=1_000_000).contains(&n) {
+                    return Err(claim_err(
+                        f,
+                        c,
+                        "count",
+                        format!("{n} is out of range; allowed: 1..=1000000"),
+                    ));
+                }
+                required(f, c, "seed", &c.seed, "the generator's seed")?;
+                required(f, c, "require", &c.require, "an inequality")?;
+                for (sym, d) in &c.sample {
+                    let key = format!("sample.{sym}");
+                    parse_dist(d).map_err(|m| claim_err(f, c, &key, m))?;
+                    if !self.units.contains_key(sym) {
+                        return Err(claim_err(
+                            f,
+                            c,
+                            &key,
+                            format!("`{sym}`: give its unit in [symbols]"),
+                        ));
+                    }
+                }
+                let ineq = self.inequality(c, "require")?;
+                for e in [&ineq.lhs, &ineq.rhs] {
+                    self.units_of(c, "require", e, &[])?;
+                    for s in e.symbols() {
+                        if !c.sample.contains_key(&s) {
+                            return Err(claim_err(
+                                f,
+                                c,
+                                "require",
+                                format!(
+                                    "`{s}` is not sampled: without a scene every symbol is drawn (sample.{s} = \"uniform(a, b)\")"
+                                ),
+                            ));
+                        }
+                    }
+                }
+            }
             "model" | "bound" | "probability" | "map" => {
                 let path = self.scene_path(c)?;
                 let (_, mut table) = self.scene_table(c)?;
@@ -793,10 +874,22 @@ impl<'a> Checked<'a> {
             "model" => self.model(c)?,
             "map" => self.map(c)?,
             "probability" => self.probability(c)?,
+            "definition" => self.definition(c, der)?,
+            "not-checkable" => {
+                let mut o = outcome(
+                    self.file,
+                    c,
+                    Verdict::NotCheckable,
+                    c.reason.clone().unwrap_or_default(),
+                );
+                o.extra_md =
+                    Some("Kind `not-checkable`: the reason is what the text lacks.".into());
+                o
+            }
             _ => self.bound(c)?,
         };
         o.kind = c.kind.clone();
-        Ok(o)
+        Ok(super::with_assumption(o, c))
     }
 
     fn unit_fn(&self) -> impl Fn(&str) -> Option<Unit> + '_ {
@@ -863,6 +956,65 @@ impl<'a> Checked<'a> {
     /// The file's definitions expanded in `e`.
     fn expand(&self, e: &Expr) -> Expr {
         e.substitute(&|s: &str| self.defs.get(s).cloned())
+    }
+
+    /// A definition: the unit of `defines` against the printed formula's, then each identity of
+    /// `agrees` with the definition substituted (exact where rational).
+    fn definition(&self, c: &ClaimSpec, der: &mut Derivations) -> Result<Outcome, VerifyError> {
+        let f = self.file;
+        let text = c.printed.as_deref().unwrap_or_default();
+        let p = self.formula(c, "printed", text)?;
+        let mut ok = true;
+        let mut parts = Vec::new();
+        if let Some(d) = &c.defines {
+            let want = self.units[d];
+            match units::dimension(&p, &self.unit_fn()) {
+                Ok(u) if u == want => parts.push(format!("`{d}` and `{p}` are both {u}")),
+                Ok(u) => {
+                    ok = false;
+                    parts.push(format!("`{d}` is {want} but `{p}` is {u}"));
+                }
+                Err(e) => {
+                    ok = false;
+                    parts.push(format!("`{p}` has no single unit: {e}"));
+                }
+            }
+        }
+        for (i, [l, r]) in c.agrees.iter().enumerate() {
+            let mut sub = c.clone();
+            sub.kind = "identity".into();
+            sub.printed = Some(l.clone());
+            sub.derived = Some(r.clone());
+            sub.corrected = None;
+            sub.assumption = None;
+            if let Some(d) = &c.defines {
+                sub.where_.insert(d.clone(), text.to_string());
+            }
+            let o = self.identity(&sub, der)?;
+            let held = o.verdict == Verdict::Holds;
+            ok &= held;
+            parts.push(format!(
+                "use {}: `{l}` {} `{r}` ({})",
+                i + 1,
+                if held { "=" } else { "!=" },
+                o.detail
+            ));
+        }
+        let verdict = if ok {
+            Verdict::Definition
+        } else {
+            Verdict::Fails
+        };
+        let mut o = outcome(f, c, verdict, parts.join("; "));
+        o.extra_md = Some(format!(
+            "Kind `definition`{}: `{text}`; checked for units and against {} use(s).",
+            c.defines
+                .as_deref()
+                .map(|d| format!(" of `{d}`"))
+                .unwrap_or_default(),
+            c.agrees.len()
+        ));
+        Ok(o)
     }
 
     fn dimension(&self, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
@@ -1479,7 +1631,6 @@ impl<'a> Checked<'a> {
     ) -> Result<(Vec<Vec<(String, f64)>>, Vec<Result<(f64, f64), String>>), VerifyError> {
         use rayon::prelude::*;
         let f = self.file;
-        let (label, base) = self.scene_table(c)?;
         let dists: Vec<(String, Dist)> = c
             .sample
             .iter()
@@ -1500,6 +1651,18 @@ impl<'a> Checked<'a> {
                     .collect()
             })
             .collect();
+        if c.scene.is_none() {
+            // formulas alone: the draws are the symbols' values
+            let rows = draws
+                .iter()
+                .map(|pt| {
+                    let value = |s: &str| pt.iter().find(|(k, _)| k == s).map(|(_, v)| *v);
+                    Ok((ineq.lhs.eval(&value)?, ineq.rhs.eval(&value)?))
+                })
+                .collect();
+            return Ok((draws, rows));
+        }
+        let (label, base) = self.scene_table(c)?;
         let rows = draws
             .par_iter()
             .map(|pt| run_point(c, &base, &label, pt, (&ineq.lhs, &ineq.rhs)))
@@ -1745,8 +1908,11 @@ impl<'a> Checked<'a> {
         };
         let mut o = outcome(f, c, verdict, detail);
         o.extra_md = Some(format!(
-            "Kind `bound`. Scene `{}`; sampled: {}; required: `{ineq}`.",
-            c.scene.clone().unwrap_or_default(),
+            "Kind `bound`. {}; sampled: {}; required: `{ineq}`.",
+            c.scene
+                .as_ref()
+                .map(|s| format!("Scene `{s}`"))
+                .unwrap_or_else(|| "Formulas alone (no scene)".into()),
             c.sample
                 .iter()
                 .map(|(k, v)| format!("{k} ~ {v}"))

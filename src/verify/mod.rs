@@ -143,6 +143,20 @@ pub struct ClaimSpec {
     /// kinds relative to the claims file.
     #[serde(default)]
     pub scene: Option<String>,
+    /// `definition`: the symbol the printed formula defines (its unit must be the formula's).
+    #[serde(default)]
+    pub defines: Option<String>,
+    /// `definition`: identities `[printed, derived]` from the equations that use the definition;
+    /// each must hold with the definition substituted.
+    #[serde(default)]
+    pub agrees: Vec<[String; 2]>,
+    /// Any kind: what the verdict assumes beyond the text; a `holds` becomes
+    /// `holds-with-assumption` and the detail names it.
+    #[serde(default)]
+    pub assumption: Option<String>,
+    /// `not-checkable`: exactly what is missing from the text.
+    #[serde(default)]
+    pub reason: Option<String>,
 }
 
 /// What a check found.
@@ -157,6 +171,12 @@ pub enum Verdict {
     HoldsWithCorrection,
     /// The tool cannot check it (the detail says why).
     NotCheckable,
+    /// A definition, found consistent: its units agree and the equations that use it hold with
+    /// it substituted (kind `definition`).
+    Definition,
+    /// It holds under an assumption the claim names (`assumption`), which the text does not
+    /// state or the computation cannot decide.
+    HoldsWithAssumption,
 }
 
 impl Verdict {
@@ -167,6 +187,8 @@ impl Verdict {
             Verdict::Fails => "fails",
             Verdict::HoldsWithCorrection => "holds-with-correction",
             Verdict::NotCheckable => "not-checkable",
+            Verdict::Definition => "definition",
+            Verdict::HoldsWithAssumption => "holds-with-assumption",
         }
     }
 }
@@ -259,6 +281,18 @@ pub enum VerifyError {
 }
 
 /// An outcome with no LaTeX, extra Markdown or files.
+/// A `holds` under the claim's `assumption` becomes `holds-with-assumption`, the assumption
+/// named first in the detail.
+pub(crate) fn with_assumption(mut o: Outcome, c: &ClaimSpec) -> Outcome {
+    if let Some(a) = &c.assumption {
+        if o.verdict == Verdict::Holds {
+            o.verdict = Verdict::HoldsWithAssumption;
+        }
+        o.detail = format!("assuming {a}: {}", o.detail);
+    }
+    o
+}
+
 pub(crate) fn outcome(
     paper: &PaperClaims,
     c: &ClaimSpec,
@@ -391,7 +425,7 @@ pub fn run_all(papers: &[PaperClaims], root: &Path) -> Result<Vec<Outcome>, Veri
                 ),
             };
             o.kind = format!("check `{}`", c.check);
-            out.push(o);
+            out.push(with_assumption(o, c));
         }
     }
     out.sort_by(|a, b| a.id.cmp(&b.id));
