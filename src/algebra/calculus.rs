@@ -300,6 +300,21 @@ mod tests {
     }
 
     #[test]
+    fn nested_integrals_of_exponential_polynomials_are_exact() {
+        // (21) of 000 at k = 1 (closed form by hand): e^{-a t} int_0^t e^{a s} s ds
+        // = t/a - 1/a^2 + e^{-a t}/a^2
+        let e = parse("exp(-a*t)*int(exp(a*s)*s, s, 0, t)").unwrap();
+        let want = parse("t/a - 1/a^2 + exp(-a*t)/a^2").unwrap();
+        assert_eq!(e.to_expo("t").unwrap(), want.to_expo("t").unwrap());
+        // a double integral with t in the inner integrand: int_0^t int_0^u (t - s) ds du = t^3/3
+        let e = parse("int(int(t - s, s, 0, u), u, 0, t)").unwrap();
+        assert_eq!(
+            e.to_expo("t").unwrap(),
+            parse("t^3/3").unwrap().to_expo("t").unwrap()
+        );
+    }
+
+    #[test]
     fn elliptic_derivatives_match_differences() {
         // central differences of K and E at k = 0.6 against the chain-rule forms
         let h = 1e-6;

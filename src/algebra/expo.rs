@@ -183,6 +183,32 @@ impl Expo {
         acc
     }
 
+    /// The same function with the symbol `var` of the coefficients taken as the variable itself:
+    /// $\int_0^t g(s, t)\,ds$ comes out of [`Expo::integral`] with `t` still in the coefficients.
+    /// `None` when a coefficient has `var` in its denominator or a rate depends on it.
+    pub fn absorb(&self, var: super::poly::Sym) -> Option<Expo> {
+        let mut out = Expo::zero();
+        for ((r, k), v) in &self.parts {
+            if r.degree_in(var) > 0 {
+                return None;
+            }
+            if !v.depends_on(var) {
+                out.add_part(r.clone(), *k, v.clone());
+                continue;
+            }
+            let den = RatFunc::from_poly(v.denom());
+            if v.denom().degree_in(var) > 0 {
+                return None;
+            }
+            let num = v.numer();
+            for j in 0..=num.degree_in(var) {
+                let c = RatFunc::from_poly(num.coeff_of(var, j)).div(&den)?;
+                out.add_part(r.clone(), k + j, c);
+            }
+        }
+        Some(out)
+    }
+
     /// Substitutes a symbol by a value in every coefficient and rate.
     pub fn subst(&self, s: super::poly::Sym, value: &Q) -> Option<Expo> {
         let pv = Poly::constant(value.clone());

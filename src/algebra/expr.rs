@@ -884,6 +884,26 @@ impl Expr {
         })
     }
 
+    /// The formula as a rational function in which every function value that is not an exact
+    /// rational (`sin(n*pi*y/b)`, `exp(-t)`) and every integral that is not exact stands as a
+    /// symbol of its own, named by its text (`{sin(n*pi*y/b)}`). A difference that is zero in
+    /// this form is zero for every value of those functions, so it proves an identity; a non-zero
+    /// one proves nothing (`sin(x)^2 + cos(x)^2 - 1` is not zero here).
+    pub fn to_ratfunc_opaque(&self) -> Option<RatFunc> {
+        fn go(e: &Expr) -> Expr {
+            match e {
+                Expr::Num(_) | Expr::Sym(_) | Expr::Pi => e.clone(),
+                Expr::Neg(a) => Expr::Neg(Box::new(go(a))),
+                Expr::Bin(op, a, b) => Expr::Bin(*op, Box::new(go(a)), Box::new(go(b))),
+                Expr::Call(..) | Expr::Calc(..) => match e.to_ratfunc() {
+                    Some(_) => e.clone(),
+                    None => Expr::Sym(format!("{{{e}}}")),
+                },
+            }
+        }
+        go(&self.lower().ok()?).to_ratfunc()
+    }
+
     /// The formula as an exact exponential polynomial in the time symbol `t`: sums of
     /// `c * t^k * exp(-rate*t)` with `c` rational in the other symbols and `rate` a polynomial
     /// in them. `None` when it is not one (a division by something that depends on `t`, a power
@@ -913,6 +933,14 @@ impl Expr {
                 Expo::part(RatFunc::one(), 0, rate)
             }
             Expr::Call(..) => Expo::monomial(free(self)?, 0),
+            // int_0^t g(s) ds, g an exponential polynomial in s (t may appear in it)
+            Expr::Calc(Calc::Int, body, s, b)
+                if b[0].exact_constant().is_some_and(|v| v.is_zero())
+                    && b[1] == Expr::Sym(t.to_string())
+                    && s != t =>
+            {
+                body.lower().ok()?.to_expo(s)?.integral().absorb(tsym)?
+            }
             Expr::Calc(Calc::Int, ..) => Expo::monomial(free(self)?, 0),
             Expr::Calc(..) => return self.lower().ok()?.to_expo(t),
             Expr::Bin(op, a, b) => match op {

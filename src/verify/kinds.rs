@@ -1108,7 +1108,15 @@ impl<'a> Checked<'a> {
             })
         };
         let d = subst(&self.formula(c, field, &text)?);
-        let (Some(p), Some(mut d)) = (subst(printed).to_ratfunc(), d.to_ratfunc()) else {
+        let (p, d) = (subst(printed), d);
+        let (Some(p), Some(mut d)) = (p.to_ratfunc(), d.to_ratfunc()) else {
+            // functions as opaque symbols: proves a difference zero, or says nothing
+            if refs.is_empty()
+                && let (Some(p), Some(d)) = (p.to_ratfunc_opaque(), d.to_ratfunc_opaque())
+                && (&d - &p).is_zero()
+            {
+                return Ok(Some((&d - &p, d, p)));
+            }
             return Ok(None);
         };
         for r in &refs {

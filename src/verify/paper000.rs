@@ -4,9 +4,6 @@
 //! the derived and printed expressions and their difference.
 
 use super::{ClaimSpec, Outcome, PaperClaims, VerifyError, holds, outcome};
-use crate::algebra::dims::{self, Dim};
-use crate::algebra::expo::Expo;
-use crate::algebra::galerkin;
 use crate::algebra::identity21;
 use crate::algebra::operator::{self, OperatorCheck};
 use crate::algebra::poly::{Poly, Sym, q};
@@ -29,13 +26,6 @@ impl Context {
 
     fn operator(&mut self) -> &OperatorCheck {
         self.operator.get_or_insert_with(operator::check)
-    }
-}
-
-fn dim_text(d: &Result<Dim, dims::DimIssue>) -> String {
-    match d {
-        Ok(d) => d.to_string(),
-        Err(e) => format!("inconsistent ({e})"),
     }
 }
 
@@ -95,40 +85,6 @@ pub fn check(
                     op.alpha,
                     if negative { "negative" } else { "not negative" },
                     sample.map(|v| crate::cli::q_text(&v)).unwrap_or_default()
-                ),
-            )
-        }
-        "eq17-coefficient" => {
-            let printed = galerkin::printed_16(1, 1);
-            let (a4, a7) = (&printed[3], &printed[6]);
-            let same = a4 == a7;
-            let d4 = dims::dimension(a4);
-            let d7 = dims::dimension(a7);
-            outcome(
-                paper,
-                c,
-                holds(same),
-                format!(
-                    "(11) gives the coefficient A7 = {a7} (dimension {}); (17) prints A4 = {a4} (dimension {}); equal: {same}",
-                    dim_text(&d7),
-                    dim_text(&d4)
-                ),
-            )
-        }
-        "viscous-term" => {
-            // (eta/E) d/dt acting on z^2, for a generic z with z(0) = 0: compare with z z'
-            let z = &Expo::monomial(RatFunc::sym("v0"), 1)
-                + &Expo::part(RatFunc::sym("a8"), 2, Poly::sym("alpha"));
-            let b_true = (&z * &z).deriv();
-            let b_printed = &z * &z.deriv();
-            let ratio = (&b_true - &b_printed.scale(&RatFunc::from_q(q(2, 1)))).is_zero();
-            outcome(
-                paper,
-                c,
-                holds(b_true == b_printed),
-                format!(
-                    "the viscous part of E~ z^2 is (eta/E) d(z^2)/dt = 2 z z' (exactly twice the printed z z' for a test function z = {}: {ratio}); the printed M z z' halves the viscous term",
-                    z.to_text()
                 ),
             )
         }
