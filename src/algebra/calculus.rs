@@ -161,6 +161,9 @@ pub fn derivative(e: &Expr, x: &str) -> Result<Expr, String> {
                 Func::Cos => neg(call(Func::Sin, a)),
                 Func::Tan => div(num(1), pow(call(Func::Cos, a), num(2))),
                 Func::Abs => div(a.clone(), call(Func::Abs, a)),
+                Func::Asin => div(num(1), call(Func::Sqrt, sub(num(1), pow(a, num(2))))),
+                Func::Acos => neg(div(num(1), call(Func::Sqrt, sub(num(1), pow(a, num(2)))))),
+                Func::Atan => div(num(1), add(num(1), pow(a, num(2)))),
                 Func::EllipK => sub(
                     div(
                         call(Func::EllipE, a.clone()),
@@ -318,7 +321,7 @@ mod tests {
     fn elliptic_derivatives_match_differences() {
         // central differences of K and E at k = 0.6 against the chain-rule forms
         let h = 1e-6;
-        for f in ["ellipk(k)", "ellipe(k)"] {
+        for f in ["ellipk(k)", "ellipe(k)", "asin(k)", "acos(k)", "atan(k)"] {
             let e = parse(f).unwrap();
             let d = parse(&format!("diff({f}, k)")).unwrap();
             let v = |k: f64| e.eval(&|_| Some(k)).unwrap();

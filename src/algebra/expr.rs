@@ -20,7 +20,8 @@
 //! ```
 //! Numbers (`3`, `3.2181`, `1e-3`) are read as exact rationals; names are
 //! `[A-Za-z_][A-Za-z0-9_]*` with dotted parts (`contact.duration`, an outcome quantity); `pi` is
-//! the constant; the functions are `sqrt exp ln sin cos tan abs`.
+//! the constant; the functions are `sqrt exp ln sin cos tan asin acos atan abs ellipk ellipe`; and
+//! `diff(e, x)`, `int(e, x, lo, hi)`, `at(e, x, v)` (see [`super::calculus`]).
 //!
 //! A parsed [`Expr`] is a tree. It becomes an exact [`RatFunc`] when it is rational (integer
 //! powers, no functions; `pi` stays a symbol, which is sound for identities because $\pi$ is
@@ -41,7 +42,7 @@ use std::fmt;
 
 /// The functions a formula may call.
 pub const FUNCTIONS: &[&str] = &[
-    "sqrt", "exp", "ln", "sin", "cos", "tan", "abs", "ellipk", "ellipe",
+    "sqrt", "exp", "ln", "sin", "cos", "tan", "asin", "acos", "atan", "abs", "ellipk", "ellipe",
 ];
 
 /// A function of one argument.
@@ -59,6 +60,12 @@ pub enum Func {
     Cos,
     /// Tangent (radians).
     Tan,
+    /// Arc sine (radians).
+    Asin,
+    /// Arc cosine (radians).
+    Acos,
+    /// Arc tangent (radians).
+    Atan,
     /// Absolute value.
     Abs,
     /// The complete elliptic integral of the first kind $K(k)$, modulus $k$ in [0, 1).
@@ -76,6 +83,9 @@ impl Func {
             "sin" => Func::Sin,
             "cos" => Func::Cos,
             "tan" => Func::Tan,
+            "asin" => Func::Asin,
+            "acos" => Func::Acos,
+            "atan" => Func::Atan,
             "abs" => Func::Abs,
             "ellipk" => Func::EllipK,
             "ellipe" => Func::EllipE,
@@ -92,6 +102,9 @@ impl Func {
             Func::Sin => "sin",
             Func::Cos => "cos",
             Func::Tan => "tan",
+            Func::Asin => "asin",
+            Func::Acos => "acos",
+            Func::Atan => "atan",
             Func::Abs => "abs",
             Func::EllipK => "ellipk",
             Func::EllipE => "ellipe",
@@ -106,6 +119,9 @@ impl Func {
             Func::Sin => x.sin(),
             Func::Cos => x.cos(),
             Func::Tan => x.tan(),
+            Func::Asin => x.asin(),
+            Func::Acos => x.acos(),
+            Func::Atan => x.atan(),
             Func::Abs => x.abs(),
             Func::EllipK => complete_elliptic(x).0,
             Func::EllipE => complete_elliptic(x).1,
@@ -803,6 +819,38 @@ impl Expr {
                 Expr::Calc(_, body, var, extra) => {
                     go(body, out);
                     out.push(var.clone());
+                    for e in extra {
+                        go(e, out);
+                    }
+                }
+            }
+        }
+        let mut v = Vec::new();
+        go(self, &mut v);
+        v.sort();
+        v.dedup();
+        v
+    }
+
+    /// The symbols the value depends on: [`Expr::symbols`] without the variable of an `int` or
+    /// an `at` inside (which is bound there).
+    pub fn free_symbols(&self) -> Vec<String> {
+        fn go(e: &Expr, out: &mut Vec<String>) {
+            match e {
+                Expr::Sym(s) => out.push(s.clone()),
+                Expr::Num(_) | Expr::Pi => {}
+                Expr::Neg(a) | Expr::Call(_, a) => go(a, out),
+                Expr::Bin(_, a, b) => {
+                    go(a, out);
+                    go(b, out);
+                }
+                Expr::Calc(c, body, var, extra) => {
+                    let mut inner = Vec::new();
+                    go(body, &mut inner);
+                    if *c != Calc::Diff {
+                        inner.retain(|s| s != var);
+                    }
+                    out.extend(inner);
                     for e in extra {
                         go(e, out);
                     }

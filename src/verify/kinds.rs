@@ -675,7 +675,7 @@ impl<'a> Checked<'a> {
                 let ineq = self.inequality(c, "require")?;
                 for e in [&ineq.lhs, &ineq.rhs] {
                     self.units_of(c, "require", e, &[])?;
-                    for s in e.symbols() {
+                    for s in e.free_symbols() {
                         if !c.sample.contains_key(&s) {
                             return Err(claim_err(
                                 f,
@@ -838,7 +838,7 @@ impl<'a> Checked<'a> {
                     }
                 }
                 for (field, e) in &formulas {
-                    for s in e.symbols() {
+                    for s in e.free_symbols() {
                         if !c.bind.contains_key(&s) && lookup(&outcome, &s).is_none() {
                             return Err(claim_err(
                                 f,
@@ -1207,9 +1207,19 @@ impl<'a> Checked<'a> {
                     lines.push(line);
                 }
                 None => {
-                    let (ok, line) = self.numeric_identity(c, &printed, derived_text, params)?;
+                    let (ok, mut line) =
+                        self.numeric_identity(c, &printed, derived_text, params)?;
                     all_printed &= ok;
-                    all_corrected &= ok;
+                    match &c.corrected {
+                        Some(k) if !ok => {
+                            let ke = self.formula(c, "corrected", k)?;
+                            let (kok, kline) =
+                                self.numeric_identity(c, &ke, derived_text, params)?;
+                            all_corrected &= kok;
+                            line.push_str(&format!("; the corrected form: {kline}"));
+                        }
+                        _ => all_corrected &= ok,
+                    }
                     lines.push(format!("{at}{line}"));
                 }
             }
@@ -1413,6 +1423,7 @@ impl<'a> Checked<'a> {
         syms.dedup();
         let mut rng = crate::rng::Rng(0x1D_E27);
         let mut worst: f64 = 0.0;
+        let mut worst_abs: f64 = 0.0;
         for _ in 0..8 {
             let vals: BTreeMap<String, f64> = syms
                 .iter()
@@ -1430,16 +1441,28 @@ impl<'a> Checked<'a> {
                 a.map_err(|m| claim_err(f, c, "printed", m))?,
                 b.map_err(|m| claim_err(f, c, "derived", m))?,
             );
-            let rel = (a - b).abs() / a.abs().max(b.abs()).max(f64::MIN_POSITIVE);
+            // the difference beyond the absolute tolerance, relative to the larger side
+            let atol = c.atol.unwrap_or(0.0);
+            let excess = ((a - b).abs() - atol).max(0.0);
+            let rel = excess / a.abs().max(b.abs()).max(f64::MIN_POSITIVE);
             worst = worst.max(if rel.is_nan() { f64::INFINITY } else { rel });
+            worst_abs = worst_abs.max((a - b).abs());
         }
         let ok = worst <= 1e-12;
         Ok((
             ok,
-            format!(
-                "not rational: compared in floating point at 8 seeded points in [0.5, 2]; largest relative difference {}",
-                g4(worst)
-            ),
+            match c.atol {
+                Some(atol) => format!(
+                    "not rational: compared in floating point at 8 seeded points in [0.5, 2]; largest difference {} (atol {}), largest relative excess {}",
+                    g4(worst_abs),
+                    g4(atol),
+                    g4(worst)
+                ),
+                None => format!(
+                    "not rational: compared in floating point at 8 seeded points in [0.5, 2]; largest relative difference {}",
+                    g4(worst)
+                ),
+            },
         ))
     }
 

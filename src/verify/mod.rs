@@ -154,6 +154,10 @@ pub struct ClaimSpec {
     /// `holds-with-assumption` and the detail names it.
     #[serde(default)]
     pub assumption: Option<String>,
+    /// `identity` compared in floating point: an absolute tolerance besides the relative 1e-12,
+    /// for a side that should be zero (`int(r^2*sin(lam), lam, 0, 2*pi)`).
+    #[serde(default)]
+    pub atol: Option<f64>,
     /// `not-checkable`: exactly what is missing from the text.
     #[serde(default)]
     pub reason: Option<String>,
