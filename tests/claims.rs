@@ -508,3 +508,109 @@ expect = ">= 0.2"
     assert!(lo <= exact && exact <= hi, "[{lo}, {hi}] misses {exact}");
     assert_eq!(out[0].verdict, Verdict::Holds, "{}", out[0].detail);
 }
+
+#[test]
+fn definitions_are_checked_for_units_and_uses() {
+    // by hand: the area of [0, x] x [0, y] is x y, its polar moment int int (s^2) over it is
+    // x^3 y/3; a unit mismatch (m^2 against m) and a wrong use (x y/2) must fail
+    let p = claims_file(
+        "definition",
+        r#"
+[[claim]]
+id = "t.area"
+equation = "(1)"
+quote = "A = x y"
+kind = "definition"
+printed = "x*y"
+defines = "A"
+agrees = [["A", "int(int(1, s, 0, y), u, 0, x)"], ["int(int(u^2, s, 0, y), u, 0, x)", "x^3*y/3"]]
+
+[[claim]]
+id = "t.area-unit"
+equation = "(1)"
+quote = "A = x"
+kind = "definition"
+printed = "x"
+defines = "A"
+
+[[claim]]
+id = "t.area-use"
+equation = "(1)"
+quote = "A = x y, used as x y/2"
+kind = "definition"
+printed = "x*y"
+defines = "A"
+agrees = [["A", "int(int(1, s, 0, y/2), u, 0, x)"]]
+
+[[claim]]
+id = "t.missing"
+equation = "(2)"
+quote = "the text stops"
+kind = "not-checkable"
+reason = "the page is missing"
+"#,
+    );
+    // the symbols of this test
+    let text = std::fs::read_to_string(&p).unwrap().replace(
+        "[symbols]\n",
+        "[symbols]\nA = \"m^2\"\ns = \"m\"\nu = \"m\"\n",
+    );
+    std::fs::write(&p, text).unwrap();
+    let v = verdicts(&p);
+    let get = |id: &str| v.iter().find(|(i, ..)| i == id).expect(id).clone();
+    assert_eq!(get("t.area").1, Verdict::Definition, "{}", get("t.area").2);
+    let unit = get("t.area-unit");
+    assert_eq!(unit.1, Verdict::Fails);
+    assert!(unit.2.contains("`A` is m^2 but `x` is m"), "{}", unit.2);
+    let used = get("t.area-use");
+    assert_eq!(used.1, Verdict::Fails);
+    assert!(used.2.contains("!="), "{}", used.2);
+    let nc = get("t.missing");
+    assert_eq!(
+        (nc.1, nc.2.as_str()),
+        (Verdict::NotCheckable, "the page is missing")
+    );
+}
+
+#[test]
+fn bounds_on_formulas_alone_and_assumptions() {
+    // by hand: x^2 + 1 > 2 x fails only at x = 1 (never drawn exactly), x^2 >= 2 x fails on
+    // (0, 2); an assumption turns a holds into holds-with-assumption and a fail stays a fail
+    let p = claims_file(
+        "formula-bound",
+        r#"
+[[claim]]
+id = "t.am-gm"
+equation = "(1)"
+quote = "x^2 + 1 > 2 x"
+kind = "bound"
+sample = { x = "uniform(-3, 3)" }
+count = 500
+seed = 3
+require = "x^2 + 1 > 2*x"
+assumption = "x is real"
+
+[[claim]]
+id = "t.wrong"
+equation = "(2)"
+quote = "x^2 >= 2 x"
+kind = "bound"
+sample = { x = "uniform(-3, 3)" }
+count = 500
+seed = 3
+require = "x^2 >= 2*x"
+assumption = "x is real"
+"#,
+    );
+    let v = verdicts(&p);
+    let get = |id: &str| v.iter().find(|(i, ..)| i == id).expect(id).clone();
+    let ok = get("t.am-gm");
+    assert_eq!(ok.1, Verdict::HoldsWithAssumption, "{}", ok.2);
+    assert!(
+        ok.2.starts_with("assuming x is real: 500 of 500"),
+        "{}",
+        ok.2
+    );
+    let bad = get("t.wrong");
+    assert_eq!(bad.1, Verdict::Fails, "{}", bad.2);
+}

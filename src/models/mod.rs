@@ -9,6 +9,7 @@
 pub mod balls_wall;
 pub mod cone_plate;
 pub mod constrained;
+pub mod deformable;
 pub mod disk_friction;
 pub mod fixed_points;
 pub mod hertz;

@@ -428,6 +428,7 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
             )
         }
         "plane-support" => plane_support(paper, c)?,
+        "deformable-elements" => deformable_elements(paper, c)?,
         "rolling-ball" => rolling_ball(paper, c)?,
         "pendulum-wall" => pendulum_wall(paper, c)?,
         "balls-wall" => {
@@ -748,6 +749,166 @@ fn kernel_meets_cone(b: &Matrix3<f64>, n: &Vector3<f64>, mu: f64) -> bool {
     })
 }
 
+/// The complementarity problem of (3.2), (3.3) at A for the plane example, body 2 sliding to the
+/// right and F = n horizontal, enumerated from the matrices of (3.4): the normal acceleration at
+/// A is affine in F*_N, acc(F*) = (B_A l F* - B~ F, N), l = N - mu* e_T. A solution either leaves
+/// (F* = 0, acc >= 0) or stays (acc = 0, F* >= 0). Returns the count ("none", "unique", "two"),
+/// the slope beta and the staying reaction -alpha/beta.
+fn complementarity_at_a(
+    sm: &crate::models::support::SupportMatrices,
+    s: &crate::models::support::Support,
+) -> (&'static str, f64, f64) {
+    let n_a = s.normal;
+    let l = n_a - Vector3::x() * s.mu;
+    let f = Vector3::x();
+    let acc = |fs: f64| (sm.b_a * (l * fs) - sm.b_tilde * f).dot(&n_a);
+    let (a0, slope) = (acc(0.0), acc(1.0) - acc(0.0));
+    let leaves = a0 >= 0.0;
+    let stays = slope != 0.0 && -a0 / slope >= 0.0;
+    let count = usize::from(leaves) + usize::from(stays);
+    (["none", "unique", "two"][count], slope, -a0 / slope)
+}
+
+/// The closing result of section 4 with deformable elements at C and A
+/// ([`crate::models::deformable`]), as m1/m2 goes to 0 over four decades: in the two-solution
+/// case the body leaves the support (no impulse at A); in the no-solution case the deformation at
+/// A does not shrink with m1/m2 and the body rebounds; a unique-solution case for contrast, whose
+/// support impulse tends to the rigid one.
+fn deformable_elements(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+    use crate::models::deformable::{Deformable, simulate};
+    use crate::models::support::matrices;
+    let bad = |m: String| VerifyError::BadClaim {
+        id: c.id.clone(),
+        message: m,
+    };
+    let ratios = [1e-1, 1e-2, 1e-3, 1e-4];
+    // m2 = 1, rho2 = 0.5, G2C = (0.2, b2), G2A = (0.5, -0.6), unit springs and speeds
+    let case = |b2: f64,
+                mu_star: f64|
+     -> Result<
+        (
+            &'static str,
+            f64,
+            Vec<crate::models::deformable::DeformableOutcome>,
+        ),
+        VerifyError,
+    > {
+        let plane = Plane {
+            m2: 1.0,
+            rho2: 0.5,
+            a2: 0.2,
+            b2,
+            a3: 0.5,
+            b3: -0.6,
+            mu_star,
+        };
+        let (body, sup) = plane.parts();
+        let sm = matrices(&body, &sup).ok_or_else(|| bad("singular body".into()))?;
+        let (kind, _, stay) = complementarity_at_a(&sm, &sup);
+        let runs = ratios
+            .iter()
+            .map(|&r| {
+                let p = Deformable {
+                    m1: r,
+                    m2: 1.0,
+                    rho2: 0.5,
+                    c: [0.2, b2],
+                    a: [0.5, -0.6],
+                    mu_star,
+                    k_c: 1.0,
+                    k_a: 1.0,
+                    v0: 1.0,
+                    slide: 1.0,
+                };
+                simulate(&p, 1e-9).map_err(|e| bad(format!("m1/m2 = {r}: {e}")))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok((kind, stay, runs))
+    };
+    let part = c.part.clone().unwrap_or_default();
+    Ok(match part.as_str() {
+        "separation" => {
+            let (kind, _, runs) = case(0.5, 2.5)?;
+            let worst = runs
+                .iter()
+                .map(|o| o.impulse_a / o.impulse_c)
+                .fold(0.0, f64::max);
+            let rebound = runs.iter().all(|o| o.v_a_normal_end > 0.0);
+            outcome(
+                paper,
+                c,
+                holds(kind == "two" && worst <= 1e-9 && rebound),
+                format!(
+                    "b2 = 0.5, mu* = 2.5 (the complementarity problem at A has {kind} solution(s)); springs at C and A, m1/m2 = 1e-1 .. 1e-4: support impulse / impulse at C at most {worst:.2e}, A moving off the support at the end in every run ({})",
+                    runs.iter()
+                        .zip(ratios)
+                        .map(|(o, r)| format!("{r:e}: v_A,N = {:.3e}", o.v_a_normal_end))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            )
+        }
+        "no-solution" => {
+            let (kind, _, runs) = case(-0.5, 2.5)?;
+            let (kind_u, stay_u, unique) = case(-0.5, 0.5)?;
+            // the deformation at A in units of slide speed * sqrt(m2/k_A) (= 1 here)
+            let smallest = runs
+                .iter()
+                .map(|o| o.max_deformation_a)
+                .fold(f64::INFINITY, f64::min);
+            let rebound = runs.iter().all(|o| o.v_a_normal_end > 0.0);
+            let shrink = unique[3].max_deformation_a / unique[0].max_deformation_a;
+            // the same unique case with a support 1e4 times stiffer than C at m1/m2 = 0.1 (A
+            // quasi-static): the impulse ratio is the rigid model's -alpha/beta, which ties the
+            // deformable model to the matrices of (3.4)
+            let stiff = simulate(
+                &Deformable {
+                    m1: 0.1,
+                    m2: 1.0,
+                    rho2: 0.5,
+                    c: [0.2, -0.5],
+                    a: [0.5, -0.6],
+                    mu_star: 0.5,
+                    k_c: 1.0,
+                    k_a: 1e4,
+                    v0: 1.0,
+                    slide: 1.0,
+                },
+                1e-9,
+            )
+            .map_err(|e| bad(e.to_string()))?;
+            let limit = stiff.impulse_a / stiff.impulse_c;
+            let ok = kind == "none"
+                && kind_u == "unique"
+                && smallest >= 0.1
+                && rebound
+                && shrink <= 1e-2;
+            outcome(
+                paper,
+                c,
+                holds(ok),
+                format!(
+                    "b2 = -0.5, mu* = 2.5 (the complementarity problem at A has {kind} solution(s)): the largest compression at A, in units of v_slide sqrt(m2/k_A), is {} for m1/m2 = 1e-1, 1e-2, 1e-3, 1e-4 (never below {smallest:.3}), and the body leaves the support at the end (v_A,N = {}). For contrast, mu* = 0.5 ({kind_u} solution): {} (it shrinks by {shrink:.1e}); with a support 1e4 times stiffer than C (m1/m2 = 0.1) its support impulse / impulse at C is {limit:.4}, the rigid model's -alpha/beta = {stay_u:.4} within 1 %",
+                    runs.iter()
+                        .map(|o| format!("{:.3}", o.max_deformation_a))
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                    runs.iter()
+                        .map(|o| format!("{:.3}", o.v_a_normal_end))
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                    unique
+                        .iter()
+                        .map(|o| format!("{:.2e}", o.max_deformation_a))
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                ),
+            )
+        }
+        _ => return Err(bad("part must be separation or no-solution".into())),
+    })
+}
+
 fn plane_support(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
     use crate::models::support::{classify_sliding, matrices};
     let bad = |m: String| VerifyError::BadClaim {
@@ -861,15 +1022,7 @@ fn plane_support(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyEr
                         // affine in F*_N, acc(F*) = (B_A l F* - B~ F, N), l = N - mu* e_T (sliding
                         // to the right, F = n horizontal). A solution either leaves (F* = 0,
                         // acc >= 0) or stays (acc = 0, F* >= 0).
-                        let n_a = s.normal;
-                        let l = n_a - Vector3::x() * mu_star;
-                        let f = Vector3::x();
-                        let acc = |fs: f64| (sm.b_a * (l * fs) - sm.b_tilde * f).dot(&n_a);
-                        let (a0, slope) = (acc(0.0), acc(1.0) - acc(0.0));
-                        let leaves = a0 >= 0.0;
-                        let stays = slope != 0.0 && -a0 / slope >= 0.0;
-                        let count = usize::from(leaves) + usize::from(stays);
-                        let kind = ["none", "unique", "two"][count];
+                        let (kind, slope, _) = complementarity_at_a(&sm, &s);
                         if b2 > 0.0 {
                             cls.entry(kind.to_string()).or_default().push((mu_star, a3));
                         }
