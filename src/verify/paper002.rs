@@ -2,7 +2,7 @@
 //! the pendulum's B* (2.5) and its cut-off condition, and the Coriolis billiard problem
 //! (3.9)-(3.14).
 
-use super::{ClaimSpec, Outcome, PaperClaims, VerifyError, holds, outcome};
+use super::{ClaimSpec, Outcome, PaperClaims, Verdict, VerifyError, holds, outcome};
 use crate::integrate::{Method, OdeSystem, Options, solve};
 use crate::models::rigid_impact::{Body, Law, b_matrix, impact_with_matrix};
 use crate::report::svg::{Scale, Series};
@@ -429,6 +429,7 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
         }
         "plane-support" => plane_support(paper, c)?,
         "deformable-elements" => deformable_elements(paper, c)?,
+        "rest-types" => rest_types(paper, c)?,
         "rolling-ball" => rolling_ball(paper, c)?,
         "pendulum-wall" => pendulum_wall(paper, c)?,
         "balls-wall" => {
@@ -767,6 +768,107 @@ fn complementarity_at_a(
     let stays = slope != 0.0 && -a0 / slope >= 0.0;
     let count = usize::from(leaves) + usize::from(stays);
     (["none", "unique", "two"][count], slope, -a0 / slope)
+}
+
+/// Which types of motion of A the rigid model admits when A is at rest at the start (section 4,
+/// the plane example, F = n horizontal): (detach, roll, slide to +x, slide to -x). Type 1: F* = 0
+/// and the normal acceleration of A non-negative; type 2: F* = B_A^-1 B~ F inside the friction
+/// cone; type 4: (4.5), kappa e_T = F*_N B_A (N - mu* e_T) - B~ F with kappa > 0, F*_N >= 0.
+fn types_at_rest(p: &Plane) -> Option<[bool; 4]> {
+    use crate::models::support::matrices;
+    let (body, sup) = p.parts();
+    let sm = matrices(&body, &sup)?;
+    let (f, n) = (Vector3::x(), sup.normal);
+    let btf = sm.b_tilde * f;
+    let detach = (-btf).dot(&n) >= 0.0;
+    let roll = sm.b_a.try_inverse().is_some_and(|inv| {
+        let fs = inv * btf;
+        let f_n = fs.dot(&n);
+        f_n >= 0.0 && (fs - n * f_n).norm() <= p.mu_star * f_n
+    });
+    let slide = |dir: f64| {
+        let e_t = Vector3::x() * dir;
+        let l = sm.b_a * (n - e_t * p.mu_star);
+        if l.dot(&n) == 0.0 {
+            return false;
+        }
+        let f_n = btf.dot(&n) / l.dot(&n);
+        let kappa = (f_n * l.x - btf.x) * dir;
+        f_n >= 0.0 && kappa > 0.0
+    };
+    Some([detach, roll, slide(1.0), slide(-1.0)])
+}
+
+/// "Computations show that if a3 < 0, b2 < 0, beta < 0 and (rho2^2 + b2 b3) - b3 a2 (mu*(rho2^2 +
+/// b3^2) + a3 b3)/(rho2^2 + a3^2 + mu* a3 b3) < 0, motion of each of the three types 1, 2 and 4
+/// is possible" (V_A = 0 at the start): seeded random plane configurations, the printed
+/// conditions with beta of (4.8), and the types admitted, computed from the matrices of (3.4).
+fn rest_types(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+    let mut rng = Rng(0x7E57_0471);
+    let (mut n, mut meet, mut all_three, mut beta_neg) = (0, 0, 0, 0);
+    let mut example = String::new();
+    let mut mirrored = (0, 0);
+    for _ in 0..200_000 {
+        let p = Plane {
+            m2: rng.range(0.2, 5.0),
+            rho2: rng.range(0.1, 1.0),
+            a2: rng.range(-1.0, 1.0),
+            b2: -rng.range(0.01, 1.0),
+            a3: -rng.range(0.01, 1.0),
+            b3: -rng.range(0.05, 1.0),
+            mu_star: rng.range(0.0, 5.0),
+        };
+        n += 1;
+        let r2 = p.rho2 * p.rho2;
+        // as printed: beta of (4.8) (sliding to +x) and the fourth condition
+        let beta = (p.a3 * p.a3 + r2 + p.mu_star * p.a3 * p.b3) / (p.m2 * r2);
+        let fourth = |mu: f64| {
+            (r2 + p.b2 * p.b3)
+                - p.b3 * p.a2 * (mu * (r2 + p.b3 * p.b3) + p.a3 * p.b3)
+                    / (r2 + p.a3 * p.a3 + mu * p.a3 * p.b3)
+        };
+        beta_neg += usize::from(beta < 0.0);
+        let Some(t) = types_at_rest(&p) else {
+            continue;
+        };
+        let three = t[0] && t[1] && (t[2] || t[3]);
+        if beta < 0.0 && fourth(p.mu_star) < 0.0 {
+            meet += 1;
+            all_three += usize::from(three);
+        }
+        // read with mu* -> -mu* (sliding to -x, the direction in which beta can be negative)
+        let beta_m = (p.a3 * p.a3 + r2 - p.mu_star * p.a3 * p.b3) / (p.m2 * r2);
+        if beta_m < 0.0 && fourth(-p.mu_star) < 0.0 {
+            mirrored.0 += 1;
+            mirrored.1 += usize::from(three);
+            if !three && example.is_empty() {
+                example = format!(
+                    "; e.g. m2 = {:.3}, rho2 = {:.3}, G2C = ({:.3}, {:.3}), G2A = ({:.3}, {:.3}), mu* = {:.3}: detach {}, roll {}, slide right {}, slide left {}",
+                    p.m2, p.rho2, p.a2, p.b2, p.a3, p.b3, p.mu_star, t[0], t[1], t[2], t[3]
+                );
+            }
+        }
+    }
+    let verdict = if meet > 0 {
+        holds(all_three == meet)
+    } else {
+        Verdict::Fails
+    };
+    Ok(outcome(
+        paper,
+        c,
+        verdict,
+        format!(
+            "{n} seeded plane configurations with a3 < 0, b2 < 0, b3 < 0, mu* in [0, 5]: with beta of (4.8) as printed, beta < 0 in {beta_neg} (m2 rho2^2 beta = a3^2 + rho2^2 + mu* a3 b3 is positive when a3, b3 < 0), and all four printed conditions in {meet}{}; read with -mu* (sliding to the left, where beta can be negative) the conditions hold in {} configurations, and the rigid model admits all of the types 1, 2 and 4 in {} of them{example}",
+            if meet > 0 {
+                format!(", of which {all_three} admit all of the types 1, 2 and 4")
+            } else {
+                ": the printed conditions are never met together".into()
+            },
+            mirrored.0,
+            mirrored.1
+        ),
+    ))
 }
 
 /// The closing result of section 4 with deformable elements at C and A
