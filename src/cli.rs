@@ -404,7 +404,23 @@ pub fn merge(paths: &[std::path::PathBuf], format: Format) -> Result<String, Run
     }
     let param = param.unwrap_or_default();
     Ok(match format {
-        Format::Csv => sweep_csv(&param, &runs),
+        Format::Csv => {
+            let results: Vec<Result<Value, String>> = runs
+                .iter()
+                .map(|r| match r.get("result") {
+                    Some(v) => Ok(v.clone()),
+                    None => Err(r["error"].as_str().unwrap_or_default().to_string()),
+                })
+                .collect();
+            let cols = csv_columns(&results);
+            let mut text = csv_header(&param, &cols);
+            for (r, res) in runs.iter().zip(&results) {
+                let v = r["value"].as_f64().unwrap_or(f64::NAN);
+                let i = r["index"].as_u64().unwrap_or(0) as usize;
+                text.push_str(&csv_row(v, i, res, &cols));
+            }
+            text
+        }
         _ => serde_json::to_string_pretty(&json!({"param": param, "total": total, "runs": runs}))
             .unwrap_or_default(),
     })
@@ -487,33 +503,40 @@ pub fn parse_values(param: &str, values: &str) -> Result<SweepValues, RunError> 
     Ok(SweepValues::new(param, vals))
 }
 
-/// `impact sweep SCENE.toml --vary KEY=START:STOP:COUNT`: every point's scene is validated first
-/// (a bad value stops the sweep before anything runs), then the points run in parallel (rayon),
-/// with a progress bar on stderr when it is a terminal. A point whose solver fails is kept as a
-/// row with its error.
+/// Points run per block: results are formatted and written block by block, in index order, so
+/// memory stays bounded at any sweep size.
+const SWEEP_BLOCK: usize = 8192;
+
+/// Runs `scene` once per value of the varied field, in parallel, and writes the rows to `out`
+/// as they finish (in index order, one block of [`SWEEP_BLOCK`] points at a time). The base
+/// scene is validated once; a model that sets the field on its typed parameters
+/// ([`crate::models::Model::set_number`]) skips the scene table, others re-read it per point.
 pub fn sweep(
     path: &std::path::Path,
     sv: &SweepValues,
     format: Format,
     progress: bool,
-) -> Result<String, RunError> {
+    out: &mut dyn std::io::Write,
+) -> Result<(), RunError> {
     use rayon::prelude::*;
-    let base = crate::scene::read_table(path)?;
+    let base_table = crate::scene::read_table(path)?;
     let label = path.display().to_string();
     let param = sv.param.as_str();
-    let scenes: Vec<crate::scene::Scene> = sv
-        .values
-        .iter()
-        .map(|v| {
-            let mut t = base.clone();
-            crate::scene::set_field(&mut t, param, *v, &label)?;
-            Ok(crate::scene::parse_table(
-                &t,
-                &format!("{label} with {param} = {v}"),
-            )?)
-        })
-        .collect::<Result<_, RunError>>()?;
-    let total = scenes.len();
+    let base = crate::scene::parse_table(&base_table, &label)?;
+    let scene_at = |v: f64| -> Result<crate::scene::Scene, RunError> {
+        let at = || format!("{label} with {param} = {v}");
+        if let Some(r) = base.with_number(param, v, &label) {
+            return Ok(r?);
+        }
+        let mut t = base_table.clone();
+        crate::scene::set_field(&mut t, param, v, &label)?;
+        Ok(crate::scene::parse_table(&t, &at())?)
+    };
+    // a bad value is an error before anything runs, as for a single run
+    for v in [sv.values.first(), sv.values.last()].into_iter().flatten() {
+        scene_at(*v)?;
+    }
+    let total = sv.values.len();
     let bar = if progress {
         let b = indicatif::ProgressBar::new(total as u64);
         b.set_style(
@@ -526,124 +549,185 @@ pub fn sweep(
     } else {
         indicatif::ProgressBar::hidden()
     };
-    let results: Vec<Result<Value, String>> = scenes
-        .par_iter()
-        .map(|scene| {
-            let r = run_validated(scene)
+    let io = |e: std::io::Error| RunError::BadArgument {
+        arg: "output".into(),
+        message: format!("writing the sweep failed: {e}"),
+    };
+    // the CSV columns: those of the first point's outcome (every point of a model has them)
+    let columns = if format == Format::Csv {
+        let first = sv.values.first().map(|&v| {
+            scene_at(v)
+                .and_then(|scene| run_validated(&scene))
                 .map(|(v, _)| v)
-                .map_err(|e| e.to_string());
-            bar.inc(1);
-            r
-        })
-        .collect();
+                .map_err(|e| e.to_string())
+        });
+        csv_columns(first.as_slice())
+    } else {
+        Vec::new()
+    };
+    // one point, formatted where it ran (in parallel); `None` marks a failed point
+    let row = |v: f64, i: usize| -> (String, bool) {
+        let r = scene_at(v)
+            .and_then(|scene| run_validated(&scene))
+            .map(|(v, _)| v)
+            .map_err(|e| e.to_string());
+        let text = match format {
+            Format::Json => {
+                let run = match &r {
+                    Ok(res) => json!({"index": i, "value": v, "result": res}),
+                    Err(e) => json!({"index": i, "value": v, "error": e}),
+                };
+                serde_json::to_string_pretty(&run)
+                    .unwrap_or_default()
+                    .replace('\n', "\n    ")
+            }
+            Format::Csv => csv_row(v, i, &r, &columns),
+            _ => match &r {
+                Ok(res) => format!(
+                    "{param} = {}\n{}\n",
+                    json!(v),
+                    render_run(res, Format::Text)
+                ),
+                Err(e) => format!("{param} = {}\nerror: {e}\n", json!(v)),
+            },
+        };
+        bar.inc(1);
+        (text, r.is_err())
+    };
+    let mut failed = 0;
+    let mut first = true;
+    if format == Format::Json {
+        write!(
+            out,
+            "{{\n  \"param\": {},\n  \"total\": {},\n  \"runs\": [",
+            serde_json::to_string(param).unwrap_or_default(),
+            sv.total
+        )
+        .map_err(io)?;
+    }
+    if format == Format::Csv {
+        out.write_all(csv_header(param, &columns).as_bytes())
+            .map_err(io)?;
+    }
+    for (block_v, block_i) in sv
+        .values
+        .chunks(SWEEP_BLOCK)
+        .zip(sv.indices.chunks(SWEEP_BLOCK))
+    {
+        let rows: Vec<(String, bool)> = block_v
+            .par_iter()
+            .zip(block_i.par_iter())
+            .map(|(&v, &i)| row(v, i))
+            .collect();
+        let mut text = String::with_capacity(rows.iter().map(|r| r.0.len() + 8).sum());
+        for (body, bad) in &rows {
+            failed += usize::from(*bad);
+            match format {
+                Format::Json => {
+                    text.push_str(if first { "\n    " } else { ",\n    " });
+                    text.push_str(body);
+                }
+                Format::Csv => text.push_str(body),
+                _ => {
+                    if !first {
+                        text.push('\n');
+                    }
+                    text.push_str(body);
+                }
+            }
+            first = false;
+        }
+        out.write_all(text.as_bytes()).map_err(io)?;
+    }
+    if format == Format::Json {
+        out.write_all(b"\n  ]\n}\n").map_err(io)?;
+    }
+    out.flush().map_err(io)?;
     bar.finish_and_clear();
-    let failed = results.iter().filter(|r| r.is_err()).count();
     if failed > 0 {
         eprintln!("sweep: {failed} of {total} points failed (their rows carry the error)");
     }
-    let runs: Vec<Value> = sv
-        .values
-        .iter()
-        .zip(&sv.indices)
-        .zip(&results)
-        .map(|((v, i), r)| match r {
-            Ok(res) => json!({"index": i, "value": v, "result": res}),
-            Err(e) => json!({"index": i, "value": v, "error": e}),
-        })
-        .collect();
-    Ok(match format {
-        Format::Json => {
-            serde_json::to_string_pretty(&json!({"param": param, "total": sv.total, "runs": runs}))
-                .unwrap_or_default()
-        }
-        Format::Csv => sweep_csv(param, &runs),
-        _ => runs
-            .iter()
-            .map(|r| match r.get("result") {
-                Some(res) => format!(
-                    "{param} = {}\n{}\n",
-                    r["value"],
-                    render_run(res, Format::Text)
-                ),
-                None => format!("{param} = {}\nerror: {}\n", r["value"], r["error"]),
-            })
-            .collect::<Vec<_>>()
-            .join("\n"),
-    })
+    Ok(())
 }
 
-/// One row per point: the swept value, then every number or flag of the result (nested keys
-/// dotted, arrays indexed), then the error if the point failed.
-fn sweep_csv(param: &str, runs: &[Value]) -> String {
-    fn flatten(prefix: &str, v: &Value, out: &mut Vec<(String, String)>) {
-        match v {
-            Value::Number(n) => out.push((prefix.to_string(), n.to_string())),
-            Value::Bool(b) => out.push((prefix.to_string(), b.to_string())),
-            Value::Object(m) => {
-                for (k, x) in m {
-                    let key = if prefix.is_empty() {
-                        k.clone()
-                    } else {
-                        format!("{prefix}.{k}")
-                    };
-                    flatten(&key, x, out);
-                }
+/// Flattens an outcome into (column, cell) pairs: nested objects as `a.b`, numeric arrays as
+/// `a.0`, `a.1`; strings and other arrays are left out of the CSV.
+fn flatten_row(prefix: &str, v: &Value, out: &mut Vec<(String, String)>) {
+    match v {
+        Value::Number(n) => out.push((prefix.to_string(), n.to_string())),
+        Value::Bool(b) => out.push((prefix.to_string(), b.to_string())),
+        Value::Object(m) => {
+            for (k, x) in m {
+                let key = if prefix.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{prefix}.{k}")
+                };
+                flatten_row(&key, x, out);
             }
-            Value::Array(a) if a.iter().all(|x| x.is_number()) => {
-                for (i, x) in a.iter().enumerate() {
-                    flatten(&format!("{prefix}.{i}"), x, out);
-                }
+        }
+        Value::Array(a) if a.iter().all(|x| x.is_number()) => {
+            for (i, x) in a.iter().enumerate() {
+                flatten_row(&format!("{prefix}.{i}"), x, out);
             }
-            _ => {}
+        }
+        _ => {}
+    }
+}
+
+/// The CSV columns of some outcomes, in order of first appearance.
+fn csv_columns(results: &[Result<Value, String>]) -> Vec<String> {
+    let mut cols: Vec<String> = Vec::new();
+    for res in results.iter().flatten() {
+        let mut row = Vec::new();
+        flatten_row("", res, &mut row);
+        for (k, _) in row {
+            if !cols.contains(&k) {
+                cols.push(k);
+            }
         }
     }
-    let rows: Vec<Vec<(String, String)>> = runs
+    cols
+}
+
+fn csv_quote(s: &str) -> String {
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+fn csv_header(param: &str, cols: &[String]) -> String {
+    format!(
+        "{},{},error,index\n",
+        csv_quote(param),
+        cols.iter()
+            .map(|c| csv_quote(c))
+            .collect::<Vec<_>>()
+            .join(",")
+    )
+}
+
+fn csv_row(v: f64, index: usize, r: &Result<Value, String>, cols: &[String]) -> String {
+    let mut row = Vec::new();
+    if let Ok(res) = r {
+        flatten_row("", res, &mut row);
+    }
+    let cells: Vec<&str> = cols
         .iter()
-        .map(|r| {
-            let mut row = Vec::new();
-            if let Some(res) = r.get("result") {
-                flatten("", res, &mut row);
-            }
-            row
+        .map(|c| {
+            row.iter()
+                .find(|(k, _)| k == c)
+                .map(|(_, x)| x.as_str())
+                .unwrap_or_default()
         })
         .collect();
-    let mut cols: Vec<String> = Vec::new();
-    for row in &rows {
-        for (k, _) in row {
-            if !cols.contains(k) {
-                cols.push(k.clone());
-            }
-        }
-    }
-    let quote = |s: &str| {
-        if s.contains([',', '"', '\n']) {
-            format!("\"{}\"", s.replace('"', "\"\""))
-        } else {
-            s.to_string()
-        }
-    };
-    let mut out = format!(
-        "{},{},error,index\n",
-        quote(param),
-        cols.iter().map(|c| quote(c)).collect::<Vec<_>>().join(",")
-    );
-    for (r, row) in runs.iter().zip(&rows) {
-        let cells: Vec<String> = cols
-            .iter()
-            .map(|c| {
-                row.iter()
-                    .find(|(k, _)| k == c)
-                    .map(|(_, v)| v.clone())
-                    .unwrap_or_default()
-            })
-            .collect();
-        let err = r.get("error").and_then(|e| e.as_str()).unwrap_or("");
-        out.push_str(&format!(
-            "{},{},{}\n",
-            r["value"],
-            cells.join(","),
-            quote(err)
-        ));
-    }
-    out
+    let err = r.as_ref().err().map(String::as_str).unwrap_or("");
+    format!(
+        "{},{},{},{index}\n",
+        json!(v),
+        cells.join(","),
+        csv_quote(err)
+    )
 }

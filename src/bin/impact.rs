@@ -218,7 +218,10 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
                     .map_err(|e| format!("--threads: {e}"))?;
             }
             let progress = !quiet && std::io::IsTerminal::is_terminal(&std::io::stderr());
-            Ok(cli::sweep(&scene, &sv, fmt(format), progress)?)
+            let stdout = std::io::stdout();
+            let mut out = std::io::BufWriter::with_capacity(1 << 16, stdout.lock());
+            cli::sweep(&scene, &sv, fmt(format), progress, &mut out)?;
+            Ok(String::new())
         }
         Command::Series {
             order,
@@ -245,9 +248,12 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
 fn main() -> ExitCode {
     match run(Args::parse()) {
         Ok(s) => {
-            print!("{s}");
-            if !s.ends_with('\n') {
-                println!();
+            // a sweep has written its rows already
+            if !s.is_empty() {
+                print!("{s}");
+                if !s.ends_with('\n') {
+                    println!();
+                }
             }
             ExitCode::SUCCESS
         }

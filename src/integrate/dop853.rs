@@ -244,6 +244,24 @@ impl Stepper for Dop853 {
         self.dense_ready = true;
     }
 
+    fn has_hermite(&self) -> bool {
+        true
+    }
+
+    fn hermite(&self, t: f64, out: &mut [f64], quad: &mut [f64]) {
+        // the first three rows of the dense output: y_old + s(dy + s1(h f_old - dy + s(...)))
+        let (n, h) = (self.n, self.h_old);
+        let s = (t - self.t_old) / h;
+        let s1 = 1.0 - s;
+        for (m, (o, q)) in out.iter_mut().zip(quad.iter_mut()).enumerate() {
+            let dy = self.y[m] - self.y_old[m];
+            let c1 = h * self.k[m] - dy;
+            let c2 = dy - h * self.k[12 * n + m] - c1;
+            *q = self.y_old[m] + s * (dy + s1 * c1);
+            *o = *q + s * s1 * s * c2;
+        }
+    }
+
     fn dense(&self, t: f64, out: &mut [f64]) {
         let h = self.h_old;
         let s = (t - self.t_old) / h;

@@ -119,6 +119,70 @@ impl<'e, 'a> Tracker<'e, 'a> {
         std::mem::take(&mut self.hits)
     }
 
+    /// Whether the last accepted step may hold a crossing, judged from what the step already has:
+    /// the cubic Hermite interpolant of its end values and derivatives (free: no evaluation of
+    /// the system), sampled where [`Tracker::scan`] samples, with the exact end value. A step
+    /// may hold one when a sampled sign differs from the last sign, or when some sample of g is
+    /// within twice the part of g that the interpolant's cubic term makes (g at the cubic less g
+    /// at the quadratic interpolant): the terms the cubic leaves out are smaller still, so only
+    /// a near-zero or grazing g needs the 7th-order dense output. When it
+    /// cannot, the tracker moves to the end of the step as a scan would, and the 7th-order dense
+    /// output is never formed. `None` when the stepper has no such interpolant.
+    pub(crate) fn may_cross<St: Stepper>(
+        &mut self,
+        st: &St,
+        ta: f64,
+        tb: f64,
+        buf: &mut [f64],
+    ) -> Result<Option<bool>, IntegrateError> {
+        if !st.has_hermite() {
+            return Ok(None);
+        }
+        let m = self.events.len();
+        let mut g_end = [0.0f64; 8];
+        let mut spill = Vec::new();
+        let ends: &mut [f64] = if m <= 8 {
+            &mut g_end[..m]
+        } else {
+            spill.resize(m, 0.0);
+            &mut spill
+        };
+        for (index, e) in self.events.iter().enumerate() {
+            let v = (e.g)(tb, st.y());
+            if !v.is_finite() {
+                return Err(IntegrateError::EventNonFinite { t: tb, index });
+            }
+            ends[index] = v;
+            let s0 = self.last_sign[index];
+            if sign(v) != s0 {
+                return Ok(Some(true));
+            }
+        }
+        let mut quad = vec![0.0; buf.len()];
+        for j in 1..SAMPLES {
+            let frac = j as f64 / SAMPLES as f64;
+            let t = ta + (tb - ta) * frac;
+            st.hermite(t, buf, &mut quad);
+            for (index, e) in self.events.iter().enumerate() {
+                let v = (e.g)(t, buf);
+                if !v.is_finite() || sign(v) != self.last_sign[index] {
+                    return Ok(Some(true));
+                }
+                // the cubic term's share of g bounds the higher terms the interpolant leaves out
+                // (each smaller by about h |lambda| on a resolved step)
+                let cubic = (v - (e.g)(t, &quad)).abs();
+                if v.abs() <= 2.0 * cubic {
+                    return Ok(Some(true));
+                }
+            }
+        }
+        for (index, v) in ends.iter().enumerate() {
+            self.g_now[index] = *v;
+            self.g_prev[index] = *v;
+        }
+        Ok(Some(false))
+    }
+
     /// Scans one accepted step; returns the first terminal hit, if any (all hits, terminal or
     /// not, up to it are kept for `take_hits`).
     pub(crate) fn scan<St: Stepper>(

@@ -236,6 +236,14 @@ pub(crate) trait Stepper {
     fn prepare_dense<S: OdeSystem>(&mut self, sys: &S);
     /// Dense output at `t` in the last step.
     fn dense(&self, t: f64, out: &mut [f64]);
+    /// Whether [`Stepper::hermite`] is available.
+    fn has_hermite(&self) -> bool {
+        false
+    }
+    /// The cubic Hermite interpolant of the last step at `t` (end values and derivatives, no
+    /// evaluation) in `out`, and in `quad` the same without its cubic term; only called when
+    /// [`Stepper::has_hermite`].
+    fn hermite(&self, _t: f64, _out: &mut [f64], _quad: &mut [f64]) {}
     /// Work done.
     fn stats(&self) -> Stats;
     /// True if the stiffness test has fired.
@@ -399,15 +407,17 @@ fn drive<S: OdeSystem, St: Stepper>(
         st.step(sys, t_end)?;
         steps += 1;
         let (ta, tb) = (st.t_old(), st.t());
-        let need_dense = !opts.events.is_empty()
-            || (next_dense < opts.dense_times.len() && opts.dense_times[next_dense] <= tb);
-        if need_dense {
+        let samples_due = next_dense < opts.dense_times.len() && opts.dense_times[next_dense] <= tb;
+        // events: the dense output only on a step that may hold a crossing
+        let scan = !opts.events.is_empty()
+            && (samples_due || tracker.may_cross(&st, ta, tb, &mut buf)? != Some(false));
+        if samples_due || scan {
             st.prepare_dense(sys);
         }
-        let hit = if opts.events.is_empty() {
-            None
-        } else {
+        let hit = if scan {
             tracker.scan(&st, ta, tb, &mut buf)?
+        } else {
+            None
         };
         let stop_at = hit.as_ref().and_then(|h| h.terminal.then_some(h.t));
         let limit = stop_at.unwrap_or(tb);

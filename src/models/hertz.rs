@@ -251,6 +251,27 @@ pub struct HertzOutcome {
     pub stats: Stats,
 }
 
+/// The numeric fields of a Hertz scene: name, check, and the allowed range as messages state it
+/// (read from a table and set by a sweep alike).
+const HERTZ_NUMBERS: [(&str, fn(f64) -> bool, &str); 4] = [
+    ("impactor.mass", |v| v > 0.0, "mass > 0 (kg)"),
+    (
+        "impactor.v0",
+        |v| v > 0.0,
+        "v0 > 0 (m/s), toward the surface",
+    ),
+    (
+        "contact.k",
+        |v| v > 0.0,
+        "k > 0 (N/m^1.5 for hertz, N/m for linear)",
+    ),
+    (
+        "contact.damping",
+        |v| v >= 0.0,
+        "damping >= 0 (s/m for hertz, N s/m for linear)",
+    ),
+];
+
 impl Model for HertzScene {
     const NAME: &'static str = "hertz";
     type Outcome = HertzOutcome;
@@ -278,38 +299,33 @@ impl Model for HertzScene {
             }
             Err(e) => return Err(e),
         };
+        let num = |v: Option<&Value>, i: usize, default: Option<f64>| {
+            let (name, ok, allowed) = HERTZ_NUMBERS[i];
+            f.num(v, name, default, ok, allowed)
+        };
         Ok(HertzScene {
             law,
-            mass: f.num(
-                imp.mass.as_ref(),
-                "impactor.mass",
-                None,
-                |v| v > 0.0,
-                "mass > 0 (kg)",
-            )?,
-            v0: f.num(
-                imp.v0.as_ref(),
-                "impactor.v0",
-                None,
-                |v| v > 0.0,
-                "v0 > 0 (m/s), toward the surface",
-            )?,
-            k: f.num(
-                con.k.as_ref(),
-                "contact.k",
-                None,
-                |v| v > 0.0,
-                "k > 0 (N/m^1.5 for hertz, N/m for linear)",
-            )?,
-            damping: f.num(
-                con.damping.as_ref(),
-                "contact.damping",
-                Some(0.0),
-                |v| v >= 0.0,
-                "damping >= 0 (s/m for hertz, N s/m for linear)",
-            )?,
+            mass: num(imp.mass.as_ref(), 0, None)?,
+            v0: num(imp.v0.as_ref(), 1, None)?,
+            k: num(con.k.as_ref(), 2, None)?,
+            damping: num(con.damping.as_ref(), 3, Some(0.0))?,
             solve: f.solve(raw.solve.as_ref(), "contact-end", false)?,
         })
+    }
+
+    fn set_number(&mut self, field: &str, v: f64, path: &str) -> Option<Result<(), SceneError>> {
+        let i = HERTZ_NUMBERS.iter().position(|(n, ..)| *n == field)?;
+        let (name, ok, allowed) = HERTZ_NUMBERS[i];
+        if !(v.is_finite() && ok(v)) {
+            return Some(Err(SceneError::OutOfRange {
+                path: path.into(),
+                field: name.into(),
+                value: v.to_string(),
+                allowed: allowed.into(),
+            }));
+        }
+        *[&mut self.mass, &mut self.v0, &mut self.k, &mut self.damping][i] = v;
+        Some(Ok(()))
     }
 
     fn run(&self) -> Result<(HertzOutcome, Curves), RunError> {

@@ -67,7 +67,7 @@ pub struct ContactOutcome {
 }
 
 /// A model a scene can name.
-pub trait Model: Sized + Send + Sync + 'static {
+pub trait Model: Sized + Clone + Send + Sync + 'static {
     /// The name scenes give it (`model = "hertz"`).
     const NAME: &'static str;
     /// What one run gives; serialized once, by `impact run`, sweeps and claims.
@@ -76,4 +76,10 @@ pub trait Model: Sized + Send + Sync + 'static {
     fn from_table(root: &toml::Table, path: &str) -> Result<Self, SceneError>;
     /// Runs the scene: the outcome and the curves of `impact run --plot`.
     fn run(&self) -> Result<(Self::Outcome, Curves), RunError>;
+    /// Sets a numeric scene field on the validated parameters, with the same check and message
+    /// as reading it from a table; `None` when this model does not set that field this way (a
+    /// sweep then re-reads the scene table with the field changed).
+    fn set_number(&mut self, _field: &str, _v: f64, _path: &str) -> Option<Result<(), SceneError>> {
+        None
+    }
 }

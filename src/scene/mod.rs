@@ -50,6 +50,7 @@ trait AnyModel: Send + Sync {
     fn name(&self) -> &'static str;
     fn run_value(&self) -> Result<(serde_json::Value, Curves), RunError>;
     fn as_any(&self) -> &dyn Any;
+    fn with_number(&self, field: &str, v: f64, path: &str) -> Option<Result<Scene, SceneError>>;
 }
 
 impl<M: Model> AnyModel for M {
@@ -67,6 +68,10 @@ impl<M: Model> AnyModel for M {
     fn as_any(&self) -> &dyn Any {
         self
     }
+    fn with_number(&self, field: &str, v: f64, path: &str) -> Option<Result<Scene, SceneError>> {
+        let mut m = self.clone();
+        Some(m.set_number(field, v, path)?.map(|()| Scene(Box::new(m))))
+    }
 }
 
 /// A validated scene of any model.
@@ -81,6 +86,17 @@ impl Scene {
     /// Runs it: the outcome as JSON (the `impact run` contract) and the curves for `--plot`.
     pub fn run(&self) -> Result<(serde_json::Value, Curves), RunError> {
         self.0.run_value()
+    }
+
+    /// A copy with a numeric field set on the typed parameters (checked as when read from a
+    /// table); `None` when the model does not set that field this way.
+    pub fn with_number(
+        &self,
+        field: &str,
+        v: f64,
+        path: &str,
+    ) -> Option<Result<Scene, SceneError>> {
+        self.0.with_number(field, v, path)
     }
 
     /// The typed parameters, when the scene is of model `M`.
