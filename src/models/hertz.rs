@@ -253,7 +253,10 @@ pub struct HertzOutcome {
 
 /// The numeric fields of a Hertz scene: name, check, and the allowed range as messages state it
 /// (read from a table and set by a sweep alike).
-const HERTZ_NUMBERS: [(&str, fn(f64) -> bool, &str); 4] = [
+/// A numeric field: its dotted name, its check and the allowed range as messages state it.
+type NumberField = (&'static str, fn(f64) -> bool, &'static str);
+
+const HERTZ_NUMBERS: [NumberField; 4] = [
     ("impactor.mass", |v| v > 0.0, "mass > 0 (kg)"),
     (
         "impactor.v0",
