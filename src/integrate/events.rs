@@ -79,6 +79,9 @@ pub(crate) struct Tracker<'e, 'a> {
     g_prev: Vec<f64>,
     hits: Vec<EventHit>,
     g_now: Vec<f64>,
+    /// Scratch for the quadratic interpolant of [`Tracker::may_cross`] and the end values of g.
+    quad: Vec<f64>,
+    g_end: Vec<f64>,
 }
 
 fn sign(v: f64) -> i8 {
@@ -96,7 +99,7 @@ impl<'e, 'a> Tracker<'e, 'a> {
         events: &'e [Event<'a>],
         t0: f64,
         y0: &[f64],
-        _n: usize,
+        n: usize,
     ) -> Result<Self, IntegrateError> {
         let mut g_prev = Vec::with_capacity(events.len());
         for (index, e) in events.iter().enumerate() {
@@ -110,8 +113,10 @@ impl<'e, 'a> Tracker<'e, 'a> {
             events,
             last_sign: g_prev.iter().map(|v| sign(*v)).collect(),
             g_now: g_prev.clone(),
+            g_end: g_prev.clone(),
             g_prev,
             hits: Vec::new(),
+            quad: vec![0.0; n],
         })
     }
 
@@ -138,31 +143,22 @@ impl<'e, 'a> Tracker<'e, 'a> {
         if !st.has_hermite() {
             return Ok(None);
         }
-        let m = self.events.len();
-        let mut g_end = [0.0f64; 8];
-        let mut spill = Vec::new();
-        let ends: &mut [f64] = if m <= 8 {
-            &mut g_end[..m]
-        } else {
-            spill.resize(m, 0.0);
-            &mut spill
-        };
         for (index, e) in self.events.iter().enumerate() {
             let v = (e.g)(tb, st.y());
             if !v.is_finite() {
                 return Err(IntegrateError::EventNonFinite { t: tb, index });
             }
-            ends[index] = v;
+            self.g_end[index] = v;
             let s0 = self.last_sign[index];
             if sign(v) != s0 {
                 return Ok(Some(true));
             }
         }
-        let mut quad = vec![0.0; buf.len()];
+        let quad = &mut self.quad;
         for j in 1..SAMPLES {
             let frac = j as f64 / SAMPLES as f64;
             let t = ta + (tb - ta) * frac;
-            st.hermite(t, buf, &mut quad);
+            st.hermite(t, buf, quad);
             for (index, e) in self.events.iter().enumerate() {
                 let v = (e.g)(t, buf);
                 if !v.is_finite() || sign(v) != self.last_sign[index] {
@@ -170,16 +166,14 @@ impl<'e, 'a> Tracker<'e, 'a> {
                 }
                 // the cubic term's share of g bounds the higher terms the interpolant leaves out
                 // (each smaller by about h |lambda| on a resolved step)
-                let cubic = (v - (e.g)(t, &quad)).abs();
+                let cubic = (v - (e.g)(t, quad)).abs();
                 if v.abs() <= 2.0 * cubic {
                     return Ok(Some(true));
                 }
             }
         }
-        for (index, v) in ends.iter().enumerate() {
-            self.g_now[index] = *v;
-            self.g_prev[index] = *v;
-        }
+        self.g_now.copy_from_slice(&self.g_end);
+        self.g_prev.copy_from_slice(&self.g_end);
         Ok(Some(false))
     }
 
