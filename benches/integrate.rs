@@ -1,5 +1,6 @@
 //! Time per solve of each method on the Hertz impact z'' = -max(z,0)^1.5 from first touch to the
-//! end of contact, at rtol = atol = 1e-6, 1e-9, 1e-12. The side-by-side comparison with SciPy is
+//! end of contact, at rtol = atol = 1e-6, 1e-9, 1e-12; one solve with and without events; the
+//! sweep path in process (scene to CSV or JSON rows). The side-by-side comparison with SciPy is
 //! benches/peers/run.sh (one script run, ratios in reports/performance.md).
 
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -29,7 +30,56 @@ fn bench(c: &mut Criterion) {
         }
     }
     g.finish();
+    // one solve with and without events: DOP853 at 1e-9 to the contact time, bare, and with the
+    // Hertz model's three events (contact end, largest indentation, peak force)
+    let mut g = c.benchmark_group("events");
+    let o = Options {
+        rtol: 1e-9,
+        atol: 1e-9,
+        method: Method::Dop853,
+        ..Options::default()
+    };
+    g.bench_function("dop853 1e-9 without events", |b| {
+        b.iter(|| solve(black_box(&model), 0.0, &[0.0, 1.0], TAU_UNDAMPED, &o))
+    });
+    g.bench_function("dop853 1e-9 with three events", |b| {
+        b.iter(|| {
+            impactcheck::models::hertz::run(
+                black_box(&model),
+                1.0,
+                1e-9,
+                1e-9,
+                Method::Dop853,
+                Some(TAU_UNDAMPED),
+            )
+        })
+    });
+    g.finish();
 }
 
-criterion_group!(benches, bench);
+/// The sweep path in process: 2000 Hertz impacts (m = 0.05 kg, k = 3e8, rtol 1e-9, atol 1e-16,
+/// v0 from 0.5 to 2 m/s) from the scene file to CSV rows, written to a sink.
+fn sweep(c: &mut Criterion) {
+    let dir = std::env::temp_dir().join(format!("impactcheck-bench-{}", std::process::id()));
+    let _ = std::fs::create_dir_all(&dir);
+    let scene = dir.join("hertz.toml");
+    let _ = std::fs::write(
+        &scene,
+        "model = \"hertz\"\n[impactor]\nmass = 0.05\nv0 = 1.0\n[contact]\nk = 3e8\n[solve]\nrtol = 1e-9\natol = 1e-16\n",
+    );
+    let sv = impactcheck::cli::parse_vary("impactor.v0=0.5:2:2000", false).expect("vary");
+    let mut g = c.benchmark_group("sweep");
+    g.sample_size(20);
+    for (name, format) in [
+        ("2000 hertz csv", impactcheck::cli::Format::Csv),
+        ("2000 hertz json", impactcheck::cli::Format::Json),
+    ] {
+        g.bench_function(name, |b| {
+            b.iter(|| impactcheck::cli::sweep(&scene, &sv, format, false, &mut std::io::sink()))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, sweep);
 criterion_main!(benches);

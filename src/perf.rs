@@ -248,6 +248,34 @@ pub fn bench_sweeps(n_rigid: usize, n_cone: usize) -> Result<Value, String> {
     Ok(json!({"threads_available": threads, "runs": rows}))
 }
 
+/// The in-process rate of the sweep path's integration: `n` Hertz impacts (m = 0.05 kg,
+/// k = 3e8 N/m^1.5, rtol 1e-9, atol 1e-16, v0 from 0.5 to 2 m/s, to the end of contact with the
+/// model's three events) on all threads, nothing parsed or written; the floor under
+/// `impact sweep` of the same points.
+pub fn bench_hertz_sweep(n: usize) -> Result<Value, String> {
+    use crate::models::hertz::{ContactLaw, Hertz, run};
+    use rayon::prelude::*;
+    let model = Hertz {
+        mass: 0.05,
+        k: 3e8,
+        damping: 0.0,
+        law: ContactLaw::Hertz,
+    };
+    let s = Instant::now();
+    let ok = (0..n)
+        .into_par_iter()
+        .filter(|&i| {
+            let v0 = 0.5 + 1.5 * i as f64 / (n.max(2) - 1) as f64;
+            run(&model, v0, 1e-9, 1e-16, Method::Dop853, None).is_ok_and(|r| r.ended)
+        })
+        .count();
+    let secs = s.elapsed().as_secs_f64();
+    Ok(
+        json!({"impacts": n, "solved": ok, "seconds": secs, "per_second": n as f64 / secs,
+        "threads": rayon::current_num_threads()}),
+    )
+}
+
 /// The cost of effects that are off: state size and time per solve of the cone alone, of the
 /// cone with each further effect named, and of a hand-written two-state cone ODE with the same
 /// contact law (the floor: what a model with nothing else would cost).

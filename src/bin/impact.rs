@@ -98,7 +98,8 @@ enum Command {
     /// Measure for reports/performance.md (benches/peers/peers.py calls these): `hertz`, `cone`,
     /// `pendulum` (work-precision of each method on the peer problems), `algebra` (series a0..a3
     /// symbolic, Galerkin (3,5)), `sweeps` (impacts per second on 1 and all threads), `effects`
-    /// (the cost of effects that are off), `scaling` (modes up to (9,9), sweep points).
+    /// (the cost of effects that are off), `scaling` (modes up to (9,9), sweep points),
+    /// `hertz-sweep` (the sweep path's integration alone: --repeats Hertz impacts on all threads).
     Bench {
         /// The measurement.
         problem: String,
@@ -171,6 +172,7 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
             let v = match problem.as_str() {
                 "algebra" => impactcheck::perf::bench_algebra(repeats),
                 "sweeps" => impactcheck::perf::bench_sweeps(rigid, cone)?,
+                "hertz-sweep" => impactcheck::perf::bench_hertz_sweep(repeats.max(1))?,
                 "effects" => impactcheck::perf::bench_effects(repeats)?,
                 "scaling" => impactcheck::perf::bench_scaling(repeats)?,
                 p => impactcheck::perf::bench_problem(p, &cli::parse_times(&tols)?, repeats)?,
