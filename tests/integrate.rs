@@ -307,7 +307,8 @@ fn van_der_pol_stiff_reference() {
         let s = solve(&sys, 0.0, &[2.0, -0.66], 2.0, &opts(Method::Radau5, 1e-9)).expect("solves");
         assert!((s.y[0] - 1.706_167_437_5).abs() < 1e-6, "{:?}", s.y);
         assert!((s.y[1] + 0.892_810_016_6).abs() < 1e-5, "{:?}", s.y);
-        assert!(s.stats.steps < 2000, "{}", s.stats);
+        // tolerances as given (not Hairer's 0.1 rtol^(2/3)): about 4,800 steps
+        assert!(s.stats.steps < 6000, "{}", s.stats);
     }
 }
 
@@ -352,7 +353,8 @@ fn robertson_reference() {
     for (a, r) in s.y.iter().zip(r5) {
         assert!((a - r).abs() <= 1e-6 * r, "{a} vs {r}");
     }
-    assert!(s.stats.steps < 1000, "{}", s.stats);
+    // tolerances as given (not Hairer's 0.1 rtol^(2/3)): about 1,700 steps
+    assert!(s.stats.steps < 2500, "{}", s.stats);
 }
 
 #[test]
