@@ -573,13 +573,16 @@ pub fn sweep(
             .map_err(|e| e.to_string());
         let text = match format {
             Format::Json => {
-                let run = match &r {
-                    Ok(res) => json!({"index": i, "value": v, "result": res}),
-                    Err(e) => json!({"index": i, "value": v, "error": e}),
-                };
-                serde_json::to_string_pretty(&run)
-                    .unwrap_or_default()
-                    .replace('\n', "\n    ")
+                // one run per line (compact): a sweep of 10^7 runs stays greppable and small; written
+                // around the outcome's own serialization (no copy of its tree)
+                match &r {
+                    Ok(res) => format!(
+                        "{{\"index\":{i},\"value\":{},\"result\":{}}}",
+                        json!(v),
+                        serde_json::to_string(res).unwrap_or_default()
+                    ),
+                    Err(e) => json!({"index": i, "value": v, "error": e}).to_string(),
+                }
             }
             Format::Csv => csv_row(v, i, &r, &columns),
             _ => match &r {
@@ -710,24 +713,33 @@ fn csv_header(param: &str, cols: &[String]) -> String {
 }
 
 fn csv_row(v: f64, index: usize, r: &Result<Value, String>, cols: &[String]) -> String {
-    let mut row = Vec::new();
-    if let Ok(res) = r {
-        flatten_row("", res, &mut row);
+    use std::fmt::Write as _;
+    let mut out = String::with_capacity(24 * (cols.len() + 3));
+    let _ = write!(out, "{}", json!(v));
+    for c in cols {
+        out.push(',');
+        if let Ok(res) = r {
+            // the column's dotted path, array parts by index
+            let mut cur = Some(res);
+            for part in c.split('.') {
+                cur = cur.and_then(|x| match x {
+                    Value::Object(m) => m.get(part),
+                    Value::Array(a) => part.parse::<usize>().ok().and_then(|i| a.get(i)),
+                    _ => None,
+                });
+            }
+            match cur {
+                Some(Value::Number(n)) => {
+                    let _ = write!(out, "{n}");
+                }
+                Some(Value::Bool(b)) => {
+                    let _ = write!(out, "{b}");
+                }
+                _ => {}
+            }
+        }
     }
-    let cells: Vec<&str> = cols
-        .iter()
-        .map(|c| {
-            row.iter()
-                .find(|(k, _)| k == c)
-                .map(|(_, x)| x.as_str())
-                .unwrap_or_default()
-        })
-        .collect();
     let err = r.as_ref().err().map(String::as_str).unwrap_or("");
-    format!(
-        "{},{},{},{index}\n",
-        json!(v),
-        cells.join(","),
-        csv_quote(err)
-    )
+    let _ = writeln!(out, ",{},{index}", csv_quote(err));
+    out
 }
