@@ -532,8 +532,9 @@ pub fn sweep(
         crate::scene::set_field(&mut t, param, v, &label)?;
         Ok(crate::scene::parse_table(&t, &at())?)
     };
-    // a bad value is an error before anything runs, as for a single run
-    for v in [sv.values.first(), sv.values.last()].into_iter().flatten() {
+    // a bad value is an error before anything runs, as for a single run (on the typed
+    // parameters this is a range check per point)
+    for v in &sv.values {
         scene_at(*v)?;
     }
     let total = sv.values.len();
