@@ -19,6 +19,8 @@
 pub mod algebra;
 pub mod cli;
 pub mod integrate;
+#[cfg(unix)]
+pub mod interrupt;
 pub mod models;
 pub mod perf;
 pub mod report;

@@ -84,6 +84,10 @@ enum Command {
         /// JSON outputs.
         #[arg(long)]
         shard: Option<String>,
+        /// Write the rows to FILE (through a temporary file renamed at the end: an interrupted
+        /// or failed sweep leaves an existing FILE as it was) instead of stdout.
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
     },
     /// Merge the JSON outputs of a sharded sweep (`sweep --shard K/N --format json`) into one,
     /// checking that every point is there exactly once.
@@ -195,6 +199,7 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
             quiet,
             threads,
             shard,
+            out,
         } => {
             let sv = match (vary, param, values) {
                 (Some(v), _, _) => cli::parse_vary(&v, log)?,
@@ -220,9 +225,51 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
                     .map_err(|e| format!("--threads: {e}"))?;
             }
             let progress = !quiet && std::io::IsTerminal::is_terminal(&std::io::stderr());
-            let stdout = std::io::stdout();
-            let mut out = std::io::BufWriter::with_capacity(1 << 16, stdout.lock());
-            cli::sweep(&scene, &sv, fmt(format), progress, &mut out)?;
+            let Some(path) = out else {
+                let stdout = std::io::stdout();
+                let mut out = std::io::BufWriter::with_capacity(1 << 16, stdout.lock());
+                cli::sweep(&scene, &sv, fmt(format), progress, &mut out)?;
+                return Ok(String::new());
+            };
+            // through a temporary beside the output, renamed at the end
+            let name = path
+                .file_name()
+                .map(|n| n.to_string_lossy().to_string())
+                .unwrap_or_else(|| "sweep".into());
+            let tmp = path.with_file_name(format!(".{name}.tmp-{}", std::process::id()));
+            #[cfg(unix)]
+            impactcheck::interrupt::install(
+                &format!(
+                    "impact: sweep interrupted by a signal; {} is as it was\n",
+                    path.display()
+                ),
+                Some(&tmp),
+            );
+            let file = std::fs::File::create(&tmp)
+                .map_err(|e| format!("--out {}: cannot write there: {e}", path.display()))?;
+            let mut w = std::io::BufWriter::with_capacity(1 << 16, file);
+            let run = cli::sweep(&scene, &sv, fmt(format), progress, &mut w).and_then(|()| {
+                w.into_inner()
+                    .map_err(|e| e.into_error())
+                    .and_then(|f| f.sync_all())
+                    .map_err(|e| impactcheck::models::RunError::BadArgument {
+                        arg: "--out".into(),
+                        message: format!("writing {}: {e}", tmp.display()),
+                    })
+            });
+            if let Err(e) = run {
+                let _ = std::fs::remove_file(&tmp);
+                return Err(e.into());
+            }
+            let rename = || std::fs::rename(&tmp, &path);
+            #[cfg(unix)]
+            let renamed = impactcheck::interrupt::while_writing("impact", rename);
+            #[cfg(not(unix))]
+            let renamed = rename();
+            renamed.map_err(|e| {
+                let _ = std::fs::remove_file(&tmp);
+                format!("--out {}: {e}", path.display())
+            })?;
             Ok(String::new())
         }
         Command::Series {

@@ -76,6 +76,17 @@ fn run(args: Args) -> Result<bool> {
     let write_reports = !custom || args.out.is_some();
     let claims_dir = args.claims.unwrap_or_else(|| default_dir("verify"));
     let out_dir = args.out.unwrap_or_else(|| default_dir("reports"));
+    // an interrupt before the final write leaves the reports as they were, and says so
+    #[cfg(unix)]
+    if write_reports && !args.check {
+        impactcheck::interrupt::install(
+            &format!(
+                "verify: interrupted by a signal before writing; {} is as it was\n",
+                out_dir.display()
+            ),
+            None,
+        );
+    }
     let all = verify::load_claims(&claims_dir)
         .with_context(|| format!("reading claims from {}", claims_dir.display()))?;
     let papers = verify::select(&all, args.only.as_deref());
@@ -201,8 +212,12 @@ fn run(args: Args) -> Result<bool> {
         }
         files.extend(verify::accuracy::render(args.repeats.max(1)).context("work-precision runs")?);
     }
-    report::write_atomically(&out_dir, &files)
-        .with_context(|| format!("writing {}", out_dir.display()))?;
+    let write = || report::write_atomically(&out_dir, &files);
+    #[cfg(unix)]
+    let written = impactcheck::interrupt::while_writing("verify", write);
+    #[cfg(not(unix))]
+    let written = write();
+    written.with_context(|| format!("writing {}", out_dir.display()))?;
     let mut counts = std::collections::BTreeMap::new();
     for o in &outcomes {
         *counts.entry(o.verdict.as_str()).or_insert(0) += 1;
