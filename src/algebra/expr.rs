@@ -804,61 +804,45 @@ impl Expr {
         }
     }
 
-    /// Every symbol the formula uses (dotted names included, `pi` excluded), sorted, once each.
+    /// Every symbol the formula uses (dotted names included, `pi` excluded), sorted, once each;
+    /// the variable of a `diff`, `int` or `at` too (it needs a unit like any symbol).
     pub fn symbols(&self) -> Vec<String> {
-        fn go(e: &Expr, out: &mut Vec<String>) {
-            match e {
-                Expr::Sym(s) => out.push(s.clone()),
-                Expr::Num(_) | Expr::Pi => {}
-                Expr::Neg(a) | Expr::Call(_, a) => go(a, out),
-                Expr::Bin(_, a, b) => {
-                    go(a, out);
-                    go(b, out);
-                }
-                // the variable is listed too: it needs a unit like any symbol
-                Expr::Calc(_, body, var, extra) => {
-                    go(body, out);
-                    out.push(var.clone());
-                    for e in extra {
-                        go(e, out);
-                    }
-                }
-            }
-        }
-        let mut v = Vec::new();
-        go(self, &mut v);
-        v.sort();
-        v.dedup();
-        v
+        self.walk_symbols(false)
     }
 
     /// The symbols the value depends on: [`Expr::symbols`] without the variable of an `int` or
     /// an `at` inside (which is bound there).
     pub fn free_symbols(&self) -> Vec<String> {
-        fn go(e: &Expr, out: &mut Vec<String>) {
+        self.walk_symbols(true)
+    }
+
+    fn walk_symbols(&self, free: bool) -> Vec<String> {
+        fn go(e: &Expr, free: bool, out: &mut Vec<String>) {
             match e {
                 Expr::Sym(s) => out.push(s.clone()),
                 Expr::Num(_) | Expr::Pi => {}
-                Expr::Neg(a) | Expr::Call(_, a) => go(a, out),
+                Expr::Neg(a) | Expr::Call(_, a) => go(a, free, out),
                 Expr::Bin(_, a, b) => {
-                    go(a, out);
-                    go(b, out);
+                    go(a, free, out);
+                    go(b, free, out);
                 }
                 Expr::Calc(c, body, var, extra) => {
                     let mut inner = Vec::new();
-                    go(body, &mut inner);
-                    if *c != Calc::Diff {
+                    go(body, free, &mut inner);
+                    if free && *c != Calc::Diff {
                         inner.retain(|s| s != var);
+                    } else if !free {
+                        inner.push(var.clone());
                     }
                     out.extend(inner);
                     for e in extra {
-                        go(e, out);
+                        go(e, free, out);
                     }
                 }
             }
         }
         let mut v = Vec::new();
-        go(self, &mut v);
+        go(self, free, &mut v);
         v.sort();
         v.dedup();
         v

@@ -361,6 +361,21 @@ use crate::scene::field_value;
 
 /// Runs the scene `base` with the fields of one grid point or sample set, and evaluates two
 /// formulas there: a symbol is a bound scene field (`bind`) or a number the model produces.
+/// A sampled claim's `count` (1 to 10^6) and `seed`, both required.
+fn count_and_seed(f: &PaperClaims, c: &ClaimSpec) -> Result<(), VerifyError> {
+    let n = *required(f, c, "count", &c.count, "the number of samples")?;
+    if !(1..=1_000_000).contains(&n) {
+        return Err(claim_err(
+            f,
+            c,
+            "count",
+            format!("{n} is out of range; allowed: 1..=1000000"),
+        ));
+    }
+    required(f, c, "seed", &c.seed, "the generator's seed")?;
+    Ok(())
+}
+
 fn run_point(
     c: &ClaimSpec,
     base: &toml::Table,
@@ -649,16 +664,7 @@ impl<'a> Checked<'a> {
             }
             "bound" if c.scene.is_none() => {
                 // a bound on formulas alone: the samples are the symbols' values
-                let n = *required(f, c, "count", &c.count, "the number of samples")?;
-                if !(1..=1_000_000).contains(&n) {
-                    return Err(claim_err(
-                        f,
-                        c,
-                        "count",
-                        format!("{n} is out of range; allowed: 1..=1000000"),
-                    ));
-                }
-                required(f, c, "seed", &c.seed, "the generator's seed")?;
+                count_and_seed(f, c)?;
                 required(f, c, "require", &c.require, "an inequality")?;
                 for (sym, d) in &c.sample {
                     let key = format!("sample.{sym}");
@@ -745,16 +751,7 @@ impl<'a> Checked<'a> {
                             .map_err(|m| claim_err(f, c, "vary", m))?;
                     }
                 } else {
-                    let n = *required(f, c, "count", &c.count, "the number of samples")?;
-                    if !(1..=1_000_000).contains(&n) {
-                        return Err(claim_err(
-                            f,
-                            c,
-                            "count",
-                            format!("{n} is out of range; allowed: 1..=1000000"),
-                        ));
-                    }
-                    required(f, c, "seed", &c.seed, "the generator's seed")?;
+                    count_and_seed(f, c)?;
                     if c.sample.is_empty() {
                         return Err(claim_err(
                             f,
