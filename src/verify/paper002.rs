@@ -444,8 +444,23 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
             let kappa = k_bw / k_bb;
             let (v1, v2) = rebound(kappa, 1.5, 1e-10).map_err(|e| bad(&e.to_string()))?;
             let (striker, recoil) = (-v1, -v2);
-            // the printed 0.96 and 0.28 are read as rounded: within half a unit of their last digit
-            let ok = (striker - 0.96).abs() <= 0.005 && (recoil - 0.28).abs() <= 0.005;
+            // the printed speeds (0.96 V, 0.28 V) from the claims file, read as rounded: within
+            // half a unit of their last digit
+            let printed: Vec<(f64, f64)> = c
+                .printed_equations
+                .iter()
+                .map(|t| {
+                    let v: f64 = t.trim().parse().ok()?;
+                    let digits = t.trim().split('.').nth(1).map_or(0, str::len) as i32;
+                    Some((v, 0.5 * 10f64.powi(-digits)))
+                })
+                .collect::<Option<Vec<_>>>()
+                .filter(|v| v.len() == 2)
+                .ok_or_else(|| {
+                    bad("printed_equations must give the two printed speeds, e.g. [\"0.96\", \"0.28\"]")
+                })?;
+            let [(p1, tol1), (p2, tol2)] = [printed[0], printed[1]];
+            let ok = (striker - p1).abs() <= tol1 && (recoil - p2).abs() <= tol2;
             // context, not the verdict: other stiffness ratios and linear elements
             let kappas = [1.0, kappa, 10.0, 100.0, 1e3, 1e4, 1e6];
             let mut table: Vec<Vec<String>> =
@@ -462,13 +477,13 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
                 c,
                 holds(ok),
                 format!(
-                    "Hertz elements, the wall rigid: the wall contact is {kappa:.4} times stiffer than the ball-ball contact (Hertz's k = (4/3) E* sqrt(R*): 2 sqrt(2)); integrated (rtol 1e-10): the striking ball rebounds at {striker:.4} V (printed 0.96 V: {}), the ball at the wall at {recoil:.4} V (printed 0.28 V: {}), each against half a unit of the printed last digit",
-                    if (striker - 0.96).abs() <= 0.005 {
+                    "Hertz elements, the wall rigid: the wall contact is {kappa:.4} times stiffer than the ball-ball contact (Hertz's k = (4/3) E* sqrt(R*): 2 sqrt(2)); integrated (rtol 1e-10): the striking ball rebounds at {striker:.4} V (printed {p1} V: {}), the ball at the wall at {recoil:.4} V (printed {p2} V: {}), each against half a unit of the printed last digit",
+                    if (striker - p1).abs() <= tol1 {
                         "agrees"
                     } else {
                         "differs"
                     },
-                    if (recoil - 0.28).abs() <= 0.005 {
+                    if (recoil - p2).abs() <= tol2 {
                         "agrees"
                     } else {
                         "differs"
@@ -804,6 +819,39 @@ fn types_at_rest(p: &Plane) -> Option<[bool; 4]> {
 /// is possible" (V_A = 0 at the start): seeded random plane configurations, the printed
 /// conditions with beta of (4.8), and the types admitted, computed from the matrices of (3.4).
 fn rest_types(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+    let bad = |m: String| VerifyError::BadClaim {
+        id: c.id.clone(),
+        message: m,
+    };
+    // the printed forms, from the claims file: m2 rho2^2 beta of (4.8), and the fourth condition
+    if c.printed_equations.len() != 2 {
+        return Err(bad(
+            "printed_equations must give m2 rho2^2 beta of (4.8) and the fourth condition's left side".into(),
+        ));
+    }
+    let printed: Vec<crate::algebra::expr::Expr> = c
+        .printed_equations
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            crate::algebra::expr::parse(t).map_err(|e| bad(format!("printed_equations[{k}]: {e}")))
+        })
+        .collect::<Result<_, _>>()?;
+    let at = |e: &crate::algebra::expr::Expr, p: &Plane, mu: f64| -> Result<f64, VerifyError> {
+        e.eval(&|s| {
+            Some(match s {
+                "m2" => p.m2,
+                "rho2" => p.rho2,
+                "a2" => p.a2,
+                "b2" => p.b2,
+                "a3" => p.a3,
+                "b3" => p.b3,
+                "mu_star" => mu,
+                _ => return None,
+            })
+        })
+        .map_err(bad)
+    };
     let mut rng = Rng(0x7E57_0471);
     let (mut n, mut meet, mut all_three, mut beta_neg) = (0, 0, 0, 0);
     let mut example = String::new();
@@ -819,26 +867,21 @@ fn rest_types(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError
             mu_star: rng.range(0.0, 5.0),
         };
         n += 1;
-        let r2 = p.rho2 * p.rho2;
         // as printed: beta of (4.8) (sliding to +x) and the fourth condition
-        let beta = (p.a3 * p.a3 + r2 + p.mu_star * p.a3 * p.b3) / (p.m2 * r2);
-        let fourth = |mu: f64| {
-            (r2 + p.b2 * p.b3)
-                - p.b3 * p.a2 * (mu * (r2 + p.b3 * p.b3) + p.a3 * p.b3)
-                    / (r2 + p.a3 * p.a3 + mu * p.a3 * p.b3)
-        };
+        let beta = at(&printed[0], &p, p.mu_star)?;
+        let fourth = |mu: f64| at(&printed[1], &p, mu);
         beta_neg += usize::from(beta < 0.0);
         let Some(t) = types_at_rest(&p) else {
             continue;
         };
         let three = t[0] && t[1] && (t[2] || t[3]);
-        if beta < 0.0 && fourth(p.mu_star) < 0.0 {
+        if beta < 0.0 && fourth(p.mu_star)? < 0.0 {
             meet += 1;
             all_three += usize::from(three);
         }
         // read with mu* -> -mu* (sliding to -x, the direction in which beta can be negative)
-        let beta_m = (p.a3 * p.a3 + r2 - p.mu_star * p.a3 * p.b3) / (p.m2 * r2);
-        if beta_m < 0.0 && fourth(-p.mu_star) < 0.0 {
+        let beta_m = at(&printed[0], &p, -p.mu_star)?;
+        if beta_m < 0.0 && fourth(-p.mu_star)? < 0.0 {
             mirrored.0 += 1;
             mirrored.1 += usize::from(three);
             if !three && example.is_empty() {
