@@ -436,6 +436,16 @@ pub fn impact_general(
             "at least one body that can move",
         ));
     }
+    // Proposition 3 of 002: with a support the bound takes the smaller of the least eigenvalues
+    // of B and B* (the support's reaction can make the impulse larger than B alone allows)
+    let lmin = match &support {
+        Some(s) => {
+            let w = s.b_tilde.transpose() * s.normal;
+            let b_star = b - w * w.transpose() / s.beta;
+            lmin.min(SymmetricEigen::new(b_star).eigenvalues.min())
+        }
+        None => lmin,
+    };
     let lam_floor = lmax * 1e-12;
     let chi_max = 20.0 * 2.0 * v_minus.norm() / lmin.max(lam_floor).max(lmax * 1e-6);
     let scale = v_minus.norm();
