@@ -1,18 +1,24 @@
 //! Seeded random constrained impacts (002 sections 2-4): two free bodies, one with a fixed point
 //! or a fixed axis, or a support (smooth or rough) under the second, the three restitution laws
 //! in turn; lists those that fail and counts those only classified (a rough support that
-//! slides). Usage: `constrained_fail [COUNT]` (default 20000).
+//! slides). Usage: `constrained_fail [COUNT]` (default 20000), or `constrained_fail --case I` to
+//! print case I's scene and result.
 use impactcheck::models::constrained::{RigidImpactScene, solve_scene};
 use impactcheck::models::rigid_impact::{Body, Law};
 use nalgebra::{Matrix3, Vector3};
 fn main() {
-    let n: u64 = std::env::args()
-        .nth(1)
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(20000);
+    let args: Vec<String> = std::env::args().collect();
+    let case: Option<u64> = (args.get(1).map(String::as_str) == Some("--case"))
+        .then(|| args.get(2).and_then(|s| s.parse().ok()))
+        .flatten();
+    let n: u64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(20000);
+    let range = match case {
+        Some(i) => i..i + 1,
+        None => 0..n,
+    };
     let mut bad = 0;
     let mut classified = 0;
-    for i in 0..n {
+    for i in range {
         let mut r = impactcheck::rng::Rng(i.wrapping_mul(0x2545F4914F6CDD1D) ^ 0x5A5A);
         let body = |r: &mut impactcheck::rng::Rng| Body {
             mass: Some(r.range(0.1, 10.0)),
@@ -67,6 +73,11 @@ fn main() {
             v_support: Vector3::zeros(),
             fixed,
         };
+        if case.is_some() {
+            println!("{s:#?}");
+            println!("{:#?}", solve_scene(&s).map(|r| r.0));
+            return;
+        }
         match solve_scene(&s) {
             Ok((Some(_), _, _)) => {}
             Ok((None, _, _)) => classified += 1,
