@@ -240,7 +240,7 @@ impl Stepper for Dopri5 {
                 // Hairer's schedule (NSTIFF = 1000): every 1000th step, and every step once an
                 // estimate has come out stiff (DOPRI5 is not the first stage of Auto, which uses
                 // DOP853, so only the warning's timing depends on it)
-                if self.stats.steps % 1000 == 0 || self.stiffness.iasti > 0 {
+                if self.stats.steps.is_multiple_of(1000) || self.stiffness.iasti > 0 {
                     let (mut stnum, mut stden) = (0.0, 0.0);
                     for m in 0..n {
                         stnum += (self.k[6 * n + m] - self.k[5 * n + m]).powi(2);
