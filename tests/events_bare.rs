@@ -107,17 +107,9 @@ fn hertz_contact_end_to_1e_12() {
     );
 }
 
-/// y'' = -y: y = cos t, v = -sin t.
-struct Oscillator;
-impl OdeSystem for Oscillator {
-    fn dim(&self) -> usize {
-        2
-    }
-    fn rhs(&self, _t: f64, y: &[f64], dy: &mut [f64]) {
-        dy[0] = y[1];
-        dy[1] = -y[0];
-    }
-}
+#[path = "support/oscillator.rs"]
+mod oscillator;
+use oscillator::Oscillator;
 
 /// The crossings found with the Hermite screen and with the dense output formed on every step
 /// (forced by asking for samples in every step).

@@ -16,17 +16,9 @@ impl OdeSystem for ExpSin {
     }
 }
 
-/// Harmonic oscillator y'' = -y, y(0) = 1, y'(0) = 0: y = cos t.
-struct Oscillator;
-impl OdeSystem for Oscillator {
-    fn dim(&self) -> usize {
-        2
-    }
-    fn rhs(&self, _t: f64, y: &[f64], dy: &mut [f64]) {
-        dy[0] = y[1];
-        dy[1] = -y[0];
-    }
-}
+#[path = "support/oscillator.rs"]
+mod oscillator;
+use oscillator::Oscillator;
 
 /// Free fall y'' = -g.
 struct Fall;

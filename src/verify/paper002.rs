@@ -182,6 +182,14 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
             )
         }
         "pendulum-cutoff" => {
+            // the printed condition from the claims file: `printed` >= 0 means cut-off
+            let cond = c
+                .printed
+                .as_deref()
+                .map(crate::algebra::expr::parse)
+                .transpose()
+                .map_err(|e| bad(&format!("printed: {e}")))?
+                .ok_or_else(|| bad("needs `printed`, the cut-off condition as `lhs - rhs`"))?;
             // integrate the pendulum impact in the normal impulse over a grid of (angle, mu)
             let mut agree_printed = 0;
             let mut agree_derived = 0;
@@ -201,7 +209,14 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
                     };
                     total += 1;
                     let (a3, at) = (th.sin(), th.cos());
-                    let printed = mu * a3 >= at;
+                    let value = |n: &str| match n {
+                        "mu" => Some(mu),
+                        "alpha1" => Some(at),
+                        "alpha2" => Some(0.0),
+                        "alpha3" => Some(a3),
+                        _ => None,
+                    };
+                    let printed = cond.eval(&value).map_err(|e| bad(&e))? >= 0.0;
                     // independent of the model's stick rule: a cut-off needs an impulse that does
                     // not move the body (the kernel of B*, from an SVD) inside the friction cone
                     // at C (normal z: I_z > 0, |I_t| <= mu I_z), searched on 3600 directions of
@@ -902,7 +917,8 @@ fn rest_types(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError
         c,
         verdict,
         format!(
-            "{n} seeded plane configurations with a3 < 0, b2 < 0, b3 < 0, mu* in [0, 5]: with beta of (4.8) as printed, beta < 0 in {beta_neg} (m2 rho2^2 beta = a3^2 + rho2^2 + mu* a3 b3 is positive when a3, b3 < 0), and all four printed conditions in {meet}{}; read with -mu* (sliding to the left, where beta can be negative) the conditions hold in {} configurations, and the rigid model admits all of the types 1, 2 and 4 in {} of them{example}",
+            "{n} seeded plane configurations with a3 < 0, b2 < 0, b3 < 0, mu* in [0, 5]: with beta of (4.8) as printed, beta < 0 in {beta_neg} (m2 rho2^2 beta = {} is positive when a3, b3 < 0), and all four printed conditions in {meet}{}; read with -mu* (sliding to the left, where beta can be negative) the conditions hold in {} configurations, and the rigid model admits all of the types 1, 2 and 4 in {} of them{example}",
+            c.printed_equations[0],
             if meet > 0 {
                 format!(", of which {all_three} admit all of the types 1, 2 and 4")
             } else {
