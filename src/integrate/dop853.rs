@@ -19,8 +19,9 @@ const SAFE: f64 = 0.9;
 const FACC1: f64 = 1.0 / 0.333;
 const FACC2: f64 = 1.0 / 6.0;
 
-/// The DOP853 stepper; all buffers are allocated in [`Dop853::new`].
-pub struct Dop853 {
+/// The DOP853 stepper; all buffers are allocated in [`Dop853::new`]. `N` is the dimension when
+/// it is known at compile time (the stages then live in registers), 0 when it is not.
+pub struct Dop853<const N: usize = 0> {
     n: usize,
     t: f64,
     t_old: f64,
@@ -47,7 +48,13 @@ pub struct Dop853 {
     fixed: Option<f64>,
 }
 
-impl Dop853 {
+impl<const N: usize> Dop853<N> {
+    /// The dimension: `N` when it is fixed, else the initial state's length.
+    #[inline(always)]
+    fn dim(&self) -> usize {
+        if N == 0 { self.n } else { N }
+    }
+
     /// Prepares a solve from `(t0, y0)`: evaluates $f(t_0, y_0)$ and the starting step.
     pub fn new<S: OdeSystem>(sys: &S, t0: f64, y0: &[f64], t_end: f64, opts: &Options) -> Self {
         let n = y0.len();
@@ -99,22 +106,77 @@ impl Dop853 {
             fixed: opts.fixed_step,
         }
     }
+}
 
-    /// `out = base + h * sum_j A[i][j] k_j`.
-    fn combine(n: usize, k: &[f64], base: &[f64], row: &[(usize, f64)], h: f64, out: &mut [f64]) {
-        for m in 0..n {
-            let mut acc = 0.0;
-            for &(j, a) in row {
-                acc += a * k[j * n + m];
-            }
-            out[m] = base[m] + h * acc;
+/// The storage one step attempt works in.
+struct Work<'a> {
+    k: &'a mut [f64],
+    y: &'a [f64],
+    y_stage: &'a mut [f64],
+    y12: &'a mut [f64],
+    y_new: &'a mut [f64],
+}
+
+/// `out = base + h * sum_j A[i][j] k_j`.
+#[inline(always)]
+fn combine(n: usize, k: &[f64], base: &[f64], row: &[(usize, f64)], h: f64, out: &mut [f64]) {
+    for m in 0..n {
+        let mut acc = 0.0;
+        for &(j, a) in row {
+            acc += a * k[j * n + m];
         }
+        out[m] = base[m] + h * acc;
     }
 }
 
-impl Stepper for Dop853 {
+/// One attempt: stages 2..12 (stage 12's input kept in `y12` for the stiffness test), the new
+/// solution and Hairer's error; NaN if the new solution is not finite.
+#[inline(always)]
+fn attempt<S: OdeSystem>(
+    sys: &S,
+    n: usize,
+    t: f64,
+    h: f64,
+    rtol: f64,
+    atol: f64,
+    w: Work<'_>,
+) -> f64 {
+    let Work {
+        k,
+        y,
+        y_stage,
+        y12,
+        y_new,
+    } = w;
+    for (i, ci) in C.iter().enumerate().take(11).skip(1) {
+        combine(n, k, y, A[i], h, y_stage);
+        sys.rhs(t + ci * h, y_stage, &mut k[i * n..(i + 1) * n]);
+    }
+    combine(n, k, y, A[11], h, y12);
+    sys.rhs(t + C[11] * h, y12, &mut k[11 * n..12 * n]);
+    // new solution: row 12 of A holds the weights b
+    combine(n, k, y, A[12], h, y_new);
+    if y_new.iter().any(|v| !v.is_finite()) {
+        return f64::NAN;
+    }
+    let (mut err5, mut err3) = (0.0, 0.0);
+    for m in 0..n {
+        let sk = atol + rtol * y[m].abs().max(y_new[m].abs());
+        let e5: f64 = E5.iter().map(|&(j, e)| e * k[j * n + m]).sum();
+        let e3: f64 = E3.iter().map(|&(j, e)| e * k[j * n + m]).sum();
+        err5 += (e5 / sk) * (e5 / sk);
+        err3 += (e3 / sk) * (e3 / sk);
+    }
+    let mut deno = err5 + 0.01 * err3;
+    if deno <= 0.0 {
+        deno = 1.0;
+    }
+    h.abs() * err5 * (1.0 / (n as f64 * deno)).sqrt()
+}
+
+impl<const N: usize> Stepper for Dop853<N> {
     fn step<S: OdeSystem>(&mut self, sys: &S, t_end: f64) -> Result<(), IntegrateError> {
-        let n = self.n;
+        let n = self.dim();
         if self.have_fsal {
             self.k.copy_within(12 * n..13 * n, 0);
         }
@@ -128,33 +190,41 @@ impl Stepper for Dop853 {
                 h = t_end - self.t;
                 last = true;
             }
-            for (i, ci) in C.iter().enumerate().take(12).skip(1) {
-                Self::combine(n, &self.k, &self.y, A[i], h, &mut self.y_stage);
-                let t = self.t + ci * h;
-                sys.rhs(t, &self.y_stage, &mut self.k[i * n..(i + 1) * n]);
-            }
-            // every stage rewrites all of y_stage: keep stage 12's input by a swap, not a copy
-            std::mem::swap(&mut self.y12, &mut self.y_stage);
+            let t = self.t;
+            let err = if N == 0 {
+                let ws = Work {
+                    k: &mut self.k,
+                    y: &self.y,
+                    y_stage: &mut self.y_stage,
+                    y12: &mut self.y12,
+                    y_new: &mut self.y_new,
+                };
+                attempt(sys, n, t, h, self.rtol, self.atol, ws)
+            } else {
+                // a fixed dimension: the stages in local arrays, which the compiler keeps in
+                // registers (copied in and out: 1 + 12 stages and the step's states)
+                let mut k = [[0.0; N]; 12];
+                k[0].copy_from_slice(&self.k[..N]);
+                let mut y = [0.0; N];
+                y.copy_from_slice(&self.y[..N]);
+                let (mut ys, mut y12, mut yn) = ([0.0; N], [0.0; N], [0.0; N]);
+                let ws = Work {
+                    k: k.as_flattened_mut(),
+                    y: &y,
+                    y_stage: &mut ys,
+                    y12: &mut y12,
+                    y_new: &mut yn,
+                };
+                let err = attempt(sys, n, t, h, self.rtol, self.atol, ws);
+                self.k[..12 * N].copy_from_slice(k.as_flattened());
+                self.y12[..N].copy_from_slice(&y12);
+                self.y_new[..N].copy_from_slice(&yn);
+                err
+            };
             self.stats.rhs_evals += 11;
-            // new solution: row 12 of A holds the weights b
-            Self::combine(n, &self.k, &self.y, A[12], h, &mut self.y_new);
-            if self.y_new.iter().any(|v| !v.is_finite()) {
+            if err.is_nan() && self.y_new.iter().any(|v| !v.is_finite()) {
                 return Err(IntegrateError::NonFinite { t: self.t + h });
             }
-            // error estimate
-            let (mut err5, mut err3) = (0.0, 0.0);
-            for m in 0..n {
-                let sk = self.atol + self.rtol * self.y[m].abs().max(self.y_new[m].abs());
-                let e5: f64 = E5.iter().map(|&(j, e)| e * self.k[j * n + m]).sum();
-                let e3: f64 = E3.iter().map(|&(j, e)| e * self.k[j * n + m]).sum();
-                err5 += (e5 / sk) * (e5 / sk);
-                err3 += (e3 / sk) * (e3 / sk);
-            }
-            let mut deno = err5 + 0.01 * err3;
-            if deno <= 0.0 {
-                deno = 1.0;
-            }
-            let err = h.abs() * err5 * (1.0 / (n as f64 * deno)).sqrt();
             let err = if self.fixed.is_some() { 0.0 } else { err };
             // err^(1/8) by three square roots: cheaper than powf, same value to an ulp
             let fac11 = err.sqrt().sqrt().sqrt();
@@ -220,11 +290,11 @@ impl Stepper for Dop853 {
         if self.dense_ready {
             return;
         }
-        let n = self.n;
+        let n = self.dim();
         let h = self.h_old;
         // extra stages 13..15 from the old state
         for i in 13..16 {
-            Self::combine(n, &self.k, &self.y_old, A[i], h, &mut self.y_stage);
+            combine(n, &self.k, &self.y_old, A[i], h, &mut self.y_stage);
             let t = self.t_old + C[i] * h;
             sys.rhs(t, &self.y_stage, &mut self.k[i * n..(i + 1) * n]);
         }
@@ -250,7 +320,7 @@ impl Stepper for Dop853 {
 
     fn hermite(&self, t: f64, out: &mut [f64], quad: &mut [f64]) {
         // the first three rows of the dense output: y_old + s(dy + s1(h f_old - dy + s(...)))
-        let (n, h) = (self.n, self.h_old);
+        let (n, h) = (self.dim(), self.h_old);
         let s = (t - self.t_old) / h;
         let s1 = 1.0 - s;
         for (m, (o, q)) in out.iter_mut().zip(quad.iter_mut()).enumerate() {

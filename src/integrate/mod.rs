@@ -306,12 +306,20 @@ pub fn solve<S: OdeSystem>(
     let n = sys.dim();
     check_options(opts, n, y0, t0, t_end)?;
     match opts.method {
+        Method::Dopri5 if n == 2 => {
+            let st = dopri5::Dopri5::<2>::new(sys, t0, y0, t_end, opts);
+            drive(sys, st, t0, y0, t_end, opts, None)
+        }
         Method::Dopri5 => {
-            let st = dopri5::Dopri5::new(sys, t0, y0, t_end, opts);
+            let st = dopri5::Dopri5::<0>::new(sys, t0, y0, t_end, opts);
+            drive(sys, st, t0, y0, t_end, opts, None)
+        }
+        Method::Dop853 if n == 2 => {
+            let st = dop853::Dop853::<2>::new(sys, t0, y0, t_end, opts);
             drive(sys, st, t0, y0, t_end, opts, None)
         }
         Method::Dop853 => {
-            let st = dop853::Dop853::new(sys, t0, y0, t_end, opts);
+            let st = dop853::Dop853::<0>::new(sys, t0, y0, t_end, opts);
             drive(sys, st, t0, y0, t_end, opts, None)
         }
         Method::Radau5 => {
@@ -319,8 +327,13 @@ pub fn solve<S: OdeSystem>(
             drive(sys, st, t0, y0, t_end, opts, None)
         }
         Method::Auto => {
-            let st = dop853::Dop853::new(sys, t0, y0, t_end, opts);
-            let first = drive(sys, st, t0, y0, t_end, opts, Some(()))?;
+            let first = if n == 2 {
+                let st = dop853::Dop853::<2>::new(sys, t0, y0, t_end, opts);
+                drive(sys, st, t0, y0, t_end, opts, Some(()))?
+            } else {
+                let st = dop853::Dop853::<0>::new(sys, t0, y0, t_end, opts);
+                drive(sys, st, t0, y0, t_end, opts, Some(()))?
+            };
             if first.switched_at.is_none() {
                 return Ok(first);
             }
