@@ -1,16 +1,15 @@
 //! Constrained impact from a scene: a fixed point or axis (section 2 of 002_b53e4779673eb6ed.txt)
 //! or a support under the second body (sections 3-4), on top of [`super::rigid_impact`].
 //!
-//! A smooth support switches between $\mathbf B$ and $\mathbf B^*$ along the impact (3.8). With a
-//! rough support the problem is classified first (section 4): when the admissible motion is unique
-//! and is detachment or rolling, the impact is integrated with that motion held for the whole
-//! impact ($\mathbf B$, or $\mathbf B - \tilde{\mathbf B}'\mathbf B_A^{-1}\tilde{\mathbf B}$ while
-//! rolling; the tool says so in a warning); sliding supports and the Painleve-type cases are
-//! classified but not integrated (no solution, or two, in classical impact theory).
+//! A smooth support switches between $\mathbf B$ and $\mathbf B^*$ along the impact (3.8). A
+//! rough support is classified at the start (section 4) and integrated with its switches between
+//! rolling (4.2), sliding (4.3)-(4.4) and letting go ([`impact_rough`]); a Painleve-type start
+//! with no consistent motion is reported as such, one with two is integrated along both.
 
 use super::fixed_points::{Hold, b_star};
 use super::rigid_impact::{
-    Body, ImpactError, ImpactResult, Law, SmoothSupport, b_matrix, impact, impact_general,
+    Body, ImpactError, ImpactResult, Law, RoughSupport, SmoothSupport, SupportMode, b_matrix,
+    impact, impact_general, impact_rough,
 };
 use super::support::{Classification, classify_at_rest, classify_sliding, matrices};
 use nalgebra::{Matrix3, Vector3};
@@ -46,6 +45,15 @@ pub type SceneOutcome = (Option<ImpactResult>, Option<Classification>, Vec<Strin
 
 /// Solves the scene.
 pub fn solve_scene(s: &RigidImpactScene) -> Result<SceneOutcome, ImpactError> {
+    solve_scene_all(s, &mut Vec::new())
+}
+
+/// As [`solve_scene`], with the branches of a Painleve-type case with two solutions at the
+/// support pushed to `alternatives`.
+pub fn solve_scene_all(
+    s: &RigidImpactScene,
+    alternatives: &mut Vec<Alternative>,
+) -> Result<SceneOutcome, ImpactError> {
     let mut warnings = Vec::new();
     // the two bodies as if no support or fixed point held them
     let free_impact = || {
@@ -180,39 +188,98 @@ pub fn solve_scene(s: &RigidImpactScene) -> Result<SceneOutcome, ImpactError> {
         }
         return Ok((Some(r), Some(cl), warnings));
     }
-    if cl.kind != "unique" {
-        warnings.push(format!(
-            "Painleve-type case at the support: (3.6) with (3.2)/(3.3) has {} solution(s) (admissible: {:?}); classical impact theory cannot resolve it, deformations at A and C must be modelled",
-            if cl.kind == "none" { "no" } else { "two or more" },
-            cl.admissible
-        ));
-        return Ok((None, Some(cl), warnings));
-    }
-    match cl.admissible[0].as_str() {
-        "detach" => {
-            warnings.push("the second body detaches from the support at the start; integrated as free for the whole impact".into());
-            Ok((Some(free_impact()?), Some(cl), warnings))
-        }
-        "roll" => {
-            let inv = sm
-                .b_a
-                .try_inverse()
-                .ok_or_else(|| bad("singular B_A".into()))?;
-            let b_roll = b - sm.b_tilde.transpose() * inv * sm.b_tilde;
-            warnings.push("the support point rolls at the start; integrated with rolling held for the whole impact".into());
-            Ok((
-                Some(impact_general(
-                    &b_roll, None, s.normal, s.v_rel, s.mu, s.law, s.e, s.rtol,
-                )?),
-                Some(cl),
-                warnings,
-            ))
-        }
-        _ => {
-            warnings.push("the support point slides: classified, not integrated (rough sliding support not implemented in the impulse integration)".into());
+    // a rough support: integrated with its roll/slide/let-go switches (section 4); a Painleve
+    // case with no consistent start is said so, one with two is integrated along each branch
+    let rough = RoughSupport {
+        b_tilde: sm.b_tilde,
+        b_a: sm.b_a,
+        normal: nn,
+        mu: sup.mu,
+        v_a: s.v_support,
+    };
+    let run = |start: Option<SupportMode>| -> Result<ImpactResult, ImpactError> {
+        let mut r = impact_rough(
+            &b,
+            rough.clone(),
+            start,
+            s.normal,
+            s.v_rel,
+            s.mu,
+            s.law,
+            s.e,
+            s.rtol,
+        )?;
+        r.energy_change = super::rigid_impact::kinetic_change_moving(
+            &s.bodies[0],
+            &s.bodies[1],
+            &s.v_rel,
+            &s.v_support,
+            &Vector3::from(r.impulse),
+            Some((sup.offset, Vector3::from(r.support_impulse))),
+        );
+        Ok(r)
+    };
+    match cl.kind.as_str() {
+        "none" => {
+            warnings.push(format!(
+                "Painleve-type case at the support: (3.6) with (3.2)/(3.3) has no solution at the start (alpha = {:.6e}, beta = {:.6e}); classical impact theory cannot resolve it, deformations at A must be modelled",
+                cl.alpha, cl.beta
+            ));
             Ok((None, Some(cl), warnings))
         }
+        "two" => {
+            warnings.push(format!(
+                "Painleve-type case at the support: (3.6) admits {:?} at the start; each branch is integrated (`alternatives`), the result is the detaching one (section 4: with deformable elements the body leaves the support)",
+                cl.admissible
+            ));
+            let mode_of = |name: &str| match name {
+                "detach" => SupportMode::Free,
+                "roll" => SupportMode::Roll,
+                _ => SupportMode::Slide,
+            };
+            let mut main = None;
+            for name in &cl.admissible {
+                match run(Some(mode_of(name))) {
+                    Ok(r) => {
+                        if name == "detach" || main.is_none() {
+                            main = Some(r.clone());
+                        }
+                        alternatives.push(Alternative {
+                            start: name.clone(),
+                            impulse: Some(r.impulse),
+                            support_impulse: Some(r.support_impulse),
+                            energy_change: Some(r.energy_change),
+                            error: None,
+                        });
+                    }
+                    Err(e) => alternatives.push(Alternative {
+                        start: name.clone(),
+                        impulse: None,
+                        support_impulse: None,
+                        energy_change: None,
+                        error: Some(e.to_string()),
+                    }),
+                }
+            }
+            Ok((main, Some(cl), warnings))
+        }
+        _ => Ok((Some(run(None)?), Some(cl), warnings)),
     }
+}
+
+/// One branch of a Painleve-type case with two solutions at the support.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Alternative {
+    /// The support's motion at the start: "detach", "roll" or "slide".
+    pub start: String,
+    /// The impulse on the first body (N s).
+    pub impulse: Option<[f64; 3]>,
+    /// The support's impulse on the second body (N s).
+    pub support_impulse: Option<[f64; 3]>,
+    /// Kinetic energy change (J).
+    pub energy_change: Option<f64>,
+    /// Why the branch could not be integrated.
+    pub error: Option<String>,
 }
 
 /// The `rigid-impact` scene of 002_b53e4779673eb6ed.txt: two bodies, one contact, Coulomb
@@ -341,6 +408,19 @@ pub struct RigidImpactOutcome {
     pub classification: Option<String>,
     /// The support analysis, if any.
     pub support_analysis: Option<Classification>,
+    /// The support's impulse on the second body (N s), with a support.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub support_impulse: Option<[f64; 3]>,
+    /// A rough support's phases: "roll", "slide" or "detached", each with the normal impulse at
+    /// C where it starts.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub support_phases: Option<Vec<super::rigid_impact::Phase>>,
+    /// Tangential velocity of A after the impact (m/s), with a rough support.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub v_support_after: Option<[f64; 3]>,
+    /// The branches of a Painleve-type case with two solutions at the support.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub alternatives: Vec<Alternative>,
     /// Work done.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stats: Option<crate::integrate::Stats>,
@@ -584,8 +664,9 @@ impl super::Model for RigidImpactScene {
 
     fn run(&self) -> Result<(RigidImpactOutcome, super::Curves), super::RunError> {
         let s = self;
+        let mut alternatives = Vec::new();
         let (r, classification, mut warnings) =
-            solve_scene(s).map_err(|e| super::RunError::BadArgument {
+            solve_scene_all(s, &mut alternatives).map_err(|e| super::RunError::BadArgument {
                 arg: "impact".into(),
                 message: e.to_string(),
             })?;
@@ -605,6 +686,10 @@ impl super::Model for RigidImpactScene {
             cut_off: None,
             classification: classification.as_ref().map(|c| c.kind.clone()),
             support_analysis: classification,
+            support_impulse: None,
+            support_phases: None,
+            v_support_after: None,
+            alternatives,
             stats: None,
             warnings: vec![],
         };
@@ -628,6 +713,11 @@ impl super::Model for RigidImpactScene {
             out.bound_lower = Some(r.bound_lower);
             out.phases = Some(r.phases);
             out.cut_off = Some(r.cut_off);
+            if s.support.is_some() {
+                out.support_impulse = Some(r.support_impulse);
+            }
+            out.support_phases = (!r.support_phases.is_empty()).then_some(r.support_phases);
+            out.v_support_after = r.v_support_after;
             out.stats = Some(r.stats);
         }
         out.warnings = warnings;

@@ -112,6 +112,13 @@ pub struct ImpactResult {
     pub stats: crate::integrate::Stats,
     /// Impulse of the support on the second body (N s), zero without a support.
     pub support_impulse: [f64; 3],
+    /// A rough support's motion: "roll", "slide" or "detached" with the normal impulse at C at
+    /// which each phase starts (empty without a rough support).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub support_phases: Vec<Phase>,
+    /// Tangential velocity of A after the impact (m/s), with a rough support.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub v_support_after: Option<[f64; 3]>,
     /// The relative velocity along the impact: `(normal impulse, V)` at every accepted step.
     #[serde(skip)]
     pub path: Vec<(f64, [f64; 3])>,
@@ -133,6 +140,16 @@ pub enum ImpactError {
     /// The solver failed.
     #[error("solver: {0}")]
     Integrate(#[from] IntegrateError),
+    /// A Painleve-type case at the support: (3.6) with (3.2)/(3.3) admits no motion.
+    #[error(
+        "Painleve-type case at the support at normal impulse {chi:e} N s: {what}; classical impact theory has no solution here (deformations at A must be modelled)"
+    )]
+    Painleve {
+        /// Normal impulse at C where it happens.
+        chi: f64,
+        /// What fails.
+        what: String,
+    },
     /// The restitution condition was not reached.
     #[error("the {law} restitution condition was not reached by normal impulse {chi_max:e} N s")]
     NoEnd {
@@ -162,8 +179,158 @@ pub struct SmoothSupport {
     pub beta: f64,
 }
 
+/// A rough support under the second body (002 section 4): Coulomb friction $\mu^*$ at A.
+#[derive(Clone, Debug)]
+pub struct RoughSupport {
+    /// $\tilde{\mathbf B}$ of (3.4).
+    pub b_tilde: Matrix3<f64>,
+    /// $\mathbf B_A$ of (3.4).
+    pub b_a: Matrix3<f64>,
+    /// Unit normal N at A, from the support into the body.
+    pub normal: Vector3<f64>,
+    /// Friction coefficient $\mu^*$ at A (> 0).
+    pub mu: f64,
+    /// Velocity of A before the impact (m/s; its tangential part is the slip at A).
+    pub v_a: Vector3<f64>,
+}
+
+/// The motion at A: rolling (4.2), sliding (4.3)-(4.4), or free of the support.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SupportMode {
+    /// $\mathbf V_A = 0$, $\mathbf F^* = \mathbf B_A^{-1}\tilde{\mathbf B}\mathbf F$ (4.2).
+    Roll,
+    /// $\mathbf F^* = F_N^*(\mathbf N - \mu^*\mathbf e_T)$ (4.3), $F_N^* = -\alpha/\beta$ with (4.4).
+    Slide,
+    /// No reaction: the support would have to pull (the body detaches, case 1).
+    Free,
+}
+
+impl SupportMode {
+    fn name(self) -> &'static str {
+        match self {
+            SupportMode::Roll => "roll",
+            SupportMode::Slide => "slide",
+            SupportMode::Free => "detached",
+        }
+    }
+}
+
+/// The support at A during the impact, smooth (3.7)-(3.8) or rough (section 4), with the
+/// velocity of A in the state: the support pushes only while A touches it ($V_{A,N} = 0$, the
+/// complementarity (3.3) on velocities, not only on their rates), and a body that has left it
+/// is pushed again only when A comes back down.
+#[derive(Clone, Debug)]
+struct AtA {
+    b_tilde: Matrix3<f64>,
+    /// $\mathbf B_A$ (rough only: a smooth support needs only $\beta$).
+    b_a: Matrix3<f64>,
+    b_a_inv: Matrix3<f64>,
+    normal: Vector3<f64>,
+    /// $\beta = (\mathbf B_A\mathbf N, \mathbf N)$ of (3.7).
+    beta_n: f64,
+    /// $\mu^*$; 0 for a smooth support.
+    mu: f64,
+    mode: SupportMode,
+    /// slide direction used while the slip at A is below the floor (set when sliding starts)
+    hint: Vector3<f64>,
+    floor: f64,
+}
+
+impl AtA {
+    fn rough(&self) -> bool {
+        self.mu > 0.0
+    }
+
+    /// The phase's name: "roll", "slide" or "detached"; "contact" for a smooth support.
+    fn phase_name(&self) -> &'static str {
+        match (self.rough(), self.mode) {
+            (false, SupportMode::Slide | SupportMode::Roll) => "contact",
+            (_, m) => m.name(),
+        }
+    }
+
+    fn tangential(&self, v: &Vector3<f64>) -> Vector3<f64> {
+        v - self.normal * v.dot(&self.normal)
+    }
+
+    fn slide_dir(&self, va: &Vector3<f64>) -> Vector3<f64> {
+        let vt = self.tangential(va);
+        let s = vt.norm();
+        if s > self.floor { vt / s } else { self.hint }
+    }
+
+    /// The reaction of rolling, $\mathbf B_A^{-1}\tilde{\mathbf B}\mathbf F$ (4.2).
+    fn roll_reaction(&self, f: &Vector3<f64>) -> Vector3<f64> {
+        self.b_a_inv * (self.b_tilde * f)
+    }
+
+    /// $\mathbf I = \mathbf N - \mu^*\mathbf e_T$ and $\beta = (\mathbf B_A\mathbf I, \mathbf N)$ (4.3)-(4.4).
+    fn slide_i(&self, va: &Vector3<f64>) -> (Vector3<f64>, f64) {
+        if !self.rough() {
+            return (self.normal, self.beta_n);
+        }
+        let i = self.normal - self.slide_dir(va) * self.mu;
+        (i, (self.b_a * i).dot(&self.normal))
+    }
+
+    /// The reaction $\mathbf F^*$ per unit normal impulse at C.
+    fn reaction(&self, f: &Vector3<f64>, va: &Vector3<f64>) -> Vector3<f64> {
+        match self.mode {
+            SupportMode::Free => Vector3::zeros(),
+            SupportMode::Roll => {
+                let fs = self.roll_reaction(f);
+                if fs.dot(&self.normal) > 0.0 {
+                    fs
+                } else {
+                    Vector3::zeros()
+                }
+            }
+            SupportMode::Slide => {
+                let (i, beta) = self.slide_i(va);
+                if beta > 0.0 {
+                    i * ((self.b_tilde * f).dot(&self.normal) / beta).max(0.0)
+                } else {
+                    Vector3::zeros()
+                }
+            }
+        }
+    }
+
+    /// $d\mathbf V_A/d\chi = \mathbf B_A\mathbf F^* - \tilde{\mathbf B}\mathbf F$ (3.4); for a smooth
+    /// support its normal part only ($\beta F_N^* - (\tilde{\mathbf B}\mathbf F, \mathbf N)$).
+    fn va_rate(&self, f: &Vector3<f64>, fs: &Vector3<f64>) -> Vector3<f64> {
+        let g = self.b_tilde * f;
+        if self.rough() {
+            self.b_a * fs - g
+        } else {
+            self.normal * (self.beta_n * fs.dot(&self.normal) - g.dot(&self.normal))
+        }
+    }
+
+    /// The matrix that maps F to the rate of $\mathbf V_C$ in the current mode (it governs
+    /// sticking at C): $\mathbf B^*$ of (3.8) for a smooth support or a slide, $\mathbf B -
+    /// \tilde{\mathbf B}'\mathbf B_A^{-1}\tilde{\mathbf B}$ rolling, $\mathbf B$ free (a contact mode is
+    /// left, by its event, where the support would pull).
+    fn b_eff(&self, b: &Matrix3<f64>, va: &Vector3<f64>) -> Matrix3<f64> {
+        let bt = &self.b_tilde;
+        let nn = self.normal;
+        match self.mode {
+            SupportMode::Free => *b,
+            SupportMode::Roll => b - bt.transpose() * self.b_a_inv * bt,
+            SupportMode::Slide => {
+                let (i, beta) = self.slide_i(va);
+                if beta > 0.0 {
+                    b - (bt.transpose() * i) * (bt.transpose() * nn).transpose() / beta
+                } else {
+                    *b
+                }
+            }
+        }
+    }
+}
+
 struct Keller {
-    support: Option<SmoothSupport>,
+    at_a: Option<AtA>,
     b: Matrix3<f64>,
     n: Vector3<f64>,
     mu: f64,
@@ -173,14 +340,30 @@ struct Keller {
     floor: f64,
 }
 
+/// $\mathbf V_A$ from the state (zero without a support).
+fn va_of(y: &[f64]) -> Vector3<f64> {
+    if y.len() >= 13 {
+        Vector3::new(y[10], y[11], y[12])
+    } else {
+        Vector3::zeros()
+    }
+}
+
 impl Keller {
     fn tangential(&self, v: &Vector3<f64>) -> Vector3<f64> {
         v - self.n * v.dot(&self.n)
     }
 
-    fn rate(&self, v: &Vector3<f64>) -> Vector3<f64> {
+    /// The contact force direction at C per unit normal impulse.
+    fn rate(&self, v: &Vector3<f64>, va: &Vector3<f64>) -> Vector3<f64> {
         match self.mode {
-            Mode::Stick(tau) => self.n + tau,
+            Mode::Stick(tau) => match &self.at_a {
+                // the matrix that holds V_t = 0 turns with a slide at A
+                Some(a) if a.rough() && a.mode == SupportMode::Slide => {
+                    self.n + stick_tau(&a.b_eff(&self.b, va), &self.n).unwrap_or(tau)
+                }
+                _ => self.n + tau,
+            },
             Mode::Ray(u) => self.n - u * self.mu,
             Mode::Slip => {
                 let vt = self.tangential(v);
@@ -190,40 +373,50 @@ impl Keller {
             }
         }
     }
+
+    /// $d\mathbf V_C/d\chi$, the support's reaction and $d\mathbf V_A/d\chi$ for the contact force
+    /// direction `f`.
+    fn rates(
+        &self,
+        f: &Vector3<f64>,
+        va: &Vector3<f64>,
+    ) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+        match &self.at_a {
+            Some(a) => {
+                let fs = a.reaction(f, va);
+                let dv = self.b * f - a.b_tilde.transpose() * fs;
+                (dv, fs, a.va_rate(f, &fs))
+            }
+            None => (self.b * f, Vector3::zeros(), Vector3::zeros()),
+        }
+    }
+
+    /// The matrix that governs V_C near a stick/slip switch at C (see [`AtA::b_eff`]).
+    fn b_stick(&self, va: &Vector3<f64>) -> Matrix3<f64> {
+        match &self.at_a {
+            Some(a) => a.b_eff(&self.b, va),
+            None => self.b,
+        }
+    }
 }
 
 impl OdeSystem for Keller {
     fn dim(&self) -> usize {
-        10
+        if self.at_a.is_some() { 13 } else { 10 }
     }
     fn rhs(&self, _chi: f64, y: &[f64], dy: &mut [f64]) {
         let v = Vector3::new(y[0], y[1], y[2]);
-        let d = self.rate(&v);
-        let (dv, fs) = velocity_rate(&self.b, self.support.as_ref(), &d);
+        let va = va_of(y);
+        let d = self.rate(&v, &va);
+        let (dv, fs, dva) = self.rates(&d, &va);
         dy[..3].copy_from_slice(dv.as_slice());
         dy[3..6].copy_from_slice(d.as_slice());
         dy[6] = v.dot(&self.n);
         dy[7..10].copy_from_slice(fs.as_slice());
+        if self.at_a.is_some() {
+            dy[10..13].copy_from_slice(dva.as_slice());
+        }
     }
-}
-
-/// The rate of the relative velocity at C per unit normal impulse, $\mathbf B\mathbf F$, for the
-/// contact force direction `f`, less the support's reaction while it pushes ((3.7)-(3.8):
-/// $F_N^* = \max(0, -\alpha/\beta)$, $\alpha = -(\tilde{\mathbf B}\mathbf F, \mathbf N)$); and
-/// that reaction.
-fn velocity_rate(
-    b: &Matrix3<f64>,
-    support: Option<&SmoothSupport>,
-    f: &Vector3<f64>,
-) -> (Vector3<f64>, Vector3<f64>) {
-    let mut dv = b * f;
-    let mut fs = Vector3::zeros();
-    if let Some(s) = support {
-        let fn_star = ((s.b_tilde * f).dot(&s.normal) / s.beta).max(0.0);
-        fs = s.normal * fn_star;
-        dv -= s.b_tilde.transpose() * fs;
-    }
-    (dv, fs)
 }
 
 /// The rate of the relative velocity at C for a contact force direction (see [`velocity_rate`]).
@@ -240,13 +433,10 @@ fn tangent_basis(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
     (t1, n.cross(&t1))
 }
 
-/// At zero slip: stick (with the tangential rate that keeps $V_t = 0$) or the direction to slide.
-fn stick_or_slide(
-    b: &Matrix3<f64>,
-    rate: Rate,
-    n: &Vector3<f64>,
-    mu: f64,
-) -> Result<Vector3<f64>, Vector3<f64>> {
+/// The tangential rate $\boldsymbol\tau$ of the impulse that keeps $\mathbf V_t = 0$ under the matrix
+/// `b`: the least-norm solution of $\mathbf B_{tt}\boldsymbol\tau = -\mathbf B_{tn}$ ($\mathbf B_{tt}$ may be
+/// singular with fixed points, (2.5)); `None` when that system has no solution.
+fn stick_tau(b: &Matrix3<f64>, n: &Vector3<f64>) -> Option<Vector3<f64>> {
     let (t1, t2) = tangent_basis(n);
     let bt = Matrix2::new(
         t1.dot(&(b * t1)),
@@ -255,15 +445,24 @@ fn stick_or_slide(
         t2.dot(&(b * t2)),
     );
     let rhs = -Vector2::new(t1.dot(&(b * n)), t2.dot(&(b * n)));
-    // least-norm solution of B_tt tau = -B_tn (B_tt may be singular with fixed points, (2.5))
     let scale = b.norm().max(f64::MIN_POSITIVE);
-    let svd = bt.svd(true, true);
-    if let Ok(x) = svd.solve(&rhs, 1e-12 * scale) {
-        let consistent = (bt * x - rhs).norm() <= 1e-9 * scale;
-        if consistent && x.norm() <= mu * (1.0 + 1e-12) {
-            return Ok(t1 * x[0] + t2 * x[1]);
-        }
+    let x = bt.svd(true, true).solve(&rhs, 1e-12 * scale).ok()?;
+    ((bt * x - rhs).norm() <= 1e-9 * scale).then(|| t1 * x[0] + t2 * x[1])
+}
+
+/// At zero slip: stick (with the tangential rate that keeps $V_t = 0$) or the direction to slide.
+fn stick_or_slide(
+    b: &Matrix3<f64>,
+    rate: Rate,
+    n: &Vector3<f64>,
+    mu: f64,
+) -> Result<Vector3<f64>, Vector3<f64>> {
+    if let Some(tau) = stick_tau(b, n)
+        && tau.norm() <= mu * (1.0 + 1e-12)
+    {
+        return Ok(tau);
     }
+    let (t1, _) = tangent_basis(n);
     // slide: the direction u on the unit circle with P_t B (n - mu u) parallel to u, growing
     // (with the support's reaction where it pushes); a stable root first, then the largest rate
     let best = slide_rays(rate, n, mu, 720)
@@ -403,6 +602,296 @@ pub fn impact_general(
     e: f64,
     rtol: f64,
 ) -> Result<ImpactResult, ImpactError> {
+    let at_a = support.map(|s| {
+        (
+            AtA {
+                b_tilde: s.b_tilde,
+                b_a: Matrix3::zeros(),
+                b_a_inv: Matrix3::zeros(),
+                normal: s.normal.normalize(),
+                beta_n: s.beta,
+                mu: 0.0,
+                mode: SupportMode::Slide,
+                hint: Vector3::zeros(),
+                floor: 0.0,
+            },
+            Vector3::zeros(),
+            false,
+        )
+    });
+    impact_core(b, at_a, normal, v_minus, mu, law, e, rtol)
+}
+
+/// As [`impact_general`], with Coulomb friction $\mu^*$ at the support (002 section 4): the
+/// support rolls (4.2), slides (4.3)-(4.4) or lets go, switching as its slip stops, its reaction
+/// leaves the friction cone or would have to pull; the slide direction at a start from rest
+/// solves (4.5). `start` forces the support's mode at the start (the branches of a Painleve
+/// case with two solutions); `None` takes the one (3.6) admits.
+#[allow(clippy::too_many_arguments)]
+pub fn impact_rough(
+    b: &Matrix3<f64>,
+    rough: RoughSupport,
+    start: Option<SupportMode>,
+    normal: Vector3<f64>,
+    v_minus: Vector3<f64>,
+    mu: f64,
+    law: Law,
+    e: f64,
+    rtol: f64,
+) -> Result<ImpactResult, ImpactError> {
+    if !(rough.mu > 0.0 && rough.mu.is_finite()) {
+        return Err(out_of_range(
+            "support.mu",
+            rough.mu.to_string(),
+            "mu* > 0 (0 is the smooth support)",
+        ));
+    }
+    let b_a_inv = rough.b_a.try_inverse().ok_or_else(|| {
+        out_of_range(
+            "support",
+            "singular B_A".into(),
+            "a second body with mass and an invertible inertia",
+        )
+    })?;
+    let nn = rough.normal.normalize();
+    let a = AtA {
+        b_tilde: rough.b_tilde,
+        b_a: rough.b_a,
+        b_a_inv,
+        normal: nn,
+        beta_n: (rough.b_a * nn).dot(&nn),
+        mu: rough.mu,
+        mode: start.unwrap_or(SupportMode::Roll),
+        hint: Vector3::zeros(),
+        floor: 0.0,
+    };
+    impact_core(
+        b,
+        Some((a, rough.v_a, start.is_some())),
+        normal,
+        v_minus,
+        mu,
+        law,
+        e,
+        rtol,
+    )
+}
+
+/// beta of (4.4) below this fraction of $(\mathbf B_A\mathbf N, \mathbf N)$ is taken as zero:
+/// a slide there needs a reaction beyond any bound (a Painleve-type case).
+const BETA_FLOOR: f64 = 1e-6;
+
+/// Why the support admits no motion at some instant.
+fn no_support_motion(chi: f64, what: &str) -> ImpactError {
+    ImpactError::Painleve {
+        chi,
+        what: what.into(),
+    }
+}
+
+/// The slide directions at A from rest, (4.5): unit tangential $\mathbf e_T$ with
+/// $\varkappa\mathbf e_T = F_N^*\mathbf B_A(\mathbf N - \mu^*\mathbf e_T) - \tilde{\mathbf B}\mathbf F$, $\varkappa > 0$,
+/// $F_N^* \ge 0$ (the normal component fixes $F_N^*$); `(e_T, kappa)` for each root.
+fn start_slide_dirs(r: &AtA, f: &Vector3<f64>) -> Vec<(Vector3<f64>, f64)> {
+    let nn = r.normal;
+    let (t1, t2) = tangent_basis(&nn);
+    let g = r.b_tilde * f;
+    let resid = |th: f64| -> (f64, f64, f64, Vector3<f64>) {
+        let e = t1 * th.cos() + t2 * th.sin();
+        let a = r.b_a * (nn - e * r.mu);
+        let fn_star = g.dot(&nn) / a.dot(&nn);
+        let v = a * fn_star - g;
+        let vt = v - nn * v.dot(&nn);
+        (e.cross(&vt).dot(&nn), vt.dot(&e), fn_star, e)
+    };
+    let samples = 720;
+    let tau = 2.0 * std::f64::consts::PI;
+    let mut out = Vec::new();
+    let mut prev = resid(0.0);
+    for k in 1..=samples {
+        let (a0, a1) = (
+            tau * (k - 1) as f64 / samples as f64,
+            tau * k as f64 / samples as f64,
+        );
+        let cur = resid(a1);
+        if prev.0.is_finite()
+            && cur.0.is_finite()
+            && (prev.0 == 0.0 || prev.0.signum() != cur.0.signum())
+        {
+            let (mut lo, mut hi) = (a0, a1);
+            let s_lo = prev.0 > 0.0;
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if (resid(mid).0 > 0.0) == s_lo {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            let (_, kappa, fn_star, e) = resid(0.5 * (lo + hi));
+            if kappa > 0.0 && fn_star >= 0.0 {
+                out.push((e, kappa));
+            }
+        }
+        prev = cur;
+    }
+    out
+}
+
+/// C's contact force direction if the support were in `mode`: while C sticks, the stick (or
+/// the slide it turns into) is decided with that mode's matrix, so the support's choice and
+/// C's are made together (a small complementarity problem, solved by trying the modes).
+fn c_direction_with(
+    sys: &mut Keller,
+    mode: SupportMode,
+    v: &Vector3<f64>,
+    va: &Vector3<f64>,
+) -> Vector3<f64> {
+    let Mode::Stick(_) = sys.mode else {
+        return sys.rate(v, va);
+    };
+    let Some(a) = sys.at_a.as_mut() else {
+        return sys.rate(v, va);
+    };
+    let old = std::mem::replace(&mut a.mode, mode);
+    let b_e = sys.b_stick(va);
+    let f = {
+        let rate_of = |f: &Vector3<f64>| sys.rates(f, va).0;
+        match stick_or_slide(&b_e, &rate_of, &sys.n, sys.mu) {
+            Ok(tau) => sys.n + tau,
+            Err(u) => sys.n - u * sys.mu,
+        }
+    };
+    if let Some(a) = sys.at_a.as_mut() {
+        a.mode = old;
+    }
+    f
+}
+
+/// Chooses the support's motion at a switch (or at the start) from the state, together with
+/// C's stick where C sticks ([`c_direction_with`]). A that moves away from the support (faster
+/// than `stop`) is free. Otherwise A touches it (an approach slower than `stop` is taken as
+/// arriving: $V_{A,N}$ is set to 0), and with alpha of (3.6) for C's direction in each mode:
+/// letting go where alpha >= 0 with the support free (case 1; taken also where a contact mode is
+/// admissible too: section 4 takes the body to leave in the paradoxical cases); else contact
+/// where alpha < 0 with C's direction in contact: a smooth support pushes; a rough one slides
+/// while A slips (none if (4.4)'s beta <= 0), else rolls if (4.2)'s reaction lies in the
+/// friction cone, else slides in the direction (4.5) gives (the fastest, where several do), the
+/// slip nudged to `20 stop` along it so that its stop event re-arms. Neither admissible is a
+/// Painleve-type case with no solution, reported as such.
+fn decide_support(
+    sys: &mut Keller,
+    y: &mut [f64],
+    stop: f64,
+    chi: f64,
+    leaving_roll: bool,
+) -> Result<(), ImpactError> {
+    let v = Vector3::new(y[0], y[1], y[2]);
+    let mut va = va_of(y);
+    let Some(r) = sys.at_a.as_ref() else {
+        return Ok(());
+    };
+    let nn = r.normal;
+    if va.dot(&nn) > stop {
+        if let Some(r) = sys.at_a.as_mut() {
+            r.mode = SupportMode::Free;
+        }
+        return Ok(());
+    }
+    va -= nn * va.dot(&nn);
+    y[10..13].copy_from_slice(va.as_slice());
+    let alpha_of = |sys: &Keller, f: &Vector3<f64>| {
+        sys.at_a
+            .as_ref()
+            .map_or(0.0, |r| -(r.b_tilde * f).dot(&r.normal))
+    };
+    let f_free = c_direction_with(sys, SupportMode::Free, &v, &va);
+    if alpha_of(sys, &f_free) >= 0.0 {
+        if let Some(r) = sys.at_a.as_mut() {
+            r.mode = SupportMode::Free;
+        }
+        return Ok(());
+    }
+    let rough = sys.at_a.as_ref().is_some_and(|r| r.rough());
+    let slips = sys
+        .at_a
+        .as_ref()
+        .is_some_and(|r| r.tangential(&va).norm() > stop);
+    let contact = if !rough || slips {
+        SupportMode::Slide
+    } else {
+        SupportMode::Roll
+    };
+    let f = c_direction_with(sys, contact, &v, &va);
+    if alpha_of(sys, &f) >= 0.0 {
+        return Err(no_support_motion(
+            chi,
+            "with the support free it would be pushed into (alpha < 0), in contact it would pull (alpha > 0)",
+        ));
+    }
+    let Some(r) = sys.at_a.as_mut() else {
+        return Ok(());
+    };
+    if !rough {
+        r.mode = SupportMode::Slide;
+        return Ok(());
+    }
+    if slips {
+        if r.tangential(&va).norm() > r.floor {
+            r.hint = r.tangential(&va).normalize();
+        }
+        let (_, beta) = r.slide_i(&va);
+        if beta <= BETA_FLOOR * r.beta_n {
+            return Err(no_support_motion(
+                chi,
+                &format!(
+                    "A slides with beta of (4.4) = {beta:.3e} (at most 1e-6 of (B_A N, N)) and alpha < 0: the support's reaction has no bound"
+                ),
+            ));
+        }
+        r.mode = SupportMode::Slide;
+        return Ok(());
+    }
+    let fs = r.roll_reaction(&f);
+    let fs_n = fs.dot(&nn);
+    // (a roll whose reaction just left the cone, located on the cone's far side to rounding,
+    // does not roll again)
+    if !leaving_roll && fs_n >= 0.0 && (fs - nn * fs_n).norm() <= r.mu * fs_n * (1.0 + 1e-12) {
+        r.mode = SupportMode::Roll;
+        return Ok(());
+    }
+    // from rest into a slide: the direction with C's rate of rolling (C's stick, if it sticks,
+    // is decided again with the slide's matrix once the support slides)
+    let dirs = start_slide_dirs(r, &f);
+    let Some((e, _)) = dirs
+        .into_iter()
+        .max_by(|a, b| a.1.partial_cmp(&b.1).unwrap_or(std::cmp::Ordering::Equal))
+    else {
+        return Err(no_support_motion(
+            chi,
+            "rolling needs a reaction outside the friction cone and (4.5) has no slide direction",
+        ));
+    };
+    r.hint = e;
+    r.mode = SupportMode::Slide;
+    let vnew = e * (20.0 * stop);
+    y[10..13].copy_from_slice(vnew.as_slice());
+    Ok(())
+}
+
+/// The impact with an optional support: its state, the velocity of A before the impact and
+/// whether its start mode is forced.
+#[allow(clippy::too_many_arguments)]
+fn impact_core(
+    b: &Matrix3<f64>,
+    at_a: Option<(AtA, Vector3<f64>, bool)>,
+    normal: Vector3<f64>,
+    v_minus: Vector3<f64>,
+    mu: f64,
+    law: Law,
+    e: f64,
+    rtol: f64,
+) -> Result<ImpactResult, ImpactError> {
     let bad = out_of_range;
     if normal.norm() <= 0.0 || normal.norm().is_nan() {
         return Err(bad(
@@ -438,10 +927,10 @@ pub fn impact_general(
     }
     // Proposition 3 of 002: with a support the bound takes the smaller of the least eigenvalues
     // of B and B* (the support's reaction can make the impulse larger than B alone allows)
-    let lmin = match &support {
-        Some(s) => {
-            let w = s.b_tilde.transpose() * s.normal;
-            let b_star = b - w * w.transpose() / s.beta;
+    let lmin = match &at_a {
+        Some((a, _, _)) => {
+            let w = a.b_tilde.transpose() * a.normal;
+            let b_star = b - w * w.transpose() / a.beta_n;
             lmin.min(SymmetricEigen::new(b_star).eigenvalues.min())
         }
         None => lmin,
@@ -449,20 +938,13 @@ pub fn impact_general(
     let lam_floor = lmax * 1e-12;
     let chi_max = 20.0 * 2.0 * v_minus.norm() / lmin.max(lam_floor).max(lmax * 1e-6);
     let scale = v_minus.norm();
-    // the matrix that governs V_C near the stick/slip switch: B*, while the support pushes
-    // ((B~ n, N) > 0 means alpha < 0 for F along n), else B
-    let b_stick = match &support {
-        Some(s) if (s.b_tilde * n).dot(&s.normal) > 0.0 => {
-            let w = s.b_tilde.transpose() * s.normal;
-            b - w * w.transpose() / s.beta
-        }
-        _ => b,
-    };
-    // the slip's rate for a friction direction, with the support as the integration has it
-    let support_rate = support.clone();
-    let rate_of = move |f: &Vector3<f64>| velocity_rate(&b, support_rate.as_ref(), f).0;
+    let forced_start = at_a.as_ref().is_some_and(|r| r.2);
+    let v_a0 = at_a.as_ref().map(|r| r.1);
     let mut sys = Keller {
-        support,
+        at_a: at_a.map(|(mut r, _, _)| {
+            r.floor = 1e-13 * scale;
+            r
+        }),
         b,
         n,
         mu,
@@ -474,12 +956,41 @@ pub fn impact_general(
         v_minus.x, v_minus.y, v_minus.z, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
     ];
     let mut chi = 0.0;
+    // the slip at A is taken to have stopped, as at C, far below the tolerance
+    let stop_a = (10.0 * 1e-13 * scale).max(1e-2 * rtol * scale);
+    let mut support_phases = Vec::new();
+    if let (Some(r), Some(va)) = (&sys.at_a, v_a0) {
+        y.extend_from_slice(va.as_slice());
+        if !forced_start {
+            decide_support(&mut sys, &mut y, stop_a, 0.0, false)?;
+        } else if r.rough() && r.mode == SupportMode::Slide && r.tangential(&va).norm() <= stop_a {
+            // a forced slide from rest: in the direction (4.5) gives
+            let f = sys.rate(&v_minus, &va);
+            let r = sys.at_a.as_mut().expect("support");
+            let dirs = start_slide_dirs(r, &f);
+            let (e, _) = dirs
+                .into_iter()
+                .max_by(|a, b| a.1.partial_cmp(&b.1).unwrap_or(std::cmp::Ordering::Equal))
+                .ok_or_else(|| no_support_motion(0.0, "(4.5) has no slide direction"))?;
+            r.hint = e;
+            y[10..13].copy_from_slice((e * (20.0 * stop_a)).as_slice());
+        }
+        if let Some(r) = &sys.at_a {
+            support_phases.push(Phase {
+                kind: r.phase_name().into(),
+                normal_impulse: 0.0,
+            });
+        }
+    }
     let mut phases = Vec::new();
     let mut path: Vec<(f64, [f64; 3])> = Vec::new();
     let mut stats = crate::integrate::Stats::default();
     // initial mode
     let vt0 = sys.tangential(&v_minus);
     if vt0.norm() <= sys.floor || mu == 0.0 {
+        let va = va_of(&y);
+        let b_stick = sys.b_stick(&va);
+        let rate_of = |f: &Vector3<f64>| sys.rates(f, &va).0;
         match (mu > 0.0).then(|| stick_or_slide(&b_stick, &rate_of, &n, mu)) {
             Some(Ok(tau)) => {
                 sys.mode = Mode::Stick(tau);
@@ -506,18 +1017,88 @@ pub fn impact_general(
             normal_impulse: 0.0,
         });
     }
-    // B* (or B) and mu are fixed for the impact: the ray a dying slip settles on is found once
-    let ray = if mu > 0.0 {
-        decay_ray(&rate_of, &n, mu).unwrap_or_else(Vector3::zeros)
-    } else {
-        Vector3::zeros()
+    // B* (or B) and mu are fixed while the support keeps its mode: the ray a dying slip
+    // settles on is found once per mode of the support
+    let find_ray = |sys: &Keller, y: &[f64]| {
+        let va = va_of(y);
+        let rate_of = |f: &Vector3<f64>| sys.rates(f, &va).0;
+        if mu > 0.0 {
+            decay_ray(&rate_of, &n, mu).unwrap_or_else(Vector3::zeros)
+        } else {
+            Vector3::zeros()
+        }
     };
+    let mut ray = find_ray(&sys, &y);
+    let mut b_stick = sys.b_stick(&va_of(&y));
     let mut ray_armed = true;
     let mut chi_c: Option<f64> = None;
     let mut w_c = 0.0;
     let mut cut_off = false;
     let mut switches = 0usize;
+    let mut last_fired = String::new();
+    let mut first = true;
     loop {
+        // the support's motion after every stop (a switch at C changes alpha at once, which
+        // no event can see as a crossing), and C's stick after every change of the support
+        if !first && sys.at_a.is_some() {
+            let before = sys.at_a.as_ref().map(|r| r.mode);
+            let leaving_roll = last_fired == "support starts to slide";
+            decide_support(&mut sys, &mut y, stop_a, chi, leaving_roll)?;
+            let after = sys.at_a.as_ref().map(|r| r.mode);
+            let restarted = last_fired.starts_with("support slip stops")
+                || last_fired == "support starts to slide";
+            if let (Some(m), Some(r)) = (after, &sys.at_a)
+                && (after != before || (restarted && m == SupportMode::Slide))
+            {
+                support_phases.push(Phase {
+                    kind: r.phase_name().into(),
+                    normal_impulse: chi,
+                });
+            }
+            if after != before
+                || last_fired.starts_with("support")
+                || last_fired == "stick at C breaks"
+            {
+                // the matrices of C's stick/slip switch change with the support's mode
+                b_stick = sys.b_stick(&va_of(&y));
+                ray = find_ray(&sys, &y);
+                ray_armed = true;
+                if let Mode::Stick(_) = sys.mode {
+                    let va = va_of(&y);
+                    let decided = {
+                        let rate_of = |f: &Vector3<f64>| sys.rates(f, &va).0;
+                        stick_or_slide(&b_stick, &rate_of, &n, mu)
+                    };
+                    match decided {
+                        Ok(tau) => sys.mode = Mode::Stick(tau),
+                        Err(u) => {
+                            sys.u_hint = u;
+                            sys.mode = Mode::Slip;
+                            let slip_stop = (10.0 * sys.floor).max(1e-2 * rtol * scale);
+                            let v = Vector3::new(y[0], y[1], y[2]);
+                            let vnew = v - sys.tangential(&v) + u * (20.0 * slip_stop);
+                            y[..3].copy_from_slice(vnew.as_slice());
+                            phases.push(Phase {
+                                kind: "slip".into(),
+                                normal_impulse: chi,
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        // a rough support that slides turns the matrix of C's slip with its slide direction:
+        // the ray a dying slip settles on moves with it
+        if !first
+            && let Some(a) = &sys.at_a
+            && a.rough()
+            && a.mode == SupportMode::Slide
+        {
+            ray = find_ray(&sys, &y);
+            b_stick = sys.b_stick(&va_of(&y));
+        }
+        first = false;
+        last_fired.clear();
         switches += 1;
         if switches > 10_000 {
             return Err(ImpactError::NoEnd {
@@ -612,6 +1193,126 @@ pub fn impact_general(
                 }
             }
         }
+        // the rough support's switches (002 section 4): its slip stops, its rolling reaction
+        // leaves the friction cone or would pull, it would push again after letting go; and a
+        // stick at C that the support's motion breaks
+        let sys_ref = &sys;
+        let state = |y: &[f64]| {
+            let (v, va) = (Vector3::new(y[0], y[1], y[2]), va_of(y));
+            (sys_ref.rate(&v, &va), va)
+        };
+        let a_slip_g = |_chi: f64, y: &[f64]| {
+            sys_ref
+                .at_a
+                .as_ref()
+                .map_or(scale, |r| r.tangential(&va_of(y)).norm() - stop_a)
+        };
+        // a slip at A that dies out along a line reaches |V_A,T| = 0 with a corner the steps
+        // may pass over; its component along the direction it had when this stage began falls
+        // through zero at a simple root (where the slip turned instead, it slides on)
+        let a_dir0 = sys
+            .at_a
+            .as_ref()
+            .map_or(Vector3::zeros(), |r| r.slide_dir(&va_of(&y)));
+        let a_reverse_g = move |_chi: f64, y: &[f64]| va_of(y).dot(&a_dir0) - stop_a;
+        // beta of (4.4) falling to zero as the slide turns: the reaction grows without bound
+        let a_beta_g = |_chi: f64, y: &[f64]| {
+            sys_ref
+                .at_a
+                .as_ref()
+                .map_or(scale, |r| r.slide_i(&va_of(y)).1 - BETA_FLOOR * r.beta_n)
+        };
+        let a_cone_g = |_chi: f64, y: &[f64]| {
+            let (f, _) = state(y);
+            sys_ref.at_a.as_ref().map_or(-scale, |r| {
+                let fs = r.roll_reaction(&f);
+                let fs_n = fs.dot(&r.normal);
+                (fs - r.normal * fs_n).norm() - r.mu * fs_n
+            })
+        };
+        // -alpha of (3.6): the support lets go where alpha turns positive (a rolling reaction
+        // that would pull leaves the cone first)
+        let a_minus_alpha_g = |_chi: f64, y: &[f64]| {
+            let (f, _) = state(y);
+            sys_ref
+                .at_a
+                .as_ref()
+                .map_or(scale, |r| (r.b_tilde * f).dot(&r.normal))
+        };
+        // a free body comes back down onto the support (an approach slower than stop_a is
+        // taken as arriving)
+        let a_lands_g = |_chi: f64, y: &[f64]| {
+            sys_ref
+                .at_a
+                .as_ref()
+                .map_or(scale, |r| va_of(y).dot(&r.normal) + stop_a)
+        };
+        let c_stick_g = |_chi: f64, y: &[f64]| {
+            let va = va_of(y);
+            let b_now = sys_ref.b_stick(&va);
+            stick_tau(&b_now, &n).map_or(mu, |t| t.norm()) - mu * (1.0 + 1e-9)
+        };
+        if let Some(r) = &sys.at_a {
+            match r.mode {
+                SupportMode::Slide => {
+                    if r.rough() {
+                        events.push(Event::new(
+                            "support slip stops",
+                            &a_slip_g,
+                            Direction::Falling,
+                            true,
+                        ));
+                        events.push(Event::new(
+                            "support slip stops along its line",
+                            &a_reverse_g,
+                            Direction::Falling,
+                            true,
+                        ));
+                        events.push(Event::new(
+                            "support beta vanishes",
+                            &a_beta_g,
+                            Direction::Falling,
+                            true,
+                        ));
+                    }
+                    events.push(Event::new(
+                        "support lets go",
+                        &a_minus_alpha_g,
+                        Direction::Falling,
+                        true,
+                    ));
+                }
+                SupportMode::Roll => {
+                    events.push(Event::new(
+                        "support starts to slide",
+                        &a_cone_g,
+                        Direction::Rising,
+                        true,
+                    ));
+                    events.push(Event::new(
+                        "support lets go",
+                        &a_minus_alpha_g,
+                        Direction::Falling,
+                        true,
+                    ));
+                }
+                SupportMode::Free => events.push(Event::new(
+                    "support reached again",
+                    &a_lands_g,
+                    Direction::Falling,
+                    true,
+                )),
+            }
+            if r.rough() && matches!(sys.mode, Mode::Stick(_)) && mu > 0.0 {
+                events.push(Event::new(
+                    "stick at C breaks",
+                    &c_stick_g,
+                    Direction::Rising,
+                    true,
+                ));
+            }
+        }
+        let names: Vec<String> = events.iter().map(|e| e.name.clone()).collect();
         let opts = Options {
             rtol,
             atol: rtol * scale * 1e-3,
@@ -626,6 +1327,14 @@ pub fn impact_general(
         path.extend(sol.trajectory.iter().map(|(c, y)| (*c, [y[0], y[1], y[2]])));
         chi = sol.t;
         y = sol.y.clone();
+        let fired = match sol.stop {
+            Stop::Event { index, .. } => names[index].as_str(),
+            Stop::End => "",
+        };
+        last_fired = fired.to_string();
+        if fired.starts_with("support") || fired == "stick at C breaks" {
+            continue;
+        }
         match sol.stop {
             Stop::End => {
                 return Err(ImpactError::NoEnd {
@@ -657,14 +1366,21 @@ pub fn impact_general(
                 if sys.tangential(&Vector3::new(y[0], y[1], y[2])).norm() > 10.0 * slip_stop =>
             {
                 // the slip crossed the ray's normal line off the ray, away from zero: slip on,
-                // without the ray event (it would fire again at once) until the slip settles
+                // with its own direction, without the ray event (it would fire again at once)
+                // until the slip settles
                 ray_armed = false;
+                sys.mode = Mode::Slip;
                 continue;
             }
             Stop::Event { .. } => {
                 ray_armed = true;
                 // slip stopped: stick or slide again
-                match stick_or_slide(&b_stick, &rate_of, &n, mu) {
+                let va = va_of(&y);
+                let decided = {
+                    let rate_of = |f: &Vector3<f64>| sys.rates(f, &va).0;
+                    stick_or_slide(&b_stick, &rate_of, &n, mu)
+                };
+                match decided {
                     Ok(tau) => {
                         sys.mode = Mode::Stick(tau);
                         phases.push(Phase {
@@ -717,6 +1433,11 @@ pub fn impact_general(
         phases,
         stats,
         support_impulse: [y[7], y[8], y[9]],
+        support_phases,
+        v_support_after: sys.at_a.as_ref().filter(|r| r.rough()).map(|_| {
+            let va = va_of(&y);
+            [va.x, va.y, va.z]
+        }),
         path,
     })
 }
@@ -735,6 +1456,19 @@ pub fn kinetic_change_supported(
     imp: &Vector3<f64>,
     support: Option<(Vector3<f64>, Vector3<f64>)>,
 ) -> f64 {
+    kinetic_change_moving(b1, b2, v_minus, &Vector3::zeros(), imp, support)
+}
+
+/// As [`kinetic_change_supported`], with the second body translating at `v2` before the impact
+/// (a support point that slides at `v2`) and the first at `v2 + v_minus`.
+pub fn kinetic_change_moving(
+    b1: &Body,
+    b2: &Body,
+    v_minus: &Vector3<f64>,
+    v2: &Vector3<f64>,
+    imp: &Vector3<f64>,
+    support: Option<(Vector3<f64>, Vector3<f64>)>,
+) -> f64 {
     let ke = |body: &Body, v: &Vector3<f64>, w: &Vector3<f64>| -> f64 {
         body.mass.map_or(0.0, |m| {
             0.5 * m * v.norm_squared() + 0.5 * w.dot(&(body.inertia * w))
@@ -747,9 +1481,9 @@ pub fn kinetic_change_supported(
         let sign = if k == 0 { 1.0 } else { -1.0 };
         // the relative velocity is carried by body 1, or by body 2 when body 1 is fixed
         let v0 = match (k, b1.mass) {
-            (0, _) => *v_minus,
+            (0, _) => *v_minus + v2,
             (_, None) => -v_minus,
-            _ => Vector3::zeros(),
+            _ => *v2,
         };
         let w0 = Vector3::zeros();
         let (extra_f, extra_m) = match (k, support) {
