@@ -263,7 +263,15 @@ pub fn solve_scene_all(
             }
             Ok((main, Some(cl), warnings))
         }
-        _ => Ok((Some(run(None)?), Some(cl), warnings)),
+        _ => match run(None) {
+            Ok(r) => Ok((Some(r), Some(cl), warnings)),
+            // a Painleve-type instant later in the impact: said, with the classification
+            Err(e @ ImpactError::Painleve { .. }) => {
+                warnings.push(e.to_string());
+                Ok((None, Some(cl), warnings))
+            }
+            Err(e) => Err(e),
+        },
     }
 }
 

@@ -691,8 +691,10 @@ fn no_support_motion(chi: f64, what: &str) -> ImpactError {
 
 /// The slide directions at A from rest, (4.5): unit tangential $\mathbf e_T$ with
 /// $\varkappa\mathbf e_T = F_N^*\mathbf B_A(\mathbf N - \mu^*\mathbf e_T) - \tilde{\mathbf B}\mathbf F$, $\varkappa > 0$,
-/// $F_N^* \ge 0$ (the normal component fixes $F_N^*$); `(e_T, kappa)` for each root.
-fn start_slide_dirs(r: &AtA, f: &Vector3<f64>) -> Vec<(Vector3<f64>, f64)> {
+/// $F_N^* \ge 0$ (the normal component fixes $F_N^*$); `(e_T, kappa, stable)` for each root,
+/// stable where nearby directions turn towards it (the cross product falls through zero as the
+/// angle grows), as for the slip at C ([`slide_rays`]).
+fn start_slide_dirs(r: &AtA, f: &Vector3<f64>) -> Vec<(Vector3<f64>, f64, bool)> {
     let nn = r.normal;
     let (t1, t2) = tangent_basis(&nn);
     let g = r.b_tilde * f;
@@ -730,7 +732,7 @@ fn start_slide_dirs(r: &AtA, f: &Vector3<f64>) -> Vec<(Vector3<f64>, f64)> {
             }
             let (_, kappa, fn_star, e) = resid(0.5 * (lo + hi));
             if kappa > 0.0 && fn_star >= 0.0 {
-                out.push((e, kappa));
+                out.push((e, kappa, prev.0 > 0.0));
             }
         }
         prev = cur;
@@ -863,10 +865,11 @@ fn decide_support(
     // from rest into a slide: the direction with C's rate of rolling (C's stick, if it sticks,
     // is decided again with the slide's matrix once the support slides)
     let dirs = start_slide_dirs(r, &f);
-    let Some((e, _)) = dirs
-        .into_iter()
-        .max_by(|a, b| a.1.partial_cmp(&b.1).unwrap_or(std::cmp::Ordering::Equal))
-    else {
+    let Some((e, _, _)) = dirs.into_iter().max_by(|a, b| {
+        (a.2, a.1)
+            .partial_cmp(&(b.2, b.1))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    }) else {
         return Err(no_support_motion(
             chi,
             "rolling needs a reaction outside the friction cone and (4.5) has no slide direction",
@@ -968,9 +971,13 @@ fn impact_core(
             let f = sys.rate(&v_minus, &va);
             let r = sys.at_a.as_mut().expect("support");
             let dirs = start_slide_dirs(r, &f);
-            let (e, _) = dirs
+            let (e, _, _) = dirs
                 .into_iter()
-                .max_by(|a, b| a.1.partial_cmp(&b.1).unwrap_or(std::cmp::Ordering::Equal))
+                .max_by(|a, b| {
+                    (a.2, a.1)
+                        .partial_cmp(&(b.2, b.1))
+                        .unwrap_or(std::cmp::Ordering::Equal)
+                })
                 .ok_or_else(|| no_support_motion(0.0, "(4.5) has no slide direction"))?;
             r.hint = e;
             y[10..13].copy_from_slice((e * (20.0 * stop_a)).as_slice());
