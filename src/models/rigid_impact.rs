@@ -165,6 +165,10 @@ enum Mode {
     Slip,
     /// Slip held along a ray it has settled on (the friction direction frozen).
     Ray(Vector3<f64>),
+    /// A slip starting from a stick that the support's motion broke: its rate starts at zero,
+    /// so its direction is held at the one the dynamics give at the break until the slip exceeds
+    /// the velocity tolerance (its turning rate grows like 1/|V_t| below that).
+    Held(Vector3<f64>),
     Stick(Vector3<f64>),
 }
 
@@ -233,6 +237,9 @@ struct AtA {
     mode: SupportMode,
     /// slide direction used while the slip at A is below the floor (set when sliding starts)
     hint: Vector3<f64>,
+    /// The slide started from rest (out of rolling, or from a stop): its rate starts at zero,
+    /// so the direction is held at `hint` until the slip exceeds the velocity tolerance.
+    held: bool,
     floor: f64,
 }
 
@@ -256,7 +263,11 @@ impl AtA {
     fn slide_dir(&self, va: &Vector3<f64>) -> Vector3<f64> {
         let vt = self.tangential(va);
         let s = vt.norm();
-        if s > self.floor { vt / s } else { self.hint }
+        if s > self.floor && !self.held {
+            vt / s
+        } else {
+            self.hint
+        }
     }
 
     /// The reaction of rolling, $\mathbf B_A^{-1}\tilde{\mathbf B}\mathbf F$ (4.2).
@@ -364,7 +375,7 @@ impl Keller {
                 }
                 _ => self.n + tau,
             },
-            Mode::Ray(u) => self.n - u * self.mu,
+            Mode::Ray(u) | Mode::Held(u) => self.n - u * self.mu,
             Mode::Slip => {
                 let vt = self.tangential(v);
                 let s = vt.norm();
@@ -613,6 +624,7 @@ pub fn impact_general(
                 mu: 0.0,
                 mode: SupportMode::Slide,
                 hint: Vector3::zeros(),
+                held: false,
                 floor: 0.0,
             },
             Vector3::zeros(),
@@ -663,6 +675,7 @@ pub fn impact_rough(
         mu: rough.mu,
         mode: start.unwrap_or(SupportMode::Roll),
         hint: Vector3::zeros(),
+        held: false,
         floor: 0.0,
     };
     impact_core(
@@ -842,6 +855,7 @@ fn decide_support(
         if r.tangential(&va).norm() > r.floor {
             r.hint = r.tangential(&va).normalize();
         }
+        r.held = false;
         let (_, beta) = r.slide_i(&va);
         if beta <= BETA_FLOOR * r.beta_n {
             return Err(no_support_motion(
@@ -876,6 +890,7 @@ fn decide_support(
         ));
     };
     r.hint = e;
+    r.held = true;
     r.mode = SupportMode::Slide;
     let vnew = e * (20.0 * stop);
     y[10..13].copy_from_slice(vnew.as_slice());
@@ -980,6 +995,7 @@ fn impact_core(
                 })
                 .ok_or_else(|| no_support_motion(0.0, "(4.5) has no slide direction"))?;
             r.hint = e;
+            r.held = true;
             y[10..13].copy_from_slice((e * (20.0 * stop_a)).as_slice());
         }
         if let Some(r) = &sys.at_a {
@@ -1080,7 +1096,7 @@ fn impact_core(
                         Ok(tau) => sys.mode = Mode::Stick(tau),
                         Err(u) => {
                             sys.u_hint = u;
-                            sys.mode = Mode::Slip;
+                            sys.mode = Mode::Held(u);
                             let slip_stop = (10.0 * sys.floor).max(1e-2 * rtol * scale);
                             let v = Vector3::new(y[0], y[1], y[2]);
                             let vnew = v - sys.tangential(&v) + u * (20.0 * slip_stop);
@@ -1254,6 +1270,18 @@ fn impact_core(
                 .as_ref()
                 .map_or(scale, |r| va_of(y).dot(&r.normal) + stop_a)
         };
+        // a held slip (at A or C) is freed once it exceeds the velocity tolerance
+        let established = 1e3 * stop_a;
+        let a_established_g = |_chi: f64, y: &[f64]| {
+            sys_ref
+                .at_a
+                .as_ref()
+                .map_or(-scale, |r| r.tangential(&va_of(y)).norm() - established)
+        };
+        let c_established_g = |_chi: f64, y: &[f64]| {
+            let v = Vector3::new(y[0], y[1], y[2]);
+            (v - n * v.dot(&n)).norm() - established
+        };
         let c_stick_g = |_chi: f64, y: &[f64]| {
             let va = va_of(y);
             let b_now = sys_ref.b_stick(&va);
@@ -1281,6 +1309,14 @@ fn impact_core(
                             Direction::Falling,
                             true,
                         ));
+                        if r.held {
+                            events.push(Event::new(
+                                "support slip established",
+                                &a_established_g,
+                                Direction::Rising,
+                                true,
+                            ));
+                        }
                     }
                     events.push(Event::new(
                         "support lets go",
@@ -1309,6 +1345,15 @@ fn impact_core(
                     Direction::Falling,
                     true,
                 )),
+            }
+            if let Mode::Held(_) = sys.mode {
+                events.push(Event::new("slip stops", &slip_g, Direction::Falling, true));
+                events.push(Event::new(
+                    "slip at C established",
+                    &c_established_g,
+                    Direction::Rising,
+                    true,
+                ));
             }
             if r.rough() && matches!(sys.mode, Mode::Stick(_)) && mu > 0.0 {
                 events.push(Event::new(
@@ -1340,6 +1385,10 @@ fn impact_core(
         };
         last_fired = fired.to_string();
         if fired.starts_with("support") || fired == "stick at C breaks" {
+            continue;
+        }
+        if fired == "slip at C established" {
+            sys.mode = Mode::Slip;
             continue;
         }
         match sol.stop {
