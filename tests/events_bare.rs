@@ -76,19 +76,19 @@ fn unit_hertz() -> Hertz {
 
 #[test]
 fn hertz_counts_are_near_hairers_bare_counts() {
+    // reference: Hairer's DOP853 without events (86 / 295 / 704 evaluations, his own code
+    // through SciPy's `ode('dop853')`); the events cost only the 7th-order dense output of the
+    // one step that holds the peak (3 evaluations): the steps that hold no crossing (the first,
+    // where g leaves its zero at t0, among them) are screened for free
     let tc = contact_time();
     assert!((tc - 3.218_065_459_7).abs() < 1e-10, "{tc}");
     let model = unit_hertz();
-    for (tol, hairer, slack) in [
-        (1e-6, 86.0, 1.08),
-        (1e-9, 295.0, 1.03),
-        (1e-12, 704.0, 1.03),
-    ] {
+    for (tol, hairer) in [(1e-6, 86), (1e-9, 295), (1e-12, 704)] {
         let r = run(&model, 1.0, tol, tol, Method::Dop853, Some(tc)).expect("solves");
-        let evals = r.stats.rhs_evals as f64;
         assert!(
-            evals <= hairer * slack,
-            "rtol {tol}: {evals} evaluations, Hairer {hairer}"
+            r.stats.rhs_evals <= hairer + 3,
+            "rtol {tol}: {} evaluations, Hairer {hairer}",
+            r.stats.rhs_evals
         );
     }
 }

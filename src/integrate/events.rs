@@ -82,6 +82,8 @@ pub(crate) struct Tracker<'e, 'a> {
     /// Scratch for the quadratic interpolant of [`Tracker::may_cross`] and the end values of g.
     quad: Vec<f64>,
     g_end: Vec<f64>,
+    /// The sign each event's g keeps over a step judged free of crossings.
+    ref_sign: Vec<i8>,
 }
 
 fn sign(v: f64) -> i8 {
@@ -112,6 +114,7 @@ impl<'e, 'a> Tracker<'e, 'a> {
         Ok(Tracker {
             events,
             last_sign: g_prev.iter().map(|v| sign(*v)).collect(),
+            ref_sign: g_prev.iter().map(|v| sign(*v)).collect(),
             g_now: g_prev.clone(),
             g_end: g_prev.clone(),
             g_prev,
@@ -149,8 +152,11 @@ impl<'e, 'a> Tracker<'e, 'a> {
                 return Err(IntegrateError::EventNonFinite { t: tb, index });
             }
             self.g_end[index] = v;
+            // g leaving an exact zero (a root at t0 or at the last event) is no crossing, as
+            // in the scan: the end's sign is then the one a sample must keep
             let s0 = self.last_sign[index];
-            if sign(v) != s0 {
+            self.ref_sign[index] = if s0 == 0 { sign(v) } else { s0 };
+            if sign(v) != self.ref_sign[index] {
                 return Ok(Some(true));
             }
         }
@@ -161,7 +167,7 @@ impl<'e, 'a> Tracker<'e, 'a> {
             st.hermite(t, buf, quad);
             for (index, e) in self.events.iter().enumerate() {
                 let v = (e.g)(t, buf);
-                if !v.is_finite() || sign(v) != self.last_sign[index] {
+                if !v.is_finite() || sign(v) != self.ref_sign[index] {
                     return Ok(Some(true));
                 }
                 // the cubic term's share of g bounds the higher terms the interpolant leaves out
@@ -174,6 +180,7 @@ impl<'e, 'a> Tracker<'e, 'a> {
         }
         self.g_now.copy_from_slice(&self.g_end);
         self.g_prev.copy_from_slice(&self.g_end);
+        self.last_sign.copy_from_slice(&self.ref_sign);
         Ok(Some(false))
     }
 

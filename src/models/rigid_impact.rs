@@ -694,6 +694,15 @@ pub fn impact_rough(
 /// a slide there needs a reaction beyond any bound (a Painleve-type case).
 const BETA_FLOOR: f64 = 1e-6;
 
+/// A terminal event (every switch of the impact stops the solve).
+fn stop_at<'a>(
+    name: &str,
+    g: &'a (dyn Fn(f64, &[f64]) -> f64 + 'a),
+    direction: Direction,
+) -> Event<'a> {
+    Event::new(name, g, direction, true)
+}
+
 /// Why the support admits no motion at some instant.
 fn no_support_motion(chi: f64, what: &str) -> ImpactError {
     ImpactError::Painleve {
@@ -1291,77 +1300,59 @@ fn impact_core(
             match r.mode {
                 SupportMode::Slide => {
                     if r.rough() {
-                        events.push(Event::new(
-                            "support slip stops",
-                            &a_slip_g,
-                            Direction::Falling,
-                            true,
-                        ));
-                        events.push(Event::new(
+                        events.push(stop_at("support slip stops", &a_slip_g, Direction::Falling));
+                        events.push(stop_at(
                             "support slip stops along its line",
                             &a_reverse_g,
                             Direction::Falling,
-                            true,
                         ));
-                        events.push(Event::new(
+                        events.push(stop_at(
                             "support beta vanishes",
                             &a_beta_g,
                             Direction::Falling,
-                            true,
                         ));
                         if r.held {
-                            events.push(Event::new(
+                            events.push(stop_at(
                                 "support slip established",
                                 &a_established_g,
                                 Direction::Rising,
-                                true,
                             ));
                         }
                     }
-                    events.push(Event::new(
+                    events.push(stop_at(
                         "support lets go",
                         &a_minus_alpha_g,
                         Direction::Falling,
-                        true,
                     ));
                 }
                 SupportMode::Roll => {
-                    events.push(Event::new(
+                    events.push(stop_at(
                         "support starts to slide",
                         &a_cone_g,
                         Direction::Rising,
-                        true,
                     ));
-                    events.push(Event::new(
+                    events.push(stop_at(
                         "support lets go",
                         &a_minus_alpha_g,
                         Direction::Falling,
-                        true,
                     ));
                 }
-                SupportMode::Free => events.push(Event::new(
+                SupportMode::Free => events.push(stop_at(
                     "support reached again",
                     &a_lands_g,
                     Direction::Falling,
-                    true,
                 )),
             }
             if let Mode::Held(_) = sys.mode {
                 events.push(Event::new("slip stops", &slip_g, Direction::Falling, true));
-                events.push(Event::new(
+                events.push(stop_at(
                     "slip at C established",
                     &c_established_g,
                     Direction::Rising,
-                    true,
                 ));
             }
             if r.rough() && matches!(sys.mode, Mode::Stick(_)) && mu > 0.0 {
-                events.push(Event::new(
-                    "stick at C breaks",
-                    &c_stick_g,
-                    Direction::Rising,
-                    true,
-                ));
+                events.push(stop_at("stick at C breaks", &c_stick_g, Direction::Rising));
             }
         }
         let names: Vec<String> = events.iter().map(|e| e.name.clone()).collect();
