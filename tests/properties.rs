@@ -165,11 +165,11 @@ proptest! {
         let sys = impactcheck::models::cone_plate::ConePlate::new(
             s.params.clone(), s.effects.clone(), s.variant, s.law,
         ).expect("model");
-        // the property is for passive materials: where the constant-bulk operator has a growing
-        // mode (alpha < 0, e.g. E = 1e8, nu = 0.44, eta/E = 1.1e-5 s: alpha = -2.3e6 1/s) the
-        // solution blows up inside the window, and the model says so (a "not passive" warning,
-        // or the solver stopping with the time and step size where it blows up)
-        prop_assume!(sys.rates().0 >= 0.0);
+        // the constant-bulk operator is not passive (alpha < 0, a growing mode exp(-alpha t): the
+        // model warns); the property is checked where that mode grows by less than a factor e
+        // over the window. Beyond that (e.g. E = 1e8, nu = 0.44, eta/E = 1.1e-5 s: alpha =
+        // -2.3e6 1/s) the solution blows up inside the window and the solver stops, saying where
+        prop_assume!(sys.rates().0 * times[4] > -1.0);
         let r = impactcheck::models::cone_plate::run(&sys, Some(times[4]), &times, 1e-12, 1e-18,
             impactcheck::integrate::Method::Dop853).expect("integrates");
         let (sp, _) = series_params(&s.params).expect("params");
