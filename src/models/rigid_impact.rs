@@ -811,6 +811,7 @@ fn decide_support(
     stop: f64,
     chi: f64,
     leaving_roll: bool,
+    rest_below: f64,
 ) -> Result<(), ImpactError> {
     let v = Vector3::new(y[0], y[1], y[2]);
     let mut va = va_of(y);
@@ -842,7 +843,7 @@ fn decide_support(
     let slips = sys
         .at_a
         .as_ref()
-        .is_some_and(|r| r.tangential(&va).norm() > stop);
+        .is_some_and(|r| r.tangential(&va).norm() > rest_below);
     let contact = if !rough || slips {
         SupportMode::Slide
     } else {
@@ -879,6 +880,9 @@ fn decide_support(
         r.mode = SupportMode::Slide;
         return Ok(());
     }
+    // at rest: what slip is left (below `rest_below`, under the tolerance) is taken as none
+    va = Vector3::zeros();
+    y[10..13].copy_from_slice(va.as_slice());
     let fs = r.roll_reaction(&f);
     let fs_n = fs.dot(&nn);
     // (a roll whose reaction just left the cone, located on the cone's far side to rounding,
@@ -991,7 +995,7 @@ fn impact_core(
     if let (Some(r), Some(va)) = (&sys.at_a, v_a0) {
         y.extend_from_slice(va.as_slice());
         if !forced_start {
-            decide_support(&mut sys, &mut y, stop_a, 0.0, false)?;
+            decide_support(&mut sys, &mut y, stop_a, 0.0, false, stop_a)?;
         } else if r.rough() && r.mode == SupportMode::Slide && r.tangential(&va).norm() <= stop_a {
             // a forced slide from rest: in the direction (4.5) gives
             let f = sys.rate(&v_minus, &va);
@@ -1077,7 +1081,14 @@ fn impact_core(
         if !first && sys.at_a.is_some() {
             let before = sys.at_a.as_ref().map(|r| r.mode);
             let leaving_roll = last_fired == "support starts to slide";
-            decide_support(&mut sys, &mut y, stop_a, chi, leaving_roll)?;
+            // after the slip at A was seen to stop, what is left of it below the nudge a slide
+            // from rest gets (20 stop) is no slip: deciding on it would chatter about zero
+            let rest_below = if last_fired.starts_with("support slip stops") {
+                30.0 * stop_a
+            } else {
+                stop_a
+            };
+            decide_support(&mut sys, &mut y, stop_a, chi, leaving_roll, rest_below)?;
             let after = sys.at_a.as_ref().map(|r| r.mode);
             let restarted = last_fired.starts_with("support slip stops")
                 || last_fired == "support starts to slide";
