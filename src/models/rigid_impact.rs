@@ -297,8 +297,10 @@ impl AtA {
                 }
             }
             SupportMode::Slide => {
+                // F_N* = -alpha/beta (3.7) with (4.4); with beta < 0 this is the sliding one of
+                // the two solutions of a Painleve case (alpha > 0), reached only as a branch
                 let (i, beta) = self.slide_i(va);
-                if beta > 0.0 {
+                if beta != 0.0 {
                     i * ((self.b_tilde * f).dot(&self.normal) / beta).max(0.0)
                 } else {
                     Vector3::zeros()
@@ -832,6 +834,20 @@ fn decide_support(
             .as_ref()
             .map_or(0.0, |r| -(r.b_tilde * f).dot(&r.normal))
     };
+    // the sliding branch of a two-solution case (beta of (4.4) < 0, alpha > 0: F_N* = -alpha/beta
+    // > 0) slides on while A slips and the reaction stays positive
+    if let Some(r) = sys.at_a.as_ref()
+        && r.rough()
+        && r.mode == SupportMode::Slide
+        && r.tangential(&va).norm() > rest_below
+    {
+        let (_, beta) = r.slide_i(&va);
+        let f = sys.rate(&v, &va);
+        let alpha = -(r.b_tilde * f).dot(&nn);
+        if beta < 0.0 && alpha > 0.0 {
+            return Ok(());
+        }
+    }
     let f_free = c_direction_with(sys, SupportMode::Free, &v, &va);
     if alpha_of(sys, &f_free) >= 0.0 {
         if let Some(r) = sys.at_a.as_mut() {
