@@ -172,11 +172,13 @@ pub fn solve_scene_all(
             s.e,
             s.rtol,
         )?;
-        // the kinetic energy change from the bodies' velocities, support impulse included
-        r.energy_change = super::rigid_impact::kinetic_change_supported(
+        // the kinetic energy change from the bodies' velocities (the second moving with A's
+        // velocity before the impact), support impulse included
+        r.energy_change = super::rigid_impact::kinetic_change_moving(
             &s.bodies[0],
             &s.bodies[1],
             &s.v_rel,
+            &s.v_support,
             &Vector3::from(r.impulse),
             Some((sup.offset, Vector3::from(r.support_impulse))),
         );

@@ -1503,14 +1503,8 @@ fn rolling_rates(phi: f64, xi: f64, mu: f64, mu_star: f64) -> [f64; 4] {
     ]
 }
 
-/// The claim's `printed_equations` (the right-hand sides of (4.6), in m = 1 units) at a state.
-fn rolling_printed(
-    c: &ClaimSpec,
-    phi: f64,
-    xi: f64,
-    mu: f64,
-    mu_star: f64,
-) -> Result<[f64; 4], VerifyError> {
+/// The claim's `printed_equations`: the right-hand sides of (4.6), in m = 1 units, parsed once.
+fn rolling_equations(c: &ClaimSpec) -> Result<Vec<crate::algebra::expr::Expr>, VerifyError> {
     let bad = |m: String| VerifyError::BadClaim {
         id: c.id.clone(),
         message: m,
@@ -1520,6 +1514,23 @@ fn rolling_printed(
             "printed_equations must give the four right-hand sides of (4.6)".into(),
         ));
     }
+    c.printed_equations
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            crate::algebra::expr::parse(t).map_err(|e| bad(format!("printed_equations[{k}]: {e}")))
+        })
+        .collect()
+}
+
+/// Four right-hand sides of the (4.6) kind at a state (phi, xi, mu, mu*).
+fn rolling_eval(
+    eqs: &[crate::algebra::expr::Expr],
+    phi: f64,
+    xi: f64,
+    mu: f64,
+    mu_star: f64,
+) -> Result<[f64; 4], String> {
     let values = |s: &str| match s {
         "phi" => Some(phi),
         "xi" => Some(xi),
@@ -1528,10 +1539,8 @@ fn rolling_printed(
         _ => None,
     };
     let mut out = [0.0; 4];
-    for (k, text) in c.printed_equations.iter().enumerate() {
-        let e = crate::algebra::expr::parse(text)
-            .map_err(|e| bad(format!("printed_equations[{k}]: {e}")))?;
-        out[k] = e.eval(&values).map_err(bad)?;
+    for (o, e) in out.iter_mut().zip(eqs) {
+        *o = e.eval(&values)?;
     }
     Ok(out)
 }
@@ -1548,22 +1557,9 @@ fn rolling_integrated(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, Ver
         id: c.id.clone(),
         message: m,
     };
-    if c.printed_equations.len() != 4 {
-        return Err(bad(
-            "printed_equations must give the four right-hand sides of (4.6)".into(),
-        ));
-    }
-    let parse = |k: usize, text: &str| {
-        crate::algebra::expr::parse(text).map_err(|e| bad(format!("printed_equations[{k}]: {e}")))
-    };
-    let printed: Vec<crate::algebra::expr::Expr> = c
-        .printed_equations
-        .iter()
-        .enumerate()
-        .map(|(k, t)| parse(k, t))
-        .collect::<Result<_, _>>()?;
+    let printed = rolling_equations(c)?;
     let corrected = match &c.corrected {
-        Some(t) => parse(2, t)?,
+        Some(t) => crate::algebra::expr::parse(t).map_err(|e| bad(format!("corrected: {e}")))?,
         None => {
             return Err(bad(
                 "corrected must give the third equation of (4.6) as derived".into(),
@@ -1580,19 +1576,9 @@ fn rolling_integrated(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, Ver
             4
         }
         fn rhs(&self, _c: f64, y: &[f64], dy: &mut [f64]) {
-            let (phi, xi) = (y[1], y[3]);
-            let values = |s: &str| match s {
-                "phi" => Some(phi),
-                "xi" => Some(xi),
-                "mu" => Some(self.mu),
-                "mu_star" => Some(self.mu_star),
-                _ => None,
-            };
-            let v: Vec<f64> = self
-                .eqs
-                .iter()
-                .map(|e| e.eval(&values).unwrap_or(f64::NAN))
-                .collect();
+            // a formula that cannot be evaluated stops the solve as a non-finite value
+            let v =
+                rolling_eval(&self.eqs, y[1], y[3], self.mu, self.mu_star).unwrap_or([f64::NAN; 4]);
             dy[0] = v[0];
             dy[1] = v[1] / y[0];
             dy[2] = v[2];
@@ -1712,13 +1698,18 @@ fn rolling_ball(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyErr
     let mut rng = Rng(0x5EED_0046);
     Ok(match part.as_str() {
         "equations" => {
+            let printed = rolling_equations(c)?;
             let mut worst = [0.0f64; 4];
             let mut example = String::new();
             for _ in 0..200 {
                 let (phi, xi) = (rng.range(1.7, 3.1), rng.range(-3.1, 3.1));
                 let (mu, ms) = (rng.range(0.01, 1.0), rng.range(0.01, 1.0));
                 let d = rolling_rates(phi, xi, mu, ms);
-                let p = rolling_printed(c, phi, xi, mu, ms)?;
+                let p =
+                    rolling_eval(&printed, phi, xi, mu, ms).map_err(|m| VerifyError::BadClaim {
+                        id: c.id.clone(),
+                        message: m,
+                    })?;
                 for k in 0..4 {
                     let e = (d[k] - p[k]).abs() / d[k].abs().max(1e-3);
                     if e > worst[k] {
