@@ -187,6 +187,65 @@ pub fn rigid_case(
     )
 }
 
+/// The `i`-th seeded random constrained impact of `examples/constrained_fail` (002 sections
+/// 2-4): two bodies with random masses, inertias and offsets; by `i % 4` both free, the first
+/// with a fixed point, the first with a fixed axis, or a support under the second (smooth for
+/// half of them, else Coulomb friction mu* in [0, 1.5)); the law by `i % 3` (Poisson, Newton,
+/// energetic); mu in [0, 1.5), e in [0, 1), rtol 1e-10. The generator is frozen: the regression
+/// tests name cases by `i`.
+pub fn constrained_scene(i: u64) -> crate::models::constrained::RigidImpactScene {
+    use crate::models::rigid_impact::{Body, Law};
+    use nalgebra::{Matrix3, Vector3};
+    let mut r = crate::rng::Rng(i.wrapping_mul(0x2545F4914F6CDD1D) ^ 0x5A5A);
+    let body = |r: &mut crate::rng::Rng| Body {
+        mass: Some(r.range(0.1, 10.0)),
+        inertia: Matrix3::from_diagonal(&Vector3::new(
+            r.range(0.01, 0.2),
+            r.range(0.01, 0.2),
+            r.range(0.01, 0.2),
+        )),
+        offset: Vector3::new(r.range(-0.5, 0.5), r.range(-0.5, 0.5), r.range(-0.5, 0.5)),
+    };
+    let b1 = body(&mut r);
+    let b2 = body(&mut r);
+    let law = [Law::Poisson, Law::Newton, Law::Energetic][(i % 3) as usize];
+    let kind = i % 4;
+    let fixed = if kind == 1 || kind == 2 {
+        let axis = (kind == 2).then(|| {
+            Vector3::new(r.range(-1., 1.), r.range(-1., 1.), r.range(-1., 1.)).normalize()
+        });
+        Some((
+            0usize,
+            Vector3::new(r.range(-0.5, 0.5), r.range(-0.5, 0.5), r.range(-0.5, 0.5)),
+            axis,
+        ))
+    } else {
+        None
+    };
+    let support = (kind == 3).then(|| crate::models::support::Support {
+        offset: Vector3::new(r.range(-0.5, 0.5), r.range(-0.5, 0.5), -r.range(0.1, 0.6)),
+        normal: Vector3::new(r.range(-0.2, 0.2), r.range(-0.2, 0.2), 1.0).normalize(),
+        mu: if r.next() < 0.5 {
+            0.0
+        } else {
+            r.range(0.0, 1.5)
+        },
+    });
+    let v = Vector3::new(r.range(-2., 2.), r.range(-2., 2.), -r.range(0.05, 3.0));
+    crate::models::constrained::RigidImpactScene {
+        bodies: [b1, b2],
+        normal: Vector3::z(),
+        mu: r.range(0.0, 1.5),
+        law,
+        e: r.range(0.0, 1.0),
+        v_rel: v,
+        rtol: 1e-10,
+        support,
+        v_support: Vector3::zeros(),
+        fixed,
+    }
+}
+
 fn cone_scene(v0: f64, effects: &str, extra: &str) -> String {
     format!(
         "model = \"cone-plate\"\nviscoelastic_law = \"constant-poisson\"\neffects = [{effects}]\n[impactor]\nmass = 0.05\ntheta_deg = 60.0\nv0 = {v0}\n[material]\nE = 2.0e9\nnu = 0.3\neta = 1.0e6\n{extra}[solve]\nrtol = 1e-8\natol = 1e-14\n"

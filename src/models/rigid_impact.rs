@@ -240,6 +240,11 @@ struct AtA {
     /// The slide started from rest (out of rolling, or from a stop): its rate starts at zero,
     /// so the direction is held at `hint` until the slip exceeds the velocity tolerance.
     held: bool,
+    /// The band of a regularised friction law at A (0: Coulomb's with roll/slide switches): the
+    /// friction is $\mu^* F_N^*\mathbf V_{A,T}/\sqrt{|\mathbf V_{A,T}|^2 + \text{band}^2}$,
+    /// viscous below the band, Coulomb's above, and rolling is a slip that stays in the band (see
+    /// [`REGULARISE_AFTER`]).
+    regular: f64,
     floor: f64,
 }
 
@@ -248,8 +253,22 @@ impl AtA {
         self.mu > 0.0
     }
 
-    /// The phase's name: "roll", "slide" or "detached"; "contact" for a smooth support.
+    /// Switches to the regularised law with viscous friction below `band` (see
+    /// [`REGULARISE_AFTER`]); a roll becomes a slide that stays in the band.
+    fn regularise(&mut self, band: f64) {
+        self.regular = band;
+        self.held = false;
+        if self.mode == SupportMode::Roll {
+            self.mode = SupportMode::Slide;
+        }
+    }
+
+    /// The phase's name: "roll", "slide" or "detached"; "contact" for a smooth support;
+    /// "regularised" for a support in contact under the regularised law.
     fn phase_name(&self) -> &'static str {
+        if self.regular > 0.0 && self.mode != SupportMode::Free {
+            return "regularised";
+        }
         match (self.rough(), self.mode) {
             (false, SupportMode::Slide | SupportMode::Roll) => "contact",
             (_, m) => m.name(),
@@ -263,6 +282,10 @@ impl AtA {
     fn slide_dir(&self, va: &Vector3<f64>) -> Vector3<f64> {
         let vt = self.tangential(va);
         let s = vt.norm();
+        if self.regular > 0.0 {
+            // smooth (a kink at the band's edge is where a grazing slip sits)
+            return vt / s.hypot(self.regular);
+        }
         if s > self.floor && !self.held {
             vt / s
         } else {
@@ -463,19 +486,21 @@ fn stick_tau(b: &Matrix3<f64>, n: &Vector3<f64>) -> Option<Vector3<f64>> {
     ((bt * x - rhs).norm() <= 1e-9 * scale).then(|| t1 * x[0] + t2 * x[1])
 }
 
-/// At zero slip: stick (with the tangential rate that keeps $V_t = 0$) or the direction to slide.
+/// At zero slip: stick (with the tangential rate that keeps $V_t = 0$) or the direction to slide;
+/// `Err(None)` where neither is consistent: the stick needs a tangential rate outside the
+/// friction cone and every slip direction decays (possible only where the matrix is not
+/// symmetric: a rough support that slides).
 fn stick_or_slide(
     b: &Matrix3<f64>,
     rate: Rate,
     n: &Vector3<f64>,
     mu: f64,
-) -> Result<Vector3<f64>, Vector3<f64>> {
+) -> Result<Vector3<f64>, Option<Vector3<f64>>> {
     if let Some(tau) = stick_tau(b, n)
         && tau.norm() <= mu * (1.0 + 1e-12)
     {
         return Ok(tau);
     }
-    let (t1, _) = tangent_basis(n);
     // slide: the direction u on the unit circle with P_t B (n - mu u) parallel to u, growing
     // (with the support's reaction where it pushes); a stable root first, then the largest rate
     let best = slide_rays(rate, n, mu, 720)
@@ -486,7 +511,27 @@ fn stick_or_slide(
                 .partial_cmp(&(y.stable, y.rate))
                 .unwrap_or(std::cmp::Ordering::Equal)
         });
-    Err(best.map_or(t1, |r| r.u))
+    Err(best.map(|r| r.u))
+}
+
+/// The slide direction [`stick_or_slide`] found at C, or, where it found none: with a support,
+/// a Painleve-type case at C (its friction makes the matrix of C non-symmetric, and C then has
+/// no consistent motion); without one (B symmetric, where this does not occur but for rounding
+/// at a degenerate B), the first tangent direction.
+fn slide_at_c(
+    u: Option<Vector3<f64>>,
+    supported: bool,
+    n: &Vector3<f64>,
+    chi: f64,
+) -> Result<Vector3<f64>, ImpactError> {
+    match u {
+        Some(u) => Ok(u),
+        None if supported => Err(no_support_motion(
+            chi,
+            "C can neither stick (the tangential rate it needs lies outside the friction cone) nor slip (every slip direction decays) while the support moves as it does",
+        )),
+        None => Ok(tangent_basis(n).0),
+    }
 }
 
 /// A ray of slip directions: `u` on the unit circle with $P_t\mathbf B(\mathbf n - \mu\mathbf u)$
@@ -537,19 +582,16 @@ fn slide_rays(rate: Rate, n: &Vector3<f64>, mu: f64, samples: usize) -> Vec<Slip
     rays
 }
 
-/// The stable ray along which a slip dies out (its speed falls at a constant rate there), if any:
-/// a slip that settles on it reaches zero at a simple root of $(\mathbf V_t, \mathbf u) -
-/// \text{stop}$, where $|\mathbf V_t|$ only touches zero between two samples of a step.
-fn decay_ray(rate: Rate, n: &Vector3<f64>, mu: f64) -> Option<Vector3<f64>> {
+/// The stable rays along which a slip dies out (its speed falls at a constant rate there): a
+/// slip that settles on one reaches zero at a simple root of $(\mathbf V_t, \mathbf u) -
+/// \text{stop}$, where $|\mathbf V_t|$ only touches zero between two samples of a step. With a
+/// large $\mu$ there can be two; which one a slip settles on depends on where it starts.
+fn decay_rays(rate: Rate, n: &Vector3<f64>, mu: f64) -> Vec<Vector3<f64>> {
     slide_rays(rate, n, mu, 180)
         .into_iter()
         .filter(|r| r.stable && r.rate < 0.0)
-        .max_by(|x, y| {
-            x.rate
-                .partial_cmp(&y.rate)
-                .unwrap_or(std::cmp::Ordering::Equal)
-        })
         .map(|r| r.u)
+        .collect()
 }
 
 fn out_of_range(field: &str, value: String, allowed: &str) -> ImpactError {
@@ -627,6 +669,7 @@ pub fn impact_general(
                 mode: SupportMode::Slide,
                 hint: Vector3::zeros(),
                 held: false,
+                regular: 0.0,
                 floor: 0.0,
             },
             Vector3::zeros(),
@@ -678,6 +721,7 @@ pub fn impact_rough(
         mode: start.unwrap_or(SupportMode::Roll),
         hint: Vector3::zeros(),
         held: false,
+        regular: 0.0,
         floor: 0.0,
     };
     impact_core(
@@ -698,6 +742,30 @@ pub fn impact_rough(
 /// that reach it: the integration otherwise stalls on the blow-up).
 const BETA_FLOOR: f64 = 1e-3;
 
+/// A slip at A below this many times its stop (5e-10 of the velocity scale at rtol 1e-10) slides
+/// with its friction direction frozen, until it exceeds [`RELEASE_ABOVE`] times the stop: near
+/// zero the direction's turning rate grows like $1/|\mathbf V_{A,T}|$, and a slip that dies there,
+/// or hovers at the edge of the friction cone (a reaction that grazes the cone), makes the system
+/// stiff without bound. The friction direction differs from the slip's only while the slip is
+/// under 1e3 stop (1e-9 of the velocity scale at rtol 1e-10), which bounds the change in the
+/// velocities by the order of that slip. A slide from rest is held the same way: its rate starts
+/// at zero.
+const HOLD_BELOW: f64 = 500.0;
+
+/// The slip (in stops) above which a held direction at A is freed (see [`HOLD_BELOW`]).
+const RELEASE_ABOVE: f64 = 1e3;
+
+/// After this many switches of A's slip about its band (its slip nearly stopping, stopping, or
+/// re-established), or where the solver cannot follow the exact law in a stage, the support's
+/// friction is regularised for the rest of the impact: $\mathbf V_{A,T}/\sqrt{|\mathbf V_{A,T}|^2 +
+/// b^2}$ for the slide direction, b = [`RELEASE_ABOVE`] stops (viscous below b, Coulomb's above,
+/// smooth across: a grazing slip sits at the edge), with no roll/slide switches (rolling is then
+/// a slip that stays in the band). This ends a reaction that grazes the friction cone, where the
+/// slide direction of (4.5) moves faster than its slip grows and the exact law switches without
+/// end. The band is stiff and is integrated by Radau5; the velocities change by the order of the
+/// band (1e-9 of the velocity scale at rtol 1e-10).
+const REGULARISE_AFTER: usize = 200;
+
 /// A terminal event (every switch of the impact stops the solve).
 fn stop_at<'a>(
     name: &str,
@@ -716,9 +784,9 @@ fn no_support_motion(chi: f64, what: &str) -> ImpactError {
 }
 
 /// The slide directions at A from rest, (4.5): unit tangential $\mathbf e_T$ with
-/// $\varkappa\mathbf e_T = F_N^*\mathbf B_A(\mathbf N - \mu^*\mathbf e_T) - \tilde{\mathbf B}\mathbf F$, $\varkappa > 0$,
-/// $F_N^* \ge 0$ (the normal component fixes $F_N^*$); `(e_T, kappa, stable)` for each root,
-/// stable where nearby directions turn towards it (the cross product falls through zero as the
+/// $\varkappa\mathbf e_T = F_N^*\mathbf B_A(\mathbf N - \mu^*\mathbf e_T) - \tilde{\mathbf B}\mathbf F$,
+/// $\varkappa > 0$ (down to $-10^{-9}|\tilde{\mathbf B}\mathbf F|$ at the cone's edge),
+/// $F_N^* \ge 0$ (the normal component fixes $F_N^*$); `(e_T, kappa, stable)` for each root, stable where nearby directions turn towards it (the cross product falls through zero as the
 /// angle grows), as for the slip at C ([`slide_rays`]).
 fn start_slide_dirs(r: &AtA, f: &Vector3<f64>) -> Vec<(Vector3<f64>, f64, bool)> {
     let nn = r.normal;
@@ -757,7 +825,10 @@ fn start_slide_dirs(r: &AtA, f: &Vector3<f64>) -> Vec<(Vector3<f64>, f64, bool)>
                 }
             }
             let (_, kappa, fn_star, e) = resid(0.5 * (lo + hi));
-            if kappa > 0.0 && fn_star >= 0.0 {
+            // kappa starts at zero where a rolling reaction reaches the cone, and the event
+            // that finds that instant may stop on either side of it: a rate below zero by
+            // rounding (1e-9 of (B~F)) is the slide that begins there
+            if kappa > -1e-9 * g.norm() && fn_star >= 0.0 {
                 out.push((e, kappa, prev.0 > 0.0));
             }
         }
@@ -787,7 +858,7 @@ fn c_direction_with(
         let rate_of = |f: &Vector3<f64>| sys.rates(f, va).0;
         match stick_or_slide(&b_e, &rate_of, &sys.n, sys.mu) {
             Ok(tau) => sys.n + tau,
-            Err(u) => sys.n - u * sys.mu,
+            Err(u) => sys.n - u.unwrap_or_else(|| tangent_basis(&sys.n).0) * sys.mu,
         }
     };
     if let Some(a) = sys.at_a.as_mut() {
@@ -829,6 +900,28 @@ fn decide_support(
     }
     va -= nn * va.dot(&nn);
     y[10..13].copy_from_slice(va.as_slice());
+    if sys.at_a.as_ref().is_some_and(|r| r.regular > 0.0) {
+        // the regularised law: in contact it slides (rolling is a slip inside the band), unless
+        // the support would have to pull
+        let f = c_direction_with(sys, SupportMode::Slide, &v, &va);
+        if let Some(r) = sys.at_a.as_mut() {
+            let alpha = -(r.b_tilde * f).dot(&nn);
+            let (_, beta) = r.slide_i(&va);
+            if alpha >= 0.0 {
+                r.mode = SupportMode::Free;
+            } else if beta <= BETA_FLOOR * r.beta_n {
+                return Err(no_support_motion(
+                    chi,
+                    &format!(
+                        "A slides with beta of (4.4) = {beta:.3e} (at most 1e-3 of (B_A N, N)) and alpha < 0: the support's reaction grows without bound"
+                    ),
+                ));
+            } else {
+                r.mode = SupportMode::Slide;
+            }
+        }
+        return Ok(());
+    }
     let alpha_of = |sys: &Keller, f: &Vector3<f64>| {
         sys.at_a
             .as_ref()
@@ -880,10 +973,13 @@ fn decide_support(
         return Ok(());
     }
     if slips {
-        if r.tangential(&va).norm() > r.floor {
-            r.hint = r.tangential(&va).normalize();
+        let slip = r.tangential(&va).norm();
+        if slip > r.floor {
+            r.hint = r.tangential(&va) / slip;
         }
-        r.held = false;
+        // a slip below HOLD_BELOW stop slides with its direction frozen until it exceeds
+        // RELEASE_ABOVE stop (see the event "support slip nearly stops" in `impact_core`)
+        r.held = slip <= HOLD_BELOW * stop * (1.0 + 1e-6);
         let (_, beta) = r.slide_i(&va);
         if beta <= BETA_FLOOR * r.beta_n {
             return Err(no_support_motion(
@@ -1054,7 +1150,7 @@ fn impact_core(
                 });
             }
             Some(Err(u)) => {
-                sys.u_hint = u;
+                sys.u_hint = slide_at_c(u, sys.at_a.is_some(), &n, 0.0)?;
                 phases.push(Phase {
                     kind: "slip".into(),
                     normal_impulse: 0.0,
@@ -1073,22 +1169,23 @@ fn impact_core(
     }
     // B* (or B) and mu are fixed while the support keeps its mode: the ray a dying slip
     // settles on is found once per mode of the support
-    let find_ray = |sys: &Keller, y: &[f64]| {
+    let find_rays = |sys: &Keller, y: &[f64]| {
         let va = va_of(y);
         let rate_of = |f: &Vector3<f64>| sys.rates(f, &va).0;
         if mu > 0.0 {
-            decay_ray(&rate_of, &n, mu).unwrap_or_else(Vector3::zeros)
+            decay_rays(&rate_of, &n, mu)
         } else {
-            Vector3::zeros()
+            Vec::new()
         }
     };
-    let mut ray = find_ray(&sys, &y);
+    let mut rays = find_rays(&sys, &y);
     let mut b_stick = sys.b_stick(&va_of(&y));
     let mut ray_armed = true;
     let mut chi_c: Option<f64> = None;
     let mut w_c = 0.0;
     let mut cut_off = false;
     let mut switches = 0usize;
+    let mut band_switches = 0usize;
     let mut last_fired = String::new();
     let mut first = true;
     loop {
@@ -1097,14 +1194,23 @@ fn impact_core(
         if !first && sys.at_a.is_some() {
             let before = sys.at_a.as_ref().map(|r| r.mode);
             let leaving_roll = last_fired == "support starts to slide";
-            // after the slip at A was seen to stop, what is left of it below the nudge a slide
-            // from rest gets (20 stop) is no slip: deciding on it would chatter about zero
+            // after the slip at A was seen to stop (or to turn off its frozen direction), what
+            // is left of it in the band where its direction is held (HOLD_BELOW stop) is no
+            // slip: deciding on it would chatter about zero, a slip held there turning away
+            // from its frozen direction again and again
             let rest_below = if last_fired.starts_with("support slip stops") {
-                30.0 * stop_a
+                HOLD_BELOW * stop_a
             } else {
                 stop_a
             };
             decide_support(&mut sys, &mut y, stop_a, chi, leaving_roll, rest_below)?;
+            if last_fired == "support slip nearly stops"
+                && let Some(r) = sys.at_a.as_mut()
+                && r.mode == SupportMode::Slide
+            {
+                // frozen at the slip's own direction (decide_support set it as the hint)
+                r.held = true;
+            }
             let after = sys.at_a.as_ref().map(|r| r.mode);
             let restarted = last_fired.starts_with("support slip stops")
                 || last_fired == "support starts to slide";
@@ -1122,7 +1228,7 @@ fn impact_core(
             {
                 // the matrices of C's stick/slip switch change with the support's mode
                 b_stick = sys.b_stick(&va_of(&y));
-                ray = find_ray(&sys, &y);
+                rays = find_rays(&sys, &y);
                 ray_armed = true;
                 if let Mode::Stick(_) = sys.mode {
                     let va = va_of(&y);
@@ -1133,6 +1239,7 @@ fn impact_core(
                     match decided {
                         Ok(tau) => sys.mode = Mode::Stick(tau),
                         Err(u) => {
+                            let u = slide_at_c(u, true, &n, chi)?;
                             sys.u_hint = u;
                             sys.mode = Mode::Held(u);
                             let slip_stop = (10.0 * sys.floor).max(1e-2 * rtol * scale);
@@ -1155,7 +1262,7 @@ fn impact_core(
             && a.rough()
             && a.mode == SupportMode::Slide
         {
-            ray = find_ray(&sys, &y);
+            rays = find_rays(&sys, &y);
             b_stick = sys.b_stick(&va_of(&y));
         }
         first = false;
@@ -1211,46 +1318,70 @@ fn impact_core(
         // integrator overshoots it by more than slip_stop within a step, so |V_t| - slip_stop
         // may never be seen negative; the speed along the ray falls through zero at a simple root
         // (disarmed, constant, after it fired off the ray, until the slip settles or stops)
+        // (one event per stable ray the slip can die on: with a large mu there may be two, and a
+        // slip settles on the one its start leads to)
         let armed = ray_armed;
-        let ray_g = move |_chi: f64, y: &[f64]| {
-            if armed {
-                Vector3::new(y[0], y[1], y[2]).dot(&ray) - slip_stop
-            } else {
-                scale
-            }
+        let live_rays: Vec<Vector3<f64>> = match sys.mode {
+            Mode::Ray(u) => vec![u],
+            _ => rays.clone(),
         };
+        let ray_gs: Vec<_> = live_rays
+            .iter()
+            .map(|&ray| {
+                move |_chi: f64, y: &[f64]| {
+                    if armed {
+                        Vector3::new(y[0], y[1], y[2]).dot(&ray) - slip_stop
+                    } else {
+                        scale
+                    }
+                }
+            })
+            .collect();
         // once the slip lies on that ray to within 1e-2 rtol of the velocity scale and 1e-6 rad
         // (its component across the ray), the friction direction is frozen along it: the true
         // direction only converges further, while keeping it free makes the system ever stiffer
         // as |V_t| goes to zero (the turning rate grows like 1/|V_t|)
         let across = 1e-2 * rtol * scale;
-        let aligned_g = |_chi: f64, y: &[f64]| {
-            let v = Vector3::new(y[0], y[1], y[2]);
-            let vt = v - n * v.dot(&n);
-            if vt.dot(&ray) <= 0.0 {
-                return scale;
-            }
-            // across the ray: below 1e-2 rtol scale, and a small angle (not merely a small slip)
-            (vt - ray * vt.dot(&ray)).norm() - across.min(1e-6 * vt.norm())
-        };
+        let aligned_gs: Vec<_> = live_rays
+            .iter()
+            .map(|&ray| {
+                move |_chi: f64, y: &[f64]| {
+                    let v = Vector3::new(y[0], y[1], y[2]);
+                    let vt = v - n * v.dot(&n);
+                    if vt.dot(&ray) <= 0.0 {
+                        return scale;
+                    }
+                    // across the ray: below 1e-2 rtol scale, and a small angle (not merely a
+                    // small slip)
+                    (vt - ray * vt.dot(&ray)).norm() - across.min(1e-6 * vt.norm())
+                }
+            })
+            .collect();
         let mut events = vec![Event::new("stage end", &end_g, Direction::Rising, true)];
+        // the ray each event belongs to, by event index
+        let mut ray_of_event: Vec<Option<Vector3<f64>>> = vec![None];
         let slipping = matches!(sys.mode, Mode::Slip | Mode::Ray(_)) && mu > 0.0;
         if slipping {
             events.push(Event::new("slip stops", &slip_g, Direction::Falling, true));
-            if ray.norm() > 0.0 {
+            ray_of_event.push(None);
+            for (g, ray) in ray_gs.iter().zip(&live_rays) {
                 events.push(Event::new(
                     "slip dies on its ray",
-                    &ray_g,
+                    g,
                     Direction::Falling,
                     true,
                 ));
-                if sys.mode == Mode::Slip {
+                ray_of_event.push(Some(*ray));
+            }
+            if sys.mode == Mode::Slip {
+                for (g, ray) in aligned_gs.iter().zip(&live_rays) {
                     events.push(Event::new(
                         "slip settles on its ray",
-                        &aligned_g,
+                        g,
                         Direction::Falling,
                         true,
                     ));
+                    ray_of_event.push(Some(*ray));
                 }
             }
         }
@@ -1309,12 +1440,18 @@ fn impact_core(
                 .map_or(scale, |r| va_of(y).dot(&r.normal) + stop_a)
         };
         // a held slip (at A or C) is freed once it exceeds the velocity tolerance
-        let established = 1e3 * stop_a;
+        let established = RELEASE_ABOVE * stop_a;
         let a_established_g = |_chi: f64, y: &[f64]| {
             sys_ref
                 .at_a
                 .as_ref()
                 .map_or(-scale, |r| r.tangential(&va_of(y)).norm() - established)
+        };
+        // a slip at A that falls below HOLD_BELOW stop has its direction frozen (see there)
+        let a_dying_g = |_chi: f64, y: &[f64]| {
+            sys_ref.at_a.as_ref().map_or(scale, |r| {
+                r.tangential(&va_of(y)).norm() - HOLD_BELOW * stop_a
+            })
         };
         let c_established_g = |_chi: f64, y: &[f64]| {
             let v = Vector3::new(y[0], y[1], y[2]);
@@ -1327,6 +1464,18 @@ fn impact_core(
         };
         if let Some(r) = &sys.at_a {
             match r.mode {
+                SupportMode::Slide if r.regular > 0.0 => {
+                    events.push(stop_at(
+                        "support beta vanishes",
+                        &a_beta_g,
+                        Direction::Falling,
+                    ));
+                    events.push(stop_at(
+                        "support lets go",
+                        &a_minus_alpha_g,
+                        Direction::Falling,
+                    ));
+                }
                 SupportMode::Slide => {
                     if r.rough() {
                         events.push(stop_at("support slip stops", &a_slip_g, Direction::Falling));
@@ -1345,6 +1494,12 @@ fn impact_core(
                                 "support slip established",
                                 &a_established_g,
                                 Direction::Rising,
+                            ));
+                        } else {
+                            events.push(stop_at(
+                                "support slip nearly stops",
+                                &a_dying_g,
+                                Direction::Falling,
                             ));
                         }
                     }
@@ -1388,12 +1543,39 @@ fn impact_core(
         let opts = Options {
             rtol,
             atol: rtol * scale * 1e-3,
-            method: Method::Auto,
+            // the regularised band is stiff (its rate is the friction's over the band) in a way
+            // the explicit method's stiffness test does not always see: Radau5 from the start
+            method: if sys.at_a.as_ref().is_some_and(|r| r.regular > 0.0) {
+                Method::Radau5
+            } else {
+                Method::Auto
+            },
             events,
             trajectory: true,
             ..Options::default()
         };
-        let sol = solve(&sys, chi, &y, chi_max, &opts)?;
+        let sol = match solve(&sys, chi, &y, chi_max, &opts) {
+            Ok(sol) => sol,
+            Err(e) => {
+                // a rough support in contact whose exact law the solver could not follow (a slip
+                // at A hovering at the edge of its band, its direction stiff without bound):
+                // the stage again with the support's friction regularised, else the failure
+                if let Some(r) = sys.at_a.as_mut()
+                    && r.rough()
+                    && r.regular == 0.0
+                    && r.mode != SupportMode::Free
+                {
+                    r.regularise(RELEASE_ABOVE * stop_a);
+                    support_phases.push(Phase {
+                        kind: r.phase_name().into(),
+                        normal_impulse: chi,
+                    });
+                    last_fired = "support regularised".into();
+                    continue;
+                }
+                return Err(e.into());
+            }
+        };
 
         stats = stats + sol.stats;
         path.extend(sol.trajectory.iter().map(|(c, y)| (*c, [y[0], y[1], y[2]])));
@@ -1404,6 +1586,19 @@ fn impact_core(
             Stop::End => "",
         };
         last_fired = fired.to_string();
+        if fired.starts_with("support slip") {
+            band_switches += 1;
+            if band_switches > REGULARISE_AFTER
+                && let Some(r) = sys.at_a.as_mut()
+                && r.regular == 0.0
+            {
+                r.regularise(RELEASE_ABOVE * stop_a);
+                support_phases.push(Phase {
+                    kind: r.phase_name().into(),
+                    normal_impulse: chi,
+                });
+            }
+        }
         if fired.starts_with("support") || fired == "stick at C breaks" {
             continue;
         }
@@ -1433,13 +1628,15 @@ fn impact_core(
                 }
                 break;
             }
-            Stop::Event { index: 3, .. } => {
-                sys.mode = Mode::Ray(ray);
+            Stop::Event { index, .. } if fired == "slip settles on its ray" => {
+                sys.mode = Mode::Ray(ray_of_event[index].unwrap_or_default());
                 ray_armed = true;
                 continue;
             }
-            Stop::Event { index: 2, .. }
-                if sys.tangential(&Vector3::new(y[0], y[1], y[2])).norm() > 10.0 * slip_stop =>
+            Stop::Event { .. }
+                if fired == "slip dies on its ray"
+                    && sys.tangential(&Vector3::new(y[0], y[1], y[2])).norm()
+                        > 10.0 * slip_stop =>
             {
                 // the slip crossed the ray's normal line off the ray, away from zero: slip on,
                 // with its own direction, without the ray event (it would fire again at once)
@@ -1452,10 +1649,45 @@ fn impact_core(
                 ray_armed = true;
                 // slip stopped: stick or slide again
                 let va = va_of(&y);
-                let decided = {
+                let mut decided = {
                     let rate_of = |f: &Vector3<f64>| sys.rates(f, &va).0;
                     stick_or_slide(&b_stick, &rate_of, &n, mu)
                 };
+                // neither with the support pushing: C's stick and the support's contact are one
+                // complementarity problem; the support letting go (where C's motion under the
+                // free matrix then has alpha of (3.6) >= 0) is its other branch
+                if let (Err(None), Some(a)) = (decided, sys.at_a.as_mut())
+                    && a.mode != SupportMode::Free
+                {
+                    let before = std::mem::replace(&mut a.mode, SupportMode::Free);
+                    let freed = {
+                        let rate_of = |f: &Vector3<f64>| sys.rates(f, &va).0;
+                        stick_or_slide(&b, &rate_of, &n, mu)
+                    };
+                    let f = match freed {
+                        Ok(tau) => Some(n + tau),
+                        Err(Some(u)) => Some(n - u * mu),
+                        Err(None) => None,
+                    };
+                    let lets_go = sys
+                        .at_a
+                        .as_ref()
+                        .zip(f)
+                        .is_some_and(|(a, f)| -(a.b_tilde * f).dot(&a.normal) >= 0.0);
+                    if lets_go {
+                        decided = freed;
+                        b_stick = b;
+                        rays = find_rays(&sys, &y);
+                        if let Some(a) = &sys.at_a {
+                            support_phases.push(Phase {
+                                kind: a.phase_name().into(),
+                                normal_impulse: chi,
+                            });
+                        }
+                    } else if let Some(a) = sys.at_a.as_mut() {
+                        a.mode = before;
+                    }
+                }
                 match decided {
                     Ok(tau) => {
                         sys.mode = Mode::Stick(tau);
@@ -1465,6 +1697,7 @@ fn impact_core(
                         });
                     }
                     Err(u) => {
+                        let u = slide_at_c(u, sys.at_a.is_some(), &n, chi)?;
                         sys.u_hint = u;
                         sys.mode = Mode::Slip;
                         // nudge past the floor in the new direction so the slip event re-arms:
