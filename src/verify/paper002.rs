@@ -673,7 +673,7 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError>
                 c,
                 holds(ok),
                 format!(
-                    "200 seeded bodies, the second on a rough support, friction at C (mu in [0, 1.5)), Poisson's and the energetic law alternating. (a) mu* -> 0: |I(mu* = 1e-6) - I(smooth)|/|I| at most {limit_worst:.2e} over {limit_n} cases, smaller than at mu* = 1e-3 in all but {shrink_bad}; (b) mu* in [0.05, 1.5): {energy_n} integrated (support phases {modes:?}), {painleve} Painleve-type (no consistent motion at A, reported), {refused} refused by the solver (it says so); the kinetic energy from the bodies' velocities grew in {grew}; (c) the billiard example (mu* = 0.01 .. 3, phases {billiard_modes:?}): |I_3 - I*_3| / I_1 at most {balance:.1e} (F*_3 = F_3)"
+                    "200 seeded bodies, the second on a rough support, friction at C (mu in [0, 1.5)), Poisson's and the energetic law alternating. (a) mu* -> 0: |I(mu* = 1e-6) - I(smooth)|/|I| at most {limit_worst:.2e} over {limit_n} cases, smaller than at mu* = 1e-3 in all but {shrink_bad}; (b) mu* in [0.05, 1.5): {energy_n} integrated (support phases {modes:?}), {painleve} Painleve-type (no consistent motion at A, or at C under the support, reported), {refused} refused by the solver (it says so); the kinetic energy from the bodies' velocities grew in {grew}; (c) the billiard example (mu* = 0.01 .. 3, phases {billiard_modes:?}): |I_3 - I*_3| / I_1 at most {balance:.1e} (F*_3 = F_3)"
                 ),
             )
         }
