@@ -230,21 +230,19 @@ pub fn solve_scene_all(
             Ok((None, Some(cl), warnings))
         }
         "two" => {
-            warnings.push(format!(
-                "Painleve-type case at the support: (3.6) admits {:?} at the start; each branch is integrated (`alternatives`), the result is the detaching one (section 4: with deformable elements the body leaves the support)",
-                cl.admissible
-            ));
             let mode_of = |name: &str| match name {
                 "detach" => SupportMode::Free,
                 "roll" => SupportMode::Roll,
                 _ => SupportMode::Slide,
             };
             let mut main = None;
+            let mut main_name = "";
             for name in &cl.admissible {
                 match run(Some(mode_of(name))) {
                     Ok(r) => {
                         if name == "detach" || main.is_none() {
                             main = Some(r.clone());
+                            main_name = name;
                         }
                         alternatives.push(Alternative {
                             start: name.clone(),
@@ -263,6 +261,17 @@ pub fn solve_scene_all(
                     }),
                 }
             }
+            // the result: the detaching branch where it is admissible and ends (section 4: with
+            // deformable elements the body leaves the support), else the first that ends
+            let result = match main_name {
+                "detach" => "the result is the detaching one (section 4: with deformable elements the body leaves the support)".to_string(),
+                "" => "no branch ends as a classical impact (each says why in `alternatives`)".to_string(),
+                name => format!("the result is the {name} one (the first that ends; no detaching branch ends)"),
+            };
+            warnings.push(format!(
+                "Painleve-type case at the support: (3.6) admits {:?} at the start; each branch is integrated (`alternatives`), {result}",
+                cl.admissible
+            ));
             Ok((main, Some(cl), warnings))
         }
         _ => match run(None) {
