@@ -155,6 +155,18 @@ pub fn solve_scene_all(
             beta,
         }
     };
+    // the kinetic energy change from the bodies' velocities (the second moving with A's velocity
+    // before the impact), support impulse included
+    let energy_of = |r: &ImpactResult| {
+        super::rigid_impact::kinetic_change_moving(
+            &s.bodies[0],
+            &s.bodies[1],
+            &s.v_rel,
+            &s.v_support,
+            &Vector3::from(r.impulse),
+            Some((sup.offset, Vector3::from(r.support_impulse))),
+        )
+    };
     if sup.mu == 0.0 {
         let beta = (sm.b_a * nn).dot(&nn);
         let support = SmoothSupport {
@@ -172,16 +184,7 @@ pub fn solve_scene_all(
             s.e,
             s.rtol,
         )?;
-        // the kinetic energy change from the bodies' velocities (the second moving with A's
-        // velocity before the impact), support impulse included
-        r.energy_change = super::rigid_impact::kinetic_change_moving(
-            &s.bodies[0],
-            &s.bodies[1],
-            &s.v_rel,
-            &s.v_support,
-            &Vector3::from(r.impulse),
-            Some((sup.offset, Vector3::from(r.support_impulse))),
-        );
+        r.energy_change = energy_of(&r);
         let gap = r.energy_change - r.kelvin_energy_change;
         if gap.abs() > 1e-9 * r.energy_change.abs().max(1e-300) {
             warnings.push(format!(
@@ -211,14 +214,7 @@ pub fn solve_scene_all(
             s.e,
             s.rtol,
         )?;
-        r.energy_change = super::rigid_impact::kinetic_change_moving(
-            &s.bodies[0],
-            &s.bodies[1],
-            &s.v_rel,
-            &s.v_support,
-            &Vector3::from(r.impulse),
-            Some((sup.offset, Vector3::from(r.support_impulse))),
-        );
+        r.energy_change = energy_of(&r);
         Ok(r)
     };
     match cl.kind.as_str() {

@@ -785,6 +785,16 @@ fn no_support_motion(chi: f64, what: &str) -> ImpactError {
     }
 }
 
+/// A slide at A whose beta of (4.4) fell to [`BETA_FLOOR`] with alpha < 0.
+fn beta_vanishes(chi: f64, beta: f64) -> ImpactError {
+    no_support_motion(
+        chi,
+        &format!(
+            "A slides with beta of (4.4) = {beta:.3e} (at most 1e-3 of (B_A N, N)) and alpha < 0: the support's reaction grows without bound"
+        ),
+    )
+}
+
 /// The slide directions at A from rest, (4.5): unit tangential $\mathbf e_T$ with
 /// $\varkappa\mathbf e_T = F_N^*\mathbf B_A(\mathbf N - \mu^*\mathbf e_T) - \tilde{\mathbf B}\mathbf F$,
 /// $\varkappa > 0$ (down to $-10^{-9}|\tilde{\mathbf B}\mathbf F|$ at the cone's edge),
@@ -912,12 +922,7 @@ fn decide_support(
             if alpha >= 0.0 {
                 r.mode = SupportMode::Free;
             } else if beta <= BETA_FLOOR * r.beta_n {
-                return Err(no_support_motion(
-                    chi,
-                    &format!(
-                        "A slides with beta of (4.4) = {beta:.3e} (at most 1e-3 of (B_A N, N)) and alpha < 0: the support's reaction grows without bound"
-                    ),
-                ));
+                return Err(beta_vanishes(chi, beta));
             } else {
                 r.mode = SupportMode::Slide;
             }
@@ -984,12 +989,7 @@ fn decide_support(
         r.held = slip <= HOLD_BELOW * stop * (1.0 + 1e-6);
         let (_, beta) = r.slide_i(&va);
         if beta <= BETA_FLOOR * r.beta_n {
-            return Err(no_support_motion(
-                chi,
-                &format!(
-                    "A slides with beta of (4.4) = {beta:.3e} (at most 1e-3 of (B_A N, N)) and alpha < 0: the support's reaction grows without bound"
-                ),
-            ));
+            return Err(beta_vanishes(chi, beta));
         }
         r.mode = SupportMode::Slide;
         return Ok(());
