@@ -15,6 +15,7 @@ pub mod fixed_points;
 pub mod hertz;
 pub mod params;
 pub mod pendulum_wall;
+pub mod planar_impact;
 pub mod relaxation;
 pub mod rigid_impact;
 pub mod support;
