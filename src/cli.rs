@@ -704,7 +704,7 @@ fn csv_quote(s: &str) -> String {
 
 fn csv_header(param: &str, cols: &[String]) -> String {
     format!(
-        "{},{},error,index\n",
+        "{},{},warnings,error,index\n",
         csv_quote(param),
         cols.iter()
             .map(|c| csv_quote(c))
@@ -740,7 +740,20 @@ fn csv_row(v: f64, index: usize, r: &Result<Value, String>, cols: &[String]) -> 
             }
         }
     }
+    // what the run says beside its numbers: its warnings (joined by "; ") and its error
+    let warnings = r
+        .as_ref()
+        .ok()
+        .and_then(|res| res.get("warnings"))
+        .and_then(Value::as_array)
+        .map(|w| {
+            w.iter()
+                .filter_map(Value::as_str)
+                .collect::<Vec<_>>()
+                .join("; ")
+        })
+        .unwrap_or_default();
     let err = r.as_ref().err().map(String::as_str).unwrap_or("");
-    let _ = writeln!(out, ",{},{index}", csv_quote(err));
+    let _ = writeln!(out, ",{},{},{index}", csv_quote(&warnings), csv_quote(err));
     out
 }

@@ -1,5 +1,5 @@
 //! Regression: the seeded constrained impacts of `examples/constrained_fail`
-//! ([`impactcheck::perf::constrained_scene`]) that failed in the run of 10^6 on 2026-11-23, one
+//! ([`impactcheck::perf::constrained_scene_generic`]) that failed in the run of 10^6 on 2026-11-23, one
 //! test per mechanism, each named by what ended it. What must hold for each: the impact ends with
 //! a result (or, where stated, is classified as a Painleve-type case with its reason); the kinetic
 //! energy, from the bodies' velocities under both impulses, does not grow; and the result at
@@ -9,7 +9,7 @@
 
 use impactcheck::models::constrained::{RigidImpactScene, solve_scene};
 use impactcheck::models::rigid_impact::ImpactResult;
-use impactcheck::perf::constrained_scene;
+use impactcheck::perf::constrained_scene_generic as constrained_scene;
 use nalgebra::Vector3;
 
 /// Solves case `i`, checks the above, and returns the result.

@@ -82,6 +82,7 @@ fn seed_8527_slides_out_of_rolling() {
         }),
         v_support: Vector3::zeros(),
         fixed: None,
+        method: Default::default(),
     });
 }
 
@@ -125,5 +126,6 @@ fn seed_12955_slides_out_of_rolling() {
         }),
         v_support: Vector3::zeros(),
         fixed: None,
+        method: Default::default(),
     });
 }

@@ -7,9 +7,10 @@
 //! with no consistent motion is reported as such, one with two is integrated along both.
 
 use super::fixed_points::{Hold, b_star};
+use super::planar_impact::{PlanarError, impact_planar};
 use super::rigid_impact::{
     Body, ImpactError, ImpactResult, Law, RoughSupport, SmoothSupport, SupportMode, b_matrix,
-    impact, impact_general, impact_rough,
+    impact, impact_general, impact_rough, kinetic_change,
 };
 use super::support::{Classification, classify_at_rest, classify_sliding, matrices};
 use nalgebra::{Matrix3, Vector3};
@@ -40,6 +41,35 @@ fn free(body: &Body) -> Hold {
     }
 }
 
+/// $\mathbf B^*$ of (2.1) with body `k` held at the point `go` (from its G) or about the axis
+/// through it.
+fn held_matrix(
+    s: &RigidImpactScene,
+    k: usize,
+    go: &Vector3<f64>,
+    axis: Option<Vector3<f64>>,
+) -> Matrix3<f64> {
+    let h = [0, 1].map(|j| {
+        if j == k {
+            hold(&s.bodies[j], go, axis)
+        } else {
+            free(&s.bodies[j])
+        }
+    });
+    b_star(&h[0], &h[1])
+}
+
+/// The matrix of the scene's impact where it is fixed along it: $\mathbf B$ of (1.7) for free
+/// bodies, $\mathbf B^*$ of (2.1) with a fixed point or axis; `None` with a support (its matrix
+/// switches along the impact) or an inertia that cannot be inverted.
+pub fn scene_matrix(s: &RigidImpactScene) -> Option<Matrix3<f64>> {
+    match (&s.fixed, &s.support) {
+        (Some((k, go, axis)), _) => Some(held_matrix(s, *k, go, *axis)),
+        (None, None) => b_matrix(&s.bodies[0], &s.bodies[1]),
+        (None, Some(_)) => None,
+    }
+}
+
 /// `(result, support classification, warnings)`; no result when the case is only classified.
 pub type SceneOutcome = (Option<ImpactResult>, Option<Classification>, Vec<String>);
 
@@ -55,8 +85,21 @@ pub fn solve_scene_all(
     alternatives: &mut Vec<Alternative>,
 ) -> Result<SceneOutcome, ImpactError> {
     let mut warnings = Vec::new();
-    // the two bodies as if no support or fixed point held them
+    // the two bodies as if no support or fixed point held them: exactly where the impact is
+    // planar (and the method allows), else integrated
     let free_impact = || {
+        let b = b_matrix(&s.bodies[0], &s.bodies[1]);
+        if let Some(b) = b
+            && let Some(mut r) = planar_or_none(s, &b)?
+        {
+            r.energy_change = kinetic_change(
+                &s.bodies[0],
+                &s.bodies[1],
+                &s.v_rel,
+                &Vector3::from(r.impulse),
+            );
+            return Ok(r);
+        }
         impact(
             &s.bodies[0],
             &s.bodies[1],
@@ -102,20 +145,11 @@ pub fn solve_scene_all(
                 },
             });
         }
-        let h = [
-            if *k == 0 {
-                hold(&s.bodies[0], go, *axis)
-            } else {
-                free(&s.bodies[0])
-            },
-            if *k == 1 {
-                hold(&s.bodies[1], go, *axis)
-            } else {
-                free(&s.bodies[1])
-            },
-        ];
-        let b = b_star(&h[0], &h[1]);
-        let r = impact_general(&b, None, s.normal, s.v_rel, s.mu, s.law, s.e, s.rtol)?;
+        let b = held_matrix(s, *k, go, *axis);
+        let r = match planar_or_none(s, &b)? {
+            Some(r) => r,
+            None => impact_general(&b, None, s.normal, s.v_rel, s.mu, s.law, s.e, s.rtol)?,
+        };
         if r.cut_off {
             warnings.push("cut-off impact: the relative velocity vanished while the contact stresses persist (the bodies are wedged)".into());
         }
@@ -282,6 +316,41 @@ pub fn solve_scene_all(
     }
 }
 
+/// The exact planar solution of the scene's impact with matrix `b` ($\mathbf B$ of (1.7) or
+/// $\mathbf B^*$ of (2.1)) where the scene's method takes it; `Ok(None)` to integrate (a scene
+/// that is not planar under "auto", or "integrate").
+fn planar_or_none(
+    s: &RigidImpactScene,
+    b: &Matrix3<f64>,
+) -> Result<Option<ImpactResult>, ImpactError> {
+    if s.method == ImpactMethod::Integrate {
+        return Ok(None);
+    }
+    let r = impact_planar(b, s.normal, s.v_rel, s.mu, s.law, s.e).map_err(|e| match e {
+        PlanarError::OutOfRange {
+            field,
+            value,
+            allowed,
+        } => ImpactError::OutOfRange {
+            field: field.into(),
+            value,
+            allowed: allowed.into(),
+        },
+        PlanarError::NoEnd { law, p } => ImpactError::NoEnd {
+            law: law.into(),
+            chi_max: p,
+        },
+    })?;
+    if r.is_none() && s.method == ImpactMethod::PlanarExact {
+        return Err(ImpactError::OutOfRange {
+            field: "solve.method".into(),
+            value: "\"planar-exact\" for an impact that is not planar".into(),
+            allowed: "a planar impact (the plane of the contact normal and the slip invariant under B, to 1e-12 of |B|, and no relative velocity across it), or \"auto\" / \"integrate\"".into(),
+        });
+    }
+    Ok(r)
+}
+
 /// One branch of a Painleve-type case with two solutions at the support.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Alternative {
@@ -321,6 +390,47 @@ pub struct RigidImpactScene {
     pub v_support: Vector3<f64>,
     /// A fixed point or axis: (body index 0|1, G->O, optional axis).
     pub fixed: Option<(usize, Vector3<f64>, Option<Vector3<f64>>)>,
+    /// How to solve it (`[solve] method`).
+    pub method: ImpactMethod,
+}
+
+/// How a `rigid-impact` scene is solved (`[solve] method`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ImpactMethod {
+    /// The exact planar solution where the impact is planar (free bodies, or one held by a
+    /// fixed point or axis), else the integrator.
+    #[default]
+    Auto,
+    /// The exact planar solution ([`super::planar_impact`]); a scene that is not planar, or
+    /// has a support, is an error.
+    PlanarExact,
+    /// The Darboux-Keller equations integrated in the normal impulse, planar or not.
+    Integrate,
+}
+
+impl ImpactMethod {
+    /// The values `[solve] method` takes.
+    pub const ALLOWED: &'static str = "\"auto\" (the exact planar solution where the impact is planar, else integrated), \"planar-exact\", \"integrate\"";
+
+    /// The scene's name for it.
+    pub fn name(self) -> &'static str {
+        match self {
+            ImpactMethod::Auto => "auto",
+            ImpactMethod::PlanarExact => super::planar_impact::METHOD,
+            ImpactMethod::Integrate => "integrate",
+        }
+    }
+
+    /// The method a scene names.
+    pub fn parse(name: &str) -> Option<Self> {
+        [
+            ImpactMethod::Auto,
+            ImpactMethod::PlanarExact,
+            ImpactMethod::Integrate,
+        ]
+        .into_iter()
+        .find(|m| m.name() == name)
+    }
 }
 
 type Value = toml::Value;
@@ -439,6 +549,10 @@ pub struct RigidImpactOutcome {
     /// Work done.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stats: Option<crate::integrate::Stats>,
+    /// How the impact was solved: "planar-exact" (the exact planar solution by events in closed
+    /// form) or "integrate" (the Darboux-Keller equations integrated in the normal impulse).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub method: Option<&'static str>,
     /// What the user should know.
     pub warnings: Vec<String>,
 }
@@ -662,7 +776,34 @@ impl super::Model for RigidImpactScene {
                 allowed: "(v_rel, normal) < 0: the bodies approach at C".into(),
             });
         }
-        let solve = f.solve(raw.solve.as_ref(), "impact-end", false)?;
+        // `[solve] method` names how the impact is solved, not an ODE method (the integrator
+        // picks its own: DOP853, Radau5 where the slip turns stiff)
+        let mut solve_table = raw.solve.clone();
+        let method = match solve_table
+            .as_mut()
+            .and_then(|t| t.as_table_mut())
+            .and_then(|t| t.remove("method"))
+        {
+            None => ImpactMethod::Auto,
+            Some(Value::String(name)) => ImpactMethod::parse(&name).ok_or_else(|| {
+                f.out_of_range("solve.method", format!("\"{name}\""), ImpactMethod::ALLOWED)
+            })?,
+            Some(other) => {
+                return Err(f.out_of_range(
+                    "solve.method",
+                    other.to_string(),
+                    ImpactMethod::ALLOWED,
+                ));
+            }
+        };
+        if method == ImpactMethod::PlanarExact && support.is_some() {
+            return Err(f.out_of_range(
+                "solve.method",
+                "\"planar-exact\" with a [support]".into(),
+                "\"auto\" or \"integrate\" with a support (the exact planar solution covers free bodies and bodies held by a fixed point or axis)",
+            ));
+        }
+        let solve = f.solve(solve_table.as_ref(), "impact-end", false)?;
         Ok(RigidImpactScene {
             bodies: [out[0].clone(), out[1].clone()],
             normal,
@@ -674,6 +815,7 @@ impl super::Model for RigidImpactScene {
             support,
             v_support,
             fixed,
+            method,
         })
     }
 
@@ -706,6 +848,7 @@ impl super::Model for RigidImpactScene {
             v_support_after: None,
             alternatives,
             stats: None,
+            method: None,
             warnings: vec![],
         };
         if let Some(r) = r {
@@ -734,6 +877,7 @@ impl super::Model for RigidImpactScene {
             out.support_phases = (!r.support_phases.is_empty()).then_some(r.support_phases);
             out.v_support_after = r.v_support_after;
             out.stats = Some(r.stats);
+            out.method = Some(r.method);
         }
         out.warnings = warnings;
         Ok((out, vec![]))

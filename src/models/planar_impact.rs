@@ -38,6 +38,9 @@ pub struct PlanarFrame {
     pub s: Vector3<f64>,
 }
 
+/// The name of this method in outputs and in a scene's `[solve] method`.
+pub const METHOD: &str = "planar-exact";
+
 /// Relative size below which a coupling out of the plane, or a velocity across it, counts as
 /// zero: rounding in the inputs (a rod at 45 degrees built with `cos` and `sin`) is of order
 /// 1e-16, and an impact that leaves the plane by 1e-12 changes its impulse by that order.
@@ -460,6 +463,7 @@ pub fn to_result(
         phases: sol.phases.clone(),
         cut_off: sol.cut_off,
         stats: crate::integrate::Stats::default(),
+        method: METHOD,
         support_impulse: [0.0; 3],
         support_phases: Vec::new(),
         v_support_after: None,

@@ -110,6 +110,9 @@ pub struct ImpactResult {
     pub cut_off: bool,
     /// Work done.
     pub stats: crate::integrate::Stats,
+    /// How the impact was solved: "integrate" (the Darboux-Keller equations (1.5) integrated in
+    /// the normal impulse) or "planar-exact" ([`super::planar_impact`]).
+    pub method: &'static str,
     /// Impulse of the support on the second body (N s), zero without a support.
     pub support_impulse: [f64; 3],
     /// A rough support's motion: "roll", "slide" or "detached" with the normal impulse at C at
@@ -1074,6 +1077,22 @@ fn decide_support(
     Ok(())
 }
 
+/// The mode of a slip that starts from rest along the ray `sys.u_hint` ([`stick_or_slide`]'s
+/// slide direction: $P_t\mathbf B(\mathbf n - \mu\mathbf u) = \kappa\mathbf u$, $\kappa > 0$).
+/// Without a support the matrix is constant and the slip grows along that ray exactly, so its
+/// friction direction is held there: left free, a slip that grows slowly (mu just below the
+/// critical value, kappa near 0) stays near zero for long, where its direction's turning rate
+/// grows like $1/|\mathbf V_t|$, and the steps collapse (`perf::rigid_sample`'s degenerate cases,
+/// tests/regression_slip_from_rest_near_critical.rs). With a support the matrix turns with the
+/// support's motion and the slip is left free.
+fn from_rest(sys: &Keller) -> Mode {
+    if sys.at_a.is_none() {
+        Mode::Ray(sys.u_hint)
+    } else {
+        Mode::Slip
+    }
+}
+
 /// The impact with an optional support: its state, the velocity of A before the impact and
 /// whether its start mode is forced.
 #[allow(clippy::too_many_arguments)]
@@ -1201,6 +1220,7 @@ fn impact_core(
             }
             Some(Err(u)) => {
                 sys.u_hint = slide_at_c(u, sys.at_a.is_some(), &n, 0.0)?;
+                sys.mode = from_rest(&sys);
                 phases.push(Phase {
                     kind: "slip".into(),
                     normal_impulse: 0.0,
@@ -1799,7 +1819,7 @@ fn impact_core(
                     Err(u) => {
                         let u = slide_at_c(u, sys.at_a.is_some(), &n, chi)?;
                         sys.u_hint = u;
-                        sys.mode = Mode::Slip;
+                        sys.mode = from_rest(&sys);
                         // nudge past the floor in the new direction so the slip event re-arms:
                         // 20 slip_stop, far above the absolute tolerance (1e-3 rtol scale), so
                         // that integration noise cannot take the slip back under the stop (the
@@ -1854,6 +1874,7 @@ fn impact_core(
         bound_lower: vn0.abs() / lmax,
         phases,
         stats,
+        method: "integrate",
         support_impulse: [y[7], y[8], y[9]],
         support_phases,
         v_support_after: sys.at_a.as_ref().filter(|r| r.rough()).map(|_| {

@@ -2,10 +2,19 @@
 //! through, Poisson's normal impulse (1 + e) times the compression impulse (independent of the
 //! stick/slip history), energy never gained, and Proposition 1's bound |I| <= 2|V-|/lambda_min.
 
-/// Runs seeded impact `case` of the sweep benchmark and checks the above; `phases` as expected.
+/// Runs generic seeded impact `case` (`perf::rigid_inputs_generic`, Poisson's law) and checks the above; `phases` as expected.
 pub fn check_case(case: u64, phases: &[&str]) -> impactcheck::models::rigid_impact::ImpactResult {
-    let (_, v, _, e) = impactcheck::perf::rigid_inputs(case);
-    let r = impactcheck::perf::rigid_case(case).unwrap_or_else(|err| panic!("case {case}: {err}"));
+    let (b, v, mu, e) = impactcheck::perf::rigid_inputs_generic(case);
+    let r = impactcheck::models::rigid_impact::impact_with_matrix(
+        &b,
+        nalgebra::Vector3::z(),
+        v,
+        mu,
+        impactcheck::models::rigid_impact::Law::Poisson,
+        e,
+        1e-10,
+    )
+    .unwrap_or_else(|err| panic!("case {case}: {err}"));
     let kinds: Vec<&str> = r.phases.iter().map(|p| p.kind.as_str()).collect();
     assert_eq!(kinds, phases, "case {case}");
     let chi_end = (1.0 + e) * r.compression_impulse;
