@@ -31,11 +31,60 @@ fn get(v: &Value, path: &[&str]) -> f64 {
         .unwrap_or_else(|| panic!("{path:?} missing in {v}"))
 }
 
+/// The textbook degeneracies, by `kind` (0-2: none, so that two thirds of the samples have one):
+/// 3 planar motion (y decoupled from (x, z), no lateral velocity), 4 B diagonal (principal axes
+/// along the contact frame), 5 a symmetric body (isotropic tangential block), 6 zero initial
+/// slip, 7 mu at or next to the critical value, 8 e = 0 or 1. `pick` in [0, 1) chooses within a
+/// kind.
+fn degenerate(
+    kind: u8,
+    pick: f64,
+    mut b: Matrix3<f64>,
+    mut v: Vector3<f64>,
+    mut mu: f64,
+    mut e: f64,
+) -> (Matrix3<f64>, Vector3<f64>, f64, f64) {
+    match kind {
+        3 => {
+            for (i, j) in [(0, 1), (1, 0), (1, 2), (2, 1)] {
+                b[(i, j)] = 0.0;
+            }
+            v.y = 0.0;
+        }
+        4 => b = Matrix3::from_diagonal(&b.diagonal()),
+        5 => {
+            let a = 0.5 * (b[(0, 0)] + b[(1, 1)]);
+            b[(0, 0)] = a;
+            b[(1, 1)] = a;
+            b[(0, 1)] = 0.0;
+            b[(1, 0)] = 0.0;
+            // positive-definite again: the normal entry above the Schur bound
+            let c = b[(0, 2)].powi(2) + b[(1, 2)].powi(2);
+            b[(2, 2)] = b[(2, 2)].max(c / a + 1e-3);
+        }
+        6 => {
+            v.x = 0.0;
+            v.y = 0.0;
+        }
+        7 => {
+            let critical = impactcheck::perf::critical_mu(&b);
+            if critical.is_finite() && critical < 10.0 {
+                mu = critical
+                    * [1.0, 1.0 - 1e-9, 1.0 + 1e-9, 1.0 - 1e-3, 1.0 + 1e-3][(pick * 5.0) as usize];
+            }
+        }
+        8 => e = if pick < 0.5 { 0.0 } else { 1.0 },
+        _ => {}
+    }
+    (b, v, mu, e)
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
 
     /// Poisson and Stronge restitution with Coulomb friction never create kinetic energy, and
-    /// the impulse stays within (1.9)'s 2|V-|/lambda_min and above (1.13)'s |V-_n|/Lambda.
+    /// the impulse stays within (1.9)'s 2|V-|/lambda_min and above (1.13)'s |V-_n|/Lambda; two
+    /// samples in three have a textbook degeneracy ([`degenerate`]).
     #[test]
     fn rigid_impact_is_passive_and_bounded(
         a in proptest::array::uniform9(-1.0f64..1.0),
@@ -45,10 +94,12 @@ proptest! {
         mu in 0.0f64..2.0,
         e in 0.0f64..1.0,
         energetic in any::<bool>(),
+        kind in 0u8..9,
+        pick in 0.0f64..1.0,
     ) {
-        let b = spd(a, floor);
         let law = if energetic { Law::Energetic } else { Law::Poisson };
-        let v = Vector3::new(vt[0], vt[1], -vn);
+        let (b, v, mu, e) =
+            degenerate(kind, pick, spd(a, floor), Vector3::new(vt[0], vt[1], -vn), mu, e);
         let r = impact_with_matrix(&b, Vector3::z(), v, mu, law, e, 1e-10).expect("solves");
         let eig = b.symmetric_eigenvalues();
         let (lmin, lmax) = (eig.min(), eig.max());
@@ -59,6 +110,37 @@ proptest! {
         if !energetic {
             prop_assert!(imp >= vn / lmax * (1.0 - 1e-8), "|I| = {imp} below |Vn|/Lambda");
         }
+    }
+
+    /// Planar impacts (B with y decoupled, no lateral velocity), with the other degeneracies on
+    /// top, under every law: the integrator agrees with the exact planar solution
+    /// (`models::planar_impact`, a second method) to 1e-8 of the impulse and of its energy.
+    #[test]
+    fn planar_impacts_agree_with_the_exact_solution(
+        a in proptest::array::uniform9(-1.0f64..1.0),
+        floor in 1e-3f64..1.0,
+        vt in -2.0f64..2.0,
+        vn in 0.05f64..3.0,
+        mu in 0.0f64..2.0,
+        e in 0.0f64..1.0,
+        law in 0usize..3,
+        kind in 0u8..9,
+        pick in 0.0f64..1.0,
+    ) {
+        let law = [Law::Newton, Law::Poisson, Law::Energetic][law];
+        let (b, v, mu, e) =
+            degenerate(3, pick, spd(a, floor), Vector3::new(vt, 0.0, -vn), mu, e);
+        let (b, v, mu, e) = degenerate(kind, pick, b, v, mu, e);
+        let r = impact_with_matrix(&b, Vector3::z(), v, mu, law, e, 1e-10).expect("solves");
+        let exact = impactcheck::models::planar_impact::impact_planar(&b, Vector3::z(), v, mu, law, e)
+            .expect("exact")
+            .expect("planar");
+        let (got, want) = (Vector3::from(r.impulse), Vector3::from(exact.impulse));
+        prop_assert!((got - want).norm() <= 1e-8 * want.norm(), "{got:?} against {want:?}");
+        prop_assert!(
+            (r.energy_change - exact.energy_change).abs() <= 1e-8 * want.norm() * v.norm(),
+            "energy {} against {}", r.energy_change, exact.energy_change
+        );
     }
 
     /// The cone on a Kelvin-Voigt half-space (constant-Poisson law, passive): the kinetic plus
