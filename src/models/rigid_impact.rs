@@ -970,6 +970,16 @@ fn decide_support(
         let f = sys.rate(&v, &va);
         let alpha = -(r.b_tilde * f).dot(&nn);
         if beta < 0.0 && alpha > 0.0 {
+            // its friction follows its slip as any slide's (a direction held from rest was kept
+            // frozen here, while A slid elsewhere under it, and friction did positive work:
+            // tests/regression_constrained_seeds.rs)
+            if let Some(r) = sys.at_a.as_mut() {
+                let slip = r.tangential(&va).norm();
+                if slip > r.floor {
+                    r.hint = r.tangential(&va) / slip;
+                }
+                r.held = slip <= HOLD_BELOW * stop * (1.0 + 1e-6);
+            }
             return Ok(());
         }
     }
@@ -1519,6 +1529,12 @@ fn impact_core(
                 .as_ref()
                 .map_or(scale, |r| r.slide_i(&va_of(y)).1 - BETA_FLOOR * r.beta_n)
         };
+        let a_beta_neg_g = |_chi: f64, y: &[f64]| {
+            sys_ref
+                .at_a
+                .as_ref()
+                .map_or(-scale, |r| r.slide_i(&va_of(y)).1 + BETA_FLOOR * r.beta_n)
+        };
         let a_cone_g = |_chi: f64, y: &[f64]| {
             let (f, _) = state(y);
             sys_ref.at_a.as_ref().map_or(-scale, |r| {
@@ -1594,6 +1610,23 @@ fn impact_core(
                             &a_beta_g,
                             Direction::Falling,
                         ));
+                        if r.slide_i(&va_of(&y)).1 < 0.0 {
+                            // the sliding branch of a two-solution case (beta of (4.4) < 0): its
+                            // reaction -alpha/beta stays positive only while alpha > 0, and grows
+                            // without bound as beta rises to 0; either ends it (without these the
+                            // reaction was clipped to zero and A went through the support:
+                            // tests/regression_constrained_seeds.rs)
+                            events.push(stop_at(
+                                "support's sliding branch ends",
+                                &a_minus_alpha_g,
+                                Direction::Rising,
+                            ));
+                            events.push(stop_at(
+                                "support beta vanishes",
+                                &a_beta_neg_g,
+                                Direction::Rising,
+                            ));
+                        }
                         if r.held {
                             events.push(stop_at(
                                 "support slip established",
@@ -1687,6 +1720,21 @@ fn impact_core(
         if sys.at_a.is_none() {
             friction_work_check(&b, &y_before, &sol.y, rtol, scale, sol.t)?;
         }
+        // a support in contact holds A on it: a reaction the law clipped to zero (the sliding
+        // branch of a Painleve case whose alpha changed sign, unseen) let A through it
+        if let Some(r) = &sys.at_a
+            && r.mode != SupportMode::Free
+            && va_of(&sol.y).dot(&r.normal) < -1e4 * stop_a
+        {
+            return Err(ImpactError::Inconsistent {
+                chi: sol.t,
+                what: format!(
+                    "A went into the support at {:.3e} m/s while in contact ({}); its reaction could not hold it",
+                    -va_of(&sol.y).dot(&r.normal),
+                    r.phase_name()
+                ),
+            });
+        }
         path.extend(sol.trajectory.iter().map(|(c, y)| (*c, [y[0], y[1], y[2]])));
         chi = sol.t;
         y = sol.y.clone();
@@ -1761,11 +1809,15 @@ fn impact_core(
                 continue;
             }
             Stop::Event { .. }
-                if fired == "slip dies on its ray"
-                    && sys.tangential(&Vector3::new(y[0], y[1], y[2])).norm()
-                        > 10.0 * slip_stop =>
+                if fired == "slip dies on its ray" && {
+                    let left = sys.tangential(&Vector3::new(y[0], y[1], y[2])).norm();
+                    left > 10.0 * slip_stop
+                        && (left > TURNED_ABOVE * slip_stop || left >= 0.1 * vt_start.norm())
+                } =>
             {
-                // the slip crossed the ray's normal line off the ray, away from zero: slip on,
+                // the slip crossed the ray's normal line off the ray, away from zero (by more
+                // than a stop, as for its own line: TURNED_ABOVE; a slip left below that bends
+                // onto a nearly neutral ray and creeps, seed 899244 of constrained_fail): slip on,
                 // with its own direction, without the ray event (it would fire again at once)
                 // until the slip settles
                 ray_armed = false;
