@@ -220,7 +220,24 @@ pub fn render(papers: &[PaperClaims], outcomes: &[Outcome]) -> Vec<(String, Stri
 }
 
 /// Writes rendered files into `dir` through a temporary folder beside it.
+///
+/// Every file name must be a relative path of plain components (no `..`, no root): anything else
+/// is refused before a file is written.
 pub fn write_atomically(dir: &Path, files: &[(String, String)]) -> std::io::Result<()> {
+    for (f, _) in files {
+        let p = Path::new(f);
+        let plain = p
+            .components()
+            .all(|c| matches!(c, std::path::Component::Normal(_)));
+        if !plain || p.as_os_str().is_empty() {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                format!(
+                    "refusing to write {f:?}: not a plain relative path under the output folder"
+                ),
+            ));
+        }
+    }
     let parent = dir.parent().unwrap_or(Path::new("."));
     let name = dir
         .file_name()

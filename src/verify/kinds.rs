@@ -426,6 +426,7 @@ impl<'a> Checked<'a> {
     /// Reads the file's units and checks every generic claim's keys, formulas, scenes and
     /// quantities (running each named scene once), before any claim runs.
     pub fn validate(file: &'a PaperClaims) -> Result<Self, VerifyError> {
+        super::check_names(file)?;
         let mut units = BTreeMap::new();
         for (name, text) in &file.symbols {
             let u = Unit::parse(text).map_err(|message| VerifyError::BadClaims {

@@ -392,6 +392,42 @@ pub fn select(papers: &[PaperClaims], only: Option<&str>) -> Vec<PaperClaims> {
         .collect()
 }
 
+/// Whether `name` may become (part of) a file name under the output folder: letters, digits,
+/// `.`, `-` and `_`, not empty and not starting with `.` (so no `..`, no hidden file, no
+/// separator: a claims file may come from anyone and never makes `verify` write outside `--out`).
+pub fn safe_name(name: &str) -> bool {
+    !name.is_empty()
+        && !name.starts_with('.')
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '.' | '-' | '_'))
+}
+
+/// The names a claims file turns into output paths: its `report` (a plain `.md` file name) and
+/// every claim `id` ([`safe_name`]).
+pub(crate) fn check_names(file: &PaperClaims) -> Result<(), VerifyError> {
+    if !safe_name(&file.report) || !file.report.ends_with(".md") {
+        return Err(VerifyError::BadClaims {
+            path: file.source.clone(),
+            message: format!(
+                "report = {:?} is not allowed; allowed: a plain file name ending in .md, of letters, digits, '.', '-' and '_', not starting with '.' (it is written under the output folder)",
+                file.report
+            ),
+        });
+    }
+    for c in &file.claim {
+        if !safe_name(&c.id) {
+            return Err(VerifyError::Claim {
+                file: file.source.display().to_string(),
+                id: c.id.clone(),
+                field: "id".into(),
+                message: "allowed: letters, digits, '.', '-' and '_', not starting with '.' (an id names the claim's plot and data files under the output folder)".into(),
+            });
+        }
+    }
+    Ok(())
+}
+
 /// Validates every claims file ([`kinds::Checked`]): a bad claim is found before any claim runs.
 pub fn validate_all(papers: &[PaperClaims]) -> Result<(), VerifyError> {
     papers
