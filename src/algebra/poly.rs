@@ -524,6 +524,13 @@ fn render(p: &Poly, latex: bool) -> String {
 }
 
 /// A non-negative rational as text: `3/2`, or `\frac{3}{2}` in LaTeX.
+/// An exact rational as `"-135232/2187"` or `"7"`.
+pub fn q_text(c: &Q) -> String {
+    use num_traits::Signed;
+    let s = rat_text(&c.abs(), false);
+    if c.is_negative() { format!("-{s}") } else { s }
+}
+
 pub fn rat_text(a: &Q, latex: bool) -> String {
     if a.is_integer() {
         a.numer().to_string()

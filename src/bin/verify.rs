@@ -199,7 +199,7 @@ fn run(args: Args) -> Result<bool> {
         );
         return Ok(true);
     }
-    let mut files = report::render(&papers, &outcomes);
+    let mut files = report::render(&verify::paper_infos(&papers), &outcomes);
     // the coverage table opens the index, after its first paragraphs
     let coverage = verify::coverage::table(&verify::coverage::compute(&papers), &outcomes);
     if let Some((_, readme)) = files.iter_mut().find(|(n, _)| n == "README.md") {

@@ -4,9 +4,10 @@
 //! Files are rendered in memory, written to a temporary folder beside the target and only then
 //! moved into place, so a run that fails leaves the old reports untouched.
 
+mod outcome;
 pub mod svg;
 
-use crate::verify::{Outcome, PaperClaims, Verdict};
+pub use outcome::{Outcome, PaperInfo, Verdict};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -84,7 +85,7 @@ fn anchor(id: &str) -> String {
 }
 
 /// Renders every file of `reports/` as `(file name, contents)`.
-pub fn render(papers: &[PaperClaims], outcomes: &[Outcome]) -> Vec<(String, String)> {
+pub fn render(papers: &[PaperInfo], outcomes: &[Outcome]) -> Vec<(String, String)> {
     let mut files = Vec::new();
     let by_paper: BTreeMap<&str, Vec<&Outcome>> =
         outcomes.iter().fold(BTreeMap::new(), |mut m, o| {

@@ -6,6 +6,8 @@
 //! files. Errors name the file, the field and what is allowed; unknown keys get a near-miss
 //! suggestion.
 
+pub mod sweep;
+
 use crate::models::balls_wall::BallsWallScene;
 use crate::models::cone_plate::ConePlateScene;
 use crate::models::constrained::RigidImpactScene;

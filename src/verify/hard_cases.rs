@@ -87,9 +87,7 @@ impl Case {
 fn scene_json(root: &Path, file: &str) -> Result<Value, String> {
     let scene =
         crate::scene::load(&root.join("tests/hard_cases").join(file)).map_err(|e| e.to_string())?;
-    crate::cli::run_validated(&scene)
-        .map(|(v, _)| v)
-        .map_err(|e| e.to_string())
+    scene.run().map(|(v, _)| v).map_err(|e| e.to_string())
 }
 
 fn with_method(root: &Path, file: &str, method: &str, rtol: f64) -> Result<Value, String> {
@@ -100,9 +98,7 @@ fn with_method(root: &Path, file: &str, method: &str, rtol: f64) -> Result<Value
         s.insert("rtol".into(), toml::Value::Float(rtol));
     }
     let scene = crate::scene::parse_table(&t, file).map_err(|e| e.to_string())?;
-    crate::cli::run_validated(&scene)
-        .map(|(v, _)| v)
-        .map_err(|e| e.to_string())
+    scene.run().map(|(v, _)| v).map_err(|e| e.to_string())
 }
 
 fn num(v: &Value, path: &[&str]) -> Option<f64> {

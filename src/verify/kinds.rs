@@ -284,7 +284,7 @@ fn parse_axis(spec: &str) -> Result<Axis, String> {
         Some(s) => (s, true),
         None => (spec, false),
     };
-    let sv = crate::cli::parse_vary(spec, log).map_err(|e| e.to_string())?;
+    let sv = crate::scene::sweep::parse_vary(spec, log).map_err(|e| e.to_string())?;
     Ok(Axis {
         field: sv.param,
         values: sv.values,

@@ -14,7 +14,7 @@ pub mod paper001;
 pub mod paper002;
 pub mod series_numeric;
 
-use serde::{Deserialize, Serialize};
+use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -163,67 +163,19 @@ pub struct ClaimSpec {
     pub reason: Option<String>,
 }
 
-/// What a check found.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Verdict {
-    /// The printed statement is what the computation gives.
-    Holds,
-    /// It is not; the detail gives derived and printed values and the difference.
-    Fails,
-    /// The printed form fails but a corrected form, given in the detail, holds.
-    HoldsWithCorrection,
-    /// The tool cannot check it (the detail says why).
-    NotCheckable,
-    /// A definition, found consistent: its units agree and the equations that use it hold with
-    /// it substituted (kind `definition`).
-    Definition,
-    /// It holds under an assumption the claim names (`assumption`), which the text does not
-    /// state or the computation cannot decide.
-    HoldsWithAssumption,
-}
+pub use crate::report::{Outcome, Verdict};
 
-impl Verdict {
-    /// The verdict as written in reports.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Verdict::Holds => "holds",
-            Verdict::Fails => "fails",
-            Verdict::HoldsWithCorrection => "holds-with-correction",
-            Verdict::NotCheckable => "not-checkable",
-            Verdict::Definition => "definition",
-            Verdict::HoldsWithAssumption => "holds-with-assumption",
-        }
-    }
-}
-
-/// A checked claim, ready for the report.
-#[derive(Clone, Debug)]
-pub struct Outcome {
-    /// Claim id.
-    pub id: String,
-    /// Seed number.
-    pub paper: String,
-    /// Equation as printed.
-    pub equation: String,
-    /// The paper's statement.
-    pub quote: String,
-    /// The verdict.
-    pub verdict: Verdict,
-    /// One-paragraph detail: derived vs printed, by how much.
-    pub detail: String,
-    /// The printed expression in LaTeX, if any.
-    pub printed_latex: Option<String>,
-    /// The derived expression in LaTeX, if any.
-    pub derived_latex: Option<String>,
-    /// Extra Markdown (tables, plot links) for the paper's report.
-    pub extra_md: Option<String>,
-    /// Extra files (plots) to write beside the report: `(file name, contents)`.
-    pub files: Vec<(String, String)>,
-    /// How the verdict was computed: the claim's kind, and for `check` the Rust check's name.
-    pub kind: String,
-    /// Numbers a kind adds to the JSON of the claim (`probability`, `valid_fraction`).
-    pub extra: BTreeMap<String, serde_json::Value>,
+/// What the report writer needs of a claims file ([`crate::report::PaperInfo`]).
+pub fn paper_infos(papers: &[PaperClaims]) -> Vec<crate::report::PaperInfo> {
+    papers
+        .iter()
+        .map(|p| crate::report::PaperInfo {
+            paper: p.paper.clone(),
+            title: p.title.clone(),
+            file: p.file.clone(),
+            report: p.report.clone(),
+        })
+        .collect()
 }
 
 /// Why verification could not run.

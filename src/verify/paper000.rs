@@ -84,7 +84,9 @@ pub fn check(
                     "alpha = {} is {} for every nu in (-1, 1/2) (zero only at nu = -1: {num_roots_outside}; alpha = {} at nu = 3/10, lambda = 1), so L(alpha) contains exp(|alpha| t): the constant-bulk-modulus law as printed has a growing mode of rate |alpha| = 2(1+nu)lambda/(1-2nu)",
                     op.alpha,
                     if negative { "negative" } else { "not negative" },
-                    sample.map(|v| crate::cli::q_text(&v)).unwrap_or_default()
+                    sample
+                        .map(|v| crate::algebra::poly::q_text(&v))
+                        .unwrap_or_default()
                 ),
             )
         }

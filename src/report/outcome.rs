@@ -1,0 +1,81 @@
+//! What a checked claim is, as the report renders it: plain data that the verifier fills (the
+//! report knows nothing of claims files or kinds).
+
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// What a check found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Verdict {
+    /// The printed statement is what the computation gives.
+    Holds,
+    /// It is not; the detail gives derived and printed values and the difference.
+    Fails,
+    /// The printed form fails but a corrected form, given in the detail, holds.
+    HoldsWithCorrection,
+    /// The tool cannot check it (the detail says why).
+    NotCheckable,
+    /// A definition, found consistent: its units agree and the equations that use it hold with
+    /// it substituted (kind `definition`).
+    Definition,
+    /// It holds under an assumption the claim names (`assumption`), which the text does not
+    /// state or the computation cannot decide.
+    HoldsWithAssumption,
+}
+
+impl Verdict {
+    /// The verdict as written in reports.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Verdict::Holds => "holds",
+            Verdict::Fails => "fails",
+            Verdict::HoldsWithCorrection => "holds-with-correction",
+            Verdict::NotCheckable => "not-checkable",
+            Verdict::Definition => "definition",
+            Verdict::HoldsWithAssumption => "holds-with-assumption",
+        }
+    }
+}
+
+/// A checked claim, ready for the report.
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    /// Claim id.
+    pub id: String,
+    /// Seed number.
+    pub paper: String,
+    /// Equation as printed.
+    pub equation: String,
+    /// The paper's statement.
+    pub quote: String,
+    /// The verdict.
+    pub verdict: Verdict,
+    /// One-paragraph detail: derived vs printed, by how much.
+    pub detail: String,
+    /// The printed expression in LaTeX, if any.
+    pub printed_latex: Option<String>,
+    /// The derived expression in LaTeX, if any.
+    pub derived_latex: Option<String>,
+    /// Extra Markdown (tables, plot links) for the paper's report.
+    pub extra_md: Option<String>,
+    /// Extra files (plots) to write beside the report: `(file name, contents)`.
+    pub files: Vec<(String, String)>,
+    /// How the verdict was computed: the claim's kind, and for `check` the Rust check's name.
+    pub kind: String,
+    /// Numbers a kind adds to the JSON of the claim (`probability`, `valid_fraction`).
+    pub extra: BTreeMap<String, serde_json::Value>,
+}
+
+/// What the report needs of a paper: its short name, title, source file and report file name.
+#[derive(Clone, Debug)]
+pub struct PaperInfo {
+    /// Short name ("002").
+    pub paper: String,
+    /// Title.
+    pub title: String,
+    /// Where its text is (a seed file name, or free text).
+    pub file: String,
+    /// The report's file name.
+    pub report: String,
+}
