@@ -19,6 +19,7 @@
 //! and (1.13) with the eigenvalues of $\mathbf B$.
 
 mod driver;
+mod events;
 mod friction;
 mod keller;
 mod support;

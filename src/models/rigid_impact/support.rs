@@ -3,7 +3,6 @@
 //! joint decision of the support's motion and C's stick.
 
 use super::*;
-use crate::integrate::{Direction, Event};
 use nalgebra::{Matrix3, Vector3};
 
 /// The motion at A: rolling (4.2), sliding (4.3)-(4.4), or free of the support.
@@ -204,15 +203,6 @@ pub(super) const RELEASE_ABOVE: f64 = 1e3;
 /// end. The band is stiff and is integrated by Radau5; the velocities change by the order of the
 /// band (1e-9 of the velocity scale at rtol 1e-10).
 pub(super) const REGULARISE_AFTER: usize = 200;
-
-/// A terminal event (every switch of the impact stops the solve).
-pub(super) fn stop_at<'a>(
-    name: &str,
-    g: &'a (dyn Fn(f64, &[f64]) -> f64 + 'a),
-    direction: Direction,
-) -> Event<'a> {
-    Event::new(name, g, direction, true)
-}
 
 /// Why the support admits no motion at some instant.
 pub(super) fn no_support_motion(chi: f64, what: &str) -> ImpactError {
