@@ -73,6 +73,75 @@ pub fn scene_matrix(s: &RigidImpactScene) -> Option<Matrix3<f64>> {
 /// `(result, support classification, warnings)`; no result when the case is only classified.
 pub type SceneOutcome = (Option<ImpactResult>, Option<Classification>, Vec<String>);
 
+/// The two bodies as if no support or fixed point held them: exactly where the impact is
+/// planar (and the method allows), else integrated.
+fn free_impact(s: &RigidImpactScene) -> Result<ImpactResult, ImpactError> {
+    if let Some(b) = b_matrix(&s.bodies[0], &s.bodies[1])
+        && let Some(mut r) = planar_or_none(s, &b)?
+    {
+        r.energy_change = kinetic_change(
+            &s.bodies[0],
+            &s.bodies[1],
+            &s.v_rel,
+            &Vector3::from(r.impulse),
+        );
+        return Ok(r);
+    }
+    impact(
+        &s.bodies[0],
+        &s.bodies[1],
+        s.normal,
+        s.v_rel,
+        s.mu,
+        s.law,
+        s.e,
+        s.rtol,
+    )
+}
+
+/// Body `k` held at the point `go` (from its G) or about the axis through it (002 sec. 2): the
+/// relative velocity at C must be one the held body can have (when the other cannot move); then
+/// B* of (2.1), solved exactly where planar.
+fn held_impact(
+    s: &RigidImpactScene,
+    k: usize,
+    go: &Vector3<f64>,
+    axis: Option<Vector3<f64>>,
+) -> Result<ImpactResult, ImpactError> {
+    let oc = s.bodies[k].offset - go;
+    let sign = if k == 0 { 1.0 } else { -1.0 };
+    let v_body = s.v_rel * sign;
+    let off = match axis {
+        Some(e) => {
+            let es = e.cross(&oc);
+            (v_body - es * (v_body.dot(&es) / es.norm_squared().max(f64::MIN_POSITIVE))).norm()
+        }
+        None => v_body.dot(&oc).abs() / oc.norm().max(f64::MIN_POSITIVE),
+    };
+    let other_free = s.bodies[1 - k].mass.is_some();
+    if !other_free && off > 1e-9 * s.v_rel.norm() {
+        return Err(ImpactError::OutOfRange {
+            field: "initial.v_rel".into(),
+            value: format!("[{}, {}, {}]", s.v_rel.x, s.v_rel.y, s.v_rel.z),
+            allowed: match axis {
+                Some(e) => format!(
+                    "a velocity of C turning about the axis: parallel to e x OC = {:?}",
+                    e.cross(&oc).as_slice()
+                ),
+                None => format!(
+                    "a velocity of C turning about O: orthogonal to OC = {:?}",
+                    oc.as_slice()
+                ),
+            },
+        });
+    }
+    let b = held_matrix(s, k, go, axis);
+    match planar_or_none(s, &b)? {
+        Some(r) => Ok(r),
+        None => impact_general(&b, None, s.normal, s.v_rel, s.mu, s.law, s.e, s.rtol),
+    }
+}
+
 /// Solves the scene.
 pub fn solve_scene(s: &RigidImpactScene) -> Result<SceneOutcome, ImpactError> {
     solve_scene_all(s, &mut Vec::new())
@@ -85,78 +154,20 @@ pub fn solve_scene_all(
     alternatives: &mut Vec<Alternative>,
 ) -> Result<SceneOutcome, ImpactError> {
     let mut warnings = Vec::new();
-    // the two bodies as if no support or fixed point held them: exactly where the impact is
-    // planar (and the method allows), else integrated
-    let free_impact = || {
-        let b = b_matrix(&s.bodies[0], &s.bodies[1]);
-        if let Some(b) = b
-            && let Some(mut r) = planar_or_none(s, &b)?
-        {
-            r.energy_change = kinetic_change(
-                &s.bodies[0],
-                &s.bodies[1],
-                &s.v_rel,
-                &Vector3::from(r.impulse),
-            );
-            return Ok(r);
-        }
-        impact(
-            &s.bodies[0],
-            &s.bodies[1],
-            s.normal,
-            s.v_rel,
-            s.mu,
-            s.law,
-            s.e,
-            s.rtol,
-        )
-    };
-    let bad = |m: String| ImpactError::OutOfRange {
-        field: "body".into(),
-        value: m,
-        allowed: "symmetric positive-definite inertia".into(),
-    };
     if let Some((k, go, axis)) = &s.fixed {
-        // the relative velocity at C must be one the constrained body can have
-        let oc = s.bodies[*k].offset - go;
-        let sign = if *k == 0 { 1.0 } else { -1.0 };
-        let v_body = s.v_rel * sign;
-        let off = match axis {
-            Some(e) => {
-                let es = e.cross(&oc);
-                (v_body - es * (v_body.dot(&es) / es.norm_squared().max(f64::MIN_POSITIVE))).norm()
-            }
-            None => v_body.dot(&oc).abs() / oc.norm().max(f64::MIN_POSITIVE),
-        };
-        let other_free = s.bodies[1 - *k].mass.is_some();
-        if !other_free && off > 1e-9 * s.v_rel.norm() {
-            return Err(ImpactError::OutOfRange {
-                field: "initial.v_rel".into(),
-                value: format!("[{}, {}, {}]", s.v_rel.x, s.v_rel.y, s.v_rel.z),
-                allowed: match axis {
-                    Some(e) => format!(
-                        "a velocity of C turning about the axis: parallel to e x OC = {:?}",
-                        e.cross(&oc).as_slice()
-                    ),
-                    None => format!(
-                        "a velocity of C turning about O: orthogonal to OC = {:?}",
-                        oc.as_slice()
-                    ),
-                },
-            });
-        }
-        let b = held_matrix(s, *k, go, *axis);
-        let r = match planar_or_none(s, &b)? {
-            Some(r) => r,
-            None => impact_general(&b, None, s.normal, s.v_rel, s.mu, s.law, s.e, s.rtol)?,
-        };
+        let r = held_impact(s, *k, go, *axis)?;
         if r.cut_off {
             warnings.push("cut-off impact: the relative velocity vanished while the contact stresses persist (the bodies are wedged)".into());
         }
         return Ok((Some(r), None, warnings));
     }
+    let bad = |m: String| ImpactError::OutOfRange {
+        field: "body".into(),
+        value: m,
+        allowed: "symmetric positive-definite inertia".into(),
+    };
     let Some(sup) = &s.support else {
-        return Ok((Some(free_impact()?), None, warnings));
+        return Ok((Some(free_impact(s)?), None, warnings));
     };
     let b = b_matrix(&s.bodies[0], &s.bodies[1]).ok_or_else(|| bad("singular".into()))?;
     let sm = matrices(&s.bodies[1], sup).ok_or_else(|| bad("singular".into()))?;
@@ -557,6 +568,179 @@ pub struct RigidImpactOutcome {
     pub warnings: Vec<String>,
 }
 
+/// The two `[[body]]` tables: mass (or "inf"), inertia, contact offset.
+fn read_bodies(f: &super::params::Fields, raw: &RawScene) -> Result<Vec<Body>, super::SceneError> {
+    let bodies = match &raw.body {
+        Some(Value::Array(a)) if a.len() == 2 => a,
+        other => {
+            return Err(f.out_of_range(
+                "[[body]]",
+                other.as_ref().map_or("missing".into(), |v| {
+                    format!("{} tables", v.as_array().map_or(0, |a| a.len()))
+                }),
+                "exactly two [[body]] tables",
+            ));
+        }
+    };
+    let mut out = Vec::new();
+    for (k, b) in bodies.iter().enumerate() {
+        let name = format!("body[{k}]");
+        let t = b
+            .as_table()
+            .ok_or_else(|| f.out_of_range(&name, b.to_string(), "a table"))?;
+        let rb: RawBody = f.raw(t, &name)?;
+        let mass = match &rb.mass {
+            Some(Value::String(s)) if s == "inf" => None,
+            _ => Some(f.num(
+                rb.mass.as_ref(),
+                &format!("{name}.mass"),
+                None,
+                |v| v > 0.0,
+                "mass > 0 (kg), or \"inf\" for a fixed massive obstacle",
+            )?),
+        };
+        let inertia = match (mass, &rb.inertia) {
+            (None, None) => Matrix3::identity(),
+            (_, v) => {
+                let err = |val: String| {
+                    f.out_of_range(
+                        &format!("{name}.inertia"),
+                        val,
+                        "a symmetric positive-definite 3x3 array (kg m^2)",
+                    )
+                };
+                let v = v.as_ref().ok_or_else(|| err("missing".into()))?;
+                let rows = v.as_array().ok_or_else(|| err(v.to_string()))?;
+                let mut m = Matrix3::zeros();
+                if rows.len() != 3 {
+                    return Err(err(v.to_string()));
+                }
+                for (i, row) in rows.iter().enumerate() {
+                    let cols = row.as_array().ok_or_else(|| err(v.to_string()))?;
+                    if cols.len() != 3 {
+                        return Err(err(v.to_string()));
+                    }
+                    for (j, c) in cols.iter().enumerate() {
+                        m[(i, j)] = c
+                            .as_float()
+                            .or_else(|| c.as_integer().map(|x| x as f64))
+                            .filter(|x| x.is_finite())
+                            .ok_or_else(|| err(v.to_string()))?;
+                    }
+                }
+                let asym = (m - m.transpose()).abs().max();
+                if asym > 1e-12 * m.abs().max() || m.cholesky().is_none() {
+                    return Err(err(format!("{v} (not symmetric positive-definite)")));
+                }
+                m
+            }
+        };
+        let offset = match (mass, &rb.contact_offset) {
+            (None, None) => Vector3::zeros(),
+            _ => f.vec3(
+                rb.contact_offset.as_ref(),
+                &format!("{name}.contact_offset"),
+            )?,
+        };
+        out.push(Body {
+            mass,
+            inertia,
+            offset,
+        });
+    }
+    if out.iter().all(|b| b.mass.is_none()) {
+        return Err(f.out_of_range(
+            "[[body]].mass",
+            "\"inf\" twice".into(),
+            "at least one body with finite mass",
+        ));
+    }
+    Ok(out)
+}
+
+/// The `[support]` and `[fixed]` tables (at most one of them), given the bodies.
+#[allow(clippy::type_complexity)]
+fn read_holds(
+    f: &super::params::Fields,
+    raw: &RawScene,
+    out: &[Body],
+) -> Result<
+    (
+        Option<super::support::Support>,
+        Option<(usize, Vector3<f64>, Option<Vector3<f64>>)>,
+    ),
+    super::SceneError,
+> {
+    let support = match &raw.support {
+        None => None,
+        Some(_) => {
+            let t: RawSupport = f.raw(f.table(raw.support.as_ref(), "support")?, "support")?;
+            let normal = f.vec3(t.normal.as_ref(), "support.normal")?;
+            if normal.norm() <= 0.0 {
+                return Err(f.out_of_range(
+                    "support.normal",
+                    format!("{normal:?}"),
+                    "a non-zero vector from the support into the second body",
+                ));
+            }
+            if out[1].mass.is_none() {
+                return Err(f.out_of_range(
+                    "[support]",
+                    "second body with mass \"inf\"".into(),
+                    "a support under a second body of finite mass",
+                ));
+            }
+            Some(super::support::Support {
+                offset: f.vec3(t.offset.as_ref(), "support.offset")?,
+                normal: normal.normalize(),
+                mu: f.num(
+                    t.mu.as_ref(),
+                    "support.mu",
+                    Some(0.0),
+                    |v| v >= 0.0,
+                    "mu >= 0",
+                )?,
+            })
+        }
+    };
+    let fixed = match &raw.fixed {
+        None => None,
+        Some(_) => {
+            let t: RawFixed = f.raw(f.table(raw.fixed.as_ref(), "fixed")?, "fixed")?;
+            let body = match &t.body {
+                None => 0,
+                Some(Value::Integer(1)) => 0,
+                Some(Value::Integer(2)) => 1,
+                Some(other) => {
+                    return Err(f.out_of_range("fixed.body", other.to_string(), "1 or 2"));
+                }
+            };
+            if out[body].mass.is_none() {
+                return Err(f.out_of_range(
+                    "fixed.body",
+                    (body + 1).to_string(),
+                    "a body of finite mass (an immovable body needs no fixed point)",
+                ));
+            }
+            let axis = if t.axis.is_some() {
+                let a = f.vec3(t.axis.as_ref(), "fixed.axis")?;
+                if a.norm() <= 0.0 {
+                    return Err(f.out_of_range(
+                        "fixed.axis",
+                        format!("{a:?}"),
+                        "a non-zero direction",
+                    ));
+                }
+                Some(a.normalize())
+            } else {
+                None
+            };
+            Some((body, f.vec3(t.offset.as_ref(), "fixed.offset")?, axis))
+        }
+    };
+    Ok((support, fixed))
+}
+
 impl super::Model for RigidImpactScene {
     const NAME: &'static str = "rigid-impact";
     type Outcome = RigidImpactOutcome;
@@ -565,91 +749,7 @@ impl super::Model for RigidImpactScene {
         use super::SceneError;
         let f = super::params::Fields { path };
         let raw: RawScene = f.raw(root, "")?;
-        let bodies = match &raw.body {
-            Some(Value::Array(a)) if a.len() == 2 => a,
-            other => {
-                return Err(f.out_of_range(
-                    "[[body]]",
-                    other.as_ref().map_or("missing".into(), |v| {
-                        format!("{} tables", v.as_array().map_or(0, |a| a.len()))
-                    }),
-                    "exactly two [[body]] tables",
-                ));
-            }
-        };
-        let mut out = Vec::new();
-        for (k, b) in bodies.iter().enumerate() {
-            let name = format!("body[{k}]");
-            let t = b
-                .as_table()
-                .ok_or_else(|| f.out_of_range(&name, b.to_string(), "a table"))?;
-            let rb: RawBody = f.raw(t, &name)?;
-            let mass = match &rb.mass {
-                Some(Value::String(s)) if s == "inf" => None,
-                _ => Some(f.num(
-                    rb.mass.as_ref(),
-                    &format!("{name}.mass"),
-                    None,
-                    |v| v > 0.0,
-                    "mass > 0 (kg), or \"inf\" for a fixed massive obstacle",
-                )?),
-            };
-            let inertia = match (mass, &rb.inertia) {
-                (None, None) => Matrix3::identity(),
-                (_, v) => {
-                    let err = |val: String| {
-                        f.out_of_range(
-                            &format!("{name}.inertia"),
-                            val,
-                            "a symmetric positive-definite 3x3 array (kg m^2)",
-                        )
-                    };
-                    let v = v.as_ref().ok_or_else(|| err("missing".into()))?;
-                    let rows = v.as_array().ok_or_else(|| err(v.to_string()))?;
-                    let mut m = Matrix3::zeros();
-                    if rows.len() != 3 {
-                        return Err(err(v.to_string()));
-                    }
-                    for (i, row) in rows.iter().enumerate() {
-                        let cols = row.as_array().ok_or_else(|| err(v.to_string()))?;
-                        if cols.len() != 3 {
-                            return Err(err(v.to_string()));
-                        }
-                        for (j, c) in cols.iter().enumerate() {
-                            m[(i, j)] = c
-                                .as_float()
-                                .or_else(|| c.as_integer().map(|x| x as f64))
-                                .filter(|x| x.is_finite())
-                                .ok_or_else(|| err(v.to_string()))?;
-                        }
-                    }
-                    let asym = (m - m.transpose()).abs().max();
-                    if asym > 1e-12 * m.abs().max() || m.cholesky().is_none() {
-                        return Err(err(format!("{v} (not symmetric positive-definite)")));
-                    }
-                    m
-                }
-            };
-            let offset = match (mass, &rb.contact_offset) {
-                (None, None) => Vector3::zeros(),
-                _ => f.vec3(
-                    rb.contact_offset.as_ref(),
-                    &format!("{name}.contact_offset"),
-                )?,
-            };
-            out.push(Body {
-                mass,
-                inertia,
-                offset,
-            });
-        }
-        if out.iter().all(|b| b.mass.is_none()) {
-            return Err(f.out_of_range(
-                "[[body]].mass",
-                "\"inf\" twice".into(),
-                "at least one body with finite mass",
-            ));
-        }
+        let out = read_bodies(&f, &raw)?;
         let c: RawContact = f.raw(f.table(raw.contact.as_ref(), "contact")?, "contact")?;
         let normal = f.vec3(c.normal.as_ref(), "contact.normal")?;
         if normal.norm() <= 0.0 || normal.norm().is_nan() {
@@ -693,73 +793,7 @@ impl super::Model for RigidImpactScene {
         } else {
             Vector3::zeros()
         };
-        let support = match &raw.support {
-            None => None,
-            Some(_) => {
-                let t: RawSupport = f.raw(f.table(raw.support.as_ref(), "support")?, "support")?;
-                let normal = f.vec3(t.normal.as_ref(), "support.normal")?;
-                if normal.norm() <= 0.0 {
-                    return Err(f.out_of_range(
-                        "support.normal",
-                        format!("{normal:?}"),
-                        "a non-zero vector from the support into the second body",
-                    ));
-                }
-                if out[1].mass.is_none() {
-                    return Err(f.out_of_range(
-                        "[support]",
-                        "second body with mass \"inf\"".into(),
-                        "a support under a second body of finite mass",
-                    ));
-                }
-                Some(super::support::Support {
-                    offset: f.vec3(t.offset.as_ref(), "support.offset")?,
-                    normal: normal.normalize(),
-                    mu: f.num(
-                        t.mu.as_ref(),
-                        "support.mu",
-                        Some(0.0),
-                        |v| v >= 0.0,
-                        "mu >= 0",
-                    )?,
-                })
-            }
-        };
-        let fixed = match &raw.fixed {
-            None => None,
-            Some(_) => {
-                let t: RawFixed = f.raw(f.table(raw.fixed.as_ref(), "fixed")?, "fixed")?;
-                let body = match &t.body {
-                    None => 0,
-                    Some(Value::Integer(1)) => 0,
-                    Some(Value::Integer(2)) => 1,
-                    Some(other) => {
-                        return Err(f.out_of_range("fixed.body", other.to_string(), "1 or 2"));
-                    }
-                };
-                if out[body].mass.is_none() {
-                    return Err(f.out_of_range(
-                        "fixed.body",
-                        (body + 1).to_string(),
-                        "a body of finite mass (an immovable body needs no fixed point)",
-                    ));
-                }
-                let axis = if t.axis.is_some() {
-                    let a = f.vec3(t.axis.as_ref(), "fixed.axis")?;
-                    if a.norm() <= 0.0 {
-                        return Err(f.out_of_range(
-                            "fixed.axis",
-                            format!("{a:?}"),
-                            "a non-zero direction",
-                        ));
-                    }
-                    Some(a.normalize())
-                } else {
-                    None
-                };
-                Some((body, f.vec3(t.offset.as_ref(), "fixed.offset")?, axis))
-            }
-        };
+        let (support, fixed) = read_holds(&f, &raw, &out)?;
         if support.is_some() && fixed.is_some() {
             return Err(f.out_of_range(
                 "[support] and [fixed]",
