@@ -1,0 +1,181 @@
+//! Checks of 002_b53e4779673eb6ed.txt: Proposition 1 and (1.9)-(1.13) over seeded random bodies,
+//! the pendulum's B* (2.5) and its cut-off condition, and the Coriolis billiard problem
+//! (3.9)-(3.14).
+
+use super::{ClaimSpec, Outcome, PaperClaims, Verdict, VerifyError, holds, outcome};
+use crate::integrate::{Method, OdeSystem, Options, solve};
+use crate::models::rigid_impact::{Body, Law, b_matrix, impact_with_matrix};
+use crate::report::svg::{Scale, Series};
+use nalgebra::{Matrix3, SymmetricEigen, Vector3};
+
+use crate::rng::Rng;
+
+mod billiard;
+mod pendulum;
+mod random_bodies;
+mod rolling;
+mod supports;
+
+use supports::kernel_meets_cone;
+
+const SAMPLES: usize = 400;
+
+/// One random impact configuration.
+#[derive(Clone, Debug)]
+pub(super) struct Config {
+    b1: Body,
+    b2: Body,
+    v: Vector3<f64>,
+    e: f64,
+    /// Friction at C, in [0, 1.5).
+    mu: f64,
+}
+
+pub(super) fn random_body(r: &mut Rng) -> Body {
+    let inertia = r.spd((0.05, 1.0), 0.5) * 0.1;
+    Body {
+        mass: Some(r.range(0.1, 10.0)),
+        inertia,
+        offset: Vector3::new(r.range(-0.5, 0.5), r.range(-0.5, 0.5), r.range(-0.5, 0.5)),
+    }
+}
+
+pub(super) fn configs(seed: u64) -> Vec<Config> {
+    let mut r = Rng(seed);
+    (0..SAMPLES)
+        .map(|_| {
+            let b1 = random_body(&mut r);
+            let b2 = random_body(&mut r);
+            let v = Vector3::new(r.range(-2.0, 2.0), r.range(-2.0, 2.0), -r.range(0.05, 3.0));
+            // a friction coefficient is drawn (and unused by the checks left here) so that the
+            // seeded cases stay those of earlier reports
+            let mu = r.range(0.0, 1.5);
+            let e = r.range(0.0, 1.0);
+            Config { b1, b2, v, e, mu }
+        })
+        .collect()
+}
+
+pub(super) fn fmt_m(m: &Matrix3<f64>) -> String {
+    format!(
+        "[[{:.4}, {:.4}, {:.4}], [{:.4}, {:.4}, {:.4}], [{:.4}, {:.4}, {:.4}]]",
+        m[(0, 0)],
+        m[(0, 1)],
+        m[(0, 2)],
+        m[(1, 0)],
+        m[(1, 1)],
+        m[(1, 2)],
+        m[(2, 0)],
+        m[(2, 1)],
+        m[(2, 2)]
+    )
+}
+
+/// The two billiard balls of section 3 with m = 1, R = 1, rho^2 = 0.4 R^2: (B, B_A, B~, B*)
+/// computed from the definitions (1.7), (3.4), (3.8).
+pub(super) fn billiard() -> (Matrix3<f64>, Matrix3<f64>, Matrix3<f64>, Matrix3<f64>, f64) {
+    let (m, r) = (1.0, 1.0);
+    let rho2 = 0.4 * r * r;
+    let j2inv = Matrix3::identity() / (m * rho2);
+    let g1c = Vector3::new(r, 0.0, 0.0);
+    let g2c = -g1c;
+    let g2a = Vector3::new(0.0, 0.0, -r);
+    let nn = Vector3::z();
+    let ball = |off: Vector3<f64>| Body {
+        mass: Some(m),
+        inertia: Matrix3::identity() * (m * rho2),
+        offset: off,
+    };
+    let b = b_matrix(&ball(g1c), &ball(g2c)).expect("invertible");
+    let col = |f: &dyn Fn(Vector3<f64>) -> Vector3<f64>| {
+        Matrix3::from_columns(&[f(Vector3::x()), f(Vector3::y()), f(Vector3::z())])
+    };
+    let bt = col(&|f| f / m + (j2inv * g2c.cross(&f)).cross(&g2a));
+    let ba = col(&|f| f / m + (j2inv * g2a.cross(&f)).cross(&g2a));
+    let beta = (ba * nn).dot(&nn);
+    let bstar = col(&|f| b * f - (bt.transpose() * nn) * ((bt * f).dot(&nn) / beta));
+    (b, ba, bt, bstar, r * r / rho2)
+}
+
+/// The values of the billiard configuration: m = 1, R = 1, rho^2 = 0.4 R^2.
+pub(super) fn billiard_values(name: &str) -> Option<f64> {
+    match name {
+        "m" | "R" => Some(1.0),
+        "rho" => Some(0.4f64.sqrt()),
+        _ => None,
+    }
+}
+
+/// The claim's `printed_matrix`, each formula evaluated with `values`.
+pub(super) fn printed_matrix(
+    c: &ClaimSpec,
+    values: &dyn Fn(&str) -> Option<f64>,
+) -> Result<Matrix3<f64>, VerifyError> {
+    let bad = |m: String| VerifyError::BadClaim {
+        id: c.id.clone(),
+        message: m,
+    };
+    if c.printed_matrix.len() != 3 || c.printed_matrix.iter().any(|r| r.len() != 3) {
+        return Err(bad("printed_matrix must be 3 rows of 3 formulas".into()));
+    }
+    let mut m = Matrix3::zeros();
+    for (i, row) in c.printed_matrix.iter().enumerate() {
+        for (j, text) in row.iter().enumerate() {
+            let e = crate::algebra::expr::parse(text)
+                .map_err(|e| bad(format!("printed_matrix[{i}][{j}]: {e}")))?;
+            m[(i, j)] = e.eval(values).map_err(bad)?;
+        }
+    }
+    Ok(m)
+}
+
+/// (3.13): $V_1' = 2/m$, $r' = -(\mu/m)(6 + \sin^2\varphi)$, $r\varphi' = -(\mu/2m)\sin 2\varphi$.
+pub(super) struct Coriolis {
+    mu: f64,
+}
+
+impl OdeSystem for Coriolis {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&self, _chi: f64, y: &[f64], dy: &mut [f64]) {
+        let (r, phi) = (y[0], y[1]);
+        dy[0] = -self.mu * (6.0 + phi.sin().powi(2));
+        dy[1] = -0.5 * self.mu * (2.0 * phi).sin() / r;
+    }
+}
+
+/// A named check of this paper: one function each, by topic.
+type Check = fn(&PaperClaims, &ClaimSpec) -> Result<Outcome, VerifyError>;
+
+/// The named checks, by the name a claim's `check` gives.
+const CHECKS: &[(&str, Check)] = &[
+    ("pendulum-bstar", pendulum::pendulum_bstar),
+    ("pendulum-cutoff", pendulum::pendulum_cutoff),
+    ("billiard-matrix", billiard::billiard_matrix),
+    ("billiard-312", billiard::billiard_312),
+    ("billiard-313", billiard::billiard_313),
+    ("billiard-314", billiard::billiard_314),
+    ("billiard-fixed-angles", billiard::billiard_fixed_angles),
+    ("plane-support", supports::plane_support),
+    ("deformable-elements", supports::deformable_elements),
+    ("rest-types", supports::rest_types),
+    ("rolling-ball", rolling::rolling_ball),
+    ("pendulum-wall", pendulum::pendulum_wall),
+    ("balls-wall", billiard::balls_wall),
+    ("rough-support", supports::rough_support),
+    ("proposition-3", random_bodies::proposition_3),
+    ("proposition-2", random_bodies::proposition_2),
+    ("billiard-general", billiard::billiard_general),
+];
+
+/// Runs the named check of claim `c`.
+pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+    match CHECKS.iter().find(|(name, _)| *name == c.check) {
+        Some((_, run)) => run(paper, c),
+        None => Err(VerifyError::BadClaim {
+            id: c.id.clone(),
+            message: format!("unknown check `{}`", c.check),
+        }),
+    }
+}
