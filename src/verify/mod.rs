@@ -387,6 +387,24 @@ pub fn validate_all(papers: &[PaperClaims]) -> Result<(), VerifyError> {
         .try_for_each(|p| kinds::Checked::validate(p).map(|_| ()))
 }
 
+/// What a paper's named checks may use: the folder scenes are read from, and 000's context
+/// (its operator check, computed once).
+struct Named<'a> {
+    root: &'a Path,
+    paper000: paper000::Context,
+}
+
+/// A paper's named checks (`kind = "check"`), by its short name.
+type PaperChecks = fn(&mut Named, &PaperClaims, &ClaimSpec) -> Result<Outcome, VerifyError>;
+
+/// The papers with named Rust checks; a paper not listed has only the generic kinds.
+const PAPERS: &[(&str, PaperChecks)] = &[
+    ("000", |n, p, c| paper000::check(&mut n.paper000, p, c)),
+    ("001", |_, p, c| paper001::check(p, c)),
+    ("002", |_, p, c| paper002::check(p, c)),
+    ("hard", |n, p, c| hard_cases::check(p, c, n.root)),
+];
+
 /// Checks every claim of every paper: first every file is validated ([`kinds::Checked`]: a bad
 /// claim stops here, before anything runs), then each claim runs. Scenes named by `check` claims
 /// are read relative to `root`, those of the generic kinds relative to their claims file.
@@ -398,22 +416,25 @@ pub fn run_all(papers: &[PaperClaims], root: &Path) -> Result<Vec<Outcome>, Veri
     let mut derivations = kinds::Derivations::default();
     let mut out = Vec::new();
     for (p, generic) in papers.iter().zip(&checked) {
-        let mut ctx000 = paper000::Context::new(root);
+        let mut ctx = Named {
+            root,
+            paper000: paper000::Context::new(root),
+        };
         for c in &p.claim {
             if c.kind != "check" {
                 out.push(generic.check(c, &mut derivations)?);
                 continue;
             }
-            let mut o = match p.paper.as_str() {
-                "000" => paper000::check(&mut ctx000, p, c)?,
-                "001" => paper001::check(p, c)?,
-                "002" => paper002::check(p, c)?,
-                "hard" => hard_cases::check(p, c, root)?,
-                other => outcome(
+            let mut o = match PAPERS.iter().find(|(name, _)| *name == p.paper) {
+                Some((_, run)) => run(&mut ctx, p, c)?,
+                None => outcome(
                     p,
                     c,
                     Verdict::NotCheckable,
-                    format!("no Rust checks exist for paper {other}: use a generic kind"),
+                    format!(
+                        "no Rust checks exist for paper {}: use a generic kind",
+                        p.paper
+                    ),
                 ),
             };
             o.kind = format!("check `{}`", c.check);
