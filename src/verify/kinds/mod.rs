@@ -76,7 +76,7 @@ pub(crate) const KIND_TABLE: &[Kind] = &[
     },
     Kind {
         name: "bound",
-        validate: |k, c| k.validate_scene_kind(c),
+        validate: |k, c| k.validate_bound(c),
         check: |k, c, _| k.bound(c),
     },
     Kind {

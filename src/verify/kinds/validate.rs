@@ -132,6 +132,47 @@ impl Checked<'_> {
         Ok(())
     }
 
+    /// Validates a claim of kind `bound`: with a scene as the other scene kinds; without one, a
+    /// bound on formulas alone whose samples are the symbols' values.
+    pub(super) fn validate_bound(&self, c: &ClaimSpec) -> Result<(), VerifyError> {
+        if c.scene.is_some() {
+            return self.validate_scene_kind(c);
+        }
+        let f = self.file;
+        // a bound on formulas alone: the samples are the symbols' values
+        count_and_seed(f, c)?;
+        required(f, c, "require", &c.require, "an inequality")?;
+        for (sym, d) in &c.sample {
+            let key = format!("sample.{sym}");
+            parse_dist(d).map_err(|m| claim_err(f, c, &key, m))?;
+            if !self.units.contains_key(sym) {
+                return Err(claim_err(
+                    f,
+                    c,
+                    &key,
+                    format!("`{sym}`: give its unit in [symbols]"),
+                ));
+            }
+        }
+        let ineq = self.inequality(c, "require")?;
+        for e in [&ineq.lhs, &ineq.rhs] {
+            self.units_of(c, "require", e, &[])?;
+            for s in e.free_symbols() {
+                if !c.sample.contains_key(&s) {
+                    return Err(claim_err(
+                        f,
+                        c,
+                        "require",
+                        format!(
+                            "`{s}` is not sampled: without a scene every symbol is drawn (sample.{s} = \"uniform(a, b)\")"
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Validates a claim of kind `model`, `bound`, `probability`, `map`.
     pub(super) fn validate_scene_kind(&self, c: &ClaimSpec) -> Result<(), VerifyError> {
         let f = self.file;
