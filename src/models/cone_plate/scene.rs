@@ -1,0 +1,488 @@
+//! The cone-plate scene file: its keys, read into the model's parameters and effects, and the
+//! outcome `impact run` prints.
+
+use super::*;
+
+/// The effects a cone-plate scene may name.
+pub const EFFECTS: &[&str] = &[
+    "viscoelastic",
+    "plate",
+    "winkler",
+    "pasternak",
+    "damper",
+    "membrane",
+    "inplane",
+    "modes",
+    "relative-indentation",
+];
+
+/// The `cone-plate` scene of 000_92d54b11128ea1ec.txt: only the effects it names become states.
+#[derive(Clone, Debug)]
+pub struct ConePlateScene {
+    /// Parameters (SI).
+    pub params: Params,
+    /// Effects named.
+    pub effects: Effects,
+    /// Variant.
+    pub variant: Variant,
+    /// Viscoelastic law.
+    pub law: Law,
+    /// Solver settings.
+    pub solve: crate::models::SolveSpec,
+}
+
+type Value = toml::Value;
+
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(dead_code)]
+struct RawScene {
+    model: Option<Value>,
+    variant: Option<Value>,
+    viscoelastic_law: Option<Value>,
+    effects: Option<Value>,
+    impactor: Option<Value>,
+    material: Option<Value>,
+    plate: Option<Value>,
+    foundation: Option<Value>,
+    inplane: Option<Value>,
+    solve: Option<Value>,
+}
+
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawImpactor {
+    mass: Option<Value>,
+    theta_deg: Option<Value>,
+    v0: Option<Value>,
+}
+
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(non_snake_case)]
+struct RawMaterial {
+    E: Option<Value>,
+    nu: Option<Value>,
+    eta: Option<Value>,
+}
+
+#[derive(serde::Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RawPlate {
+    a: Option<Value>,
+    b: Option<Value>,
+    h: Option<Value>,
+    rho: Option<Value>,
+    modes: Option<Value>,
+}
+
+#[derive(serde::Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RawFoundation {
+    kw: Option<Value>,
+    kg: Option<Value>,
+    ct: Option<Value>,
+}
+
+#[derive(serde::Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RawInplane {
+    p1: Option<Value>,
+    p2: Option<Value>,
+}
+
+/// The energy books of a run.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct EnergyOutcome {
+    /// Kinetic energy at impact (J).
+    pub initial: f64,
+    /// Kinetic plus stored energy at the end (J).
+    #[serde(rename = "final")]
+    pub final_: f64,
+    /// Dissipated energy (J).
+    pub dissipated: f64,
+    /// Work of the memory operators (J).
+    pub operator_work: f64,
+    /// Smallest operator work seen (J).
+    pub operator_work_min: f64,
+    /// Work injected by the load with the paper's absolute indentation (J).
+    pub injected: f64,
+    /// Energy balance error (relative).
+    pub balance_error: f64,
+}
+
+/// What `impact run` prints for a `cone-plate` scene.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct ConePlateOutcome {
+    /// `"cone-plate"`.
+    pub model: &'static str,
+    /// `"as-printed"` or `"corrected"`.
+    pub variant: &'static str,
+    /// `"constant-bulk"` or `"constant-poisson"`.
+    pub viscoelastic_law: &'static str,
+    /// The effects simulated.
+    pub effects: Vec<String>,
+    /// The plate modes.
+    pub modes: Vec<(u32, u32)>,
+    /// States integrated.
+    pub state_dim: usize,
+    /// The method.
+    pub method: &'static str,
+    /// Samples at the requested times.
+    pub samples: Vec<Sample>,
+    /// The contact.
+    pub contact: crate::models::ContactOutcome,
+    /// The energy books.
+    pub energy: EnergyOutcome,
+    /// Work done.
+    pub stats: Stats,
+    /// What the report must say.
+    pub warnings: Vec<String>,
+}
+
+impl crate::models::Model for ConePlateScene {
+    const NAME: &'static str = "cone-plate";
+    type Outcome = ConePlateOutcome;
+
+    fn from_table(root: &toml::Table, path: &str) -> Result<Self, crate::models::SceneError> {
+        use crate::models::SceneError;
+        let f = crate::models::params::Fields { path };
+        let raw: RawScene = f.raw(root, "")?;
+        let variant = match f
+            .choice(
+                raw.variant.as_ref(),
+                "variant",
+                &["as-printed", "corrected"],
+                "corrected",
+            )?
+            .as_str()
+        {
+            "as-printed" => Variant::AsPrinted,
+            _ => Variant::Corrected,
+        };
+        let law = match f
+            .choice(
+                raw.viscoelastic_law.as_ref(),
+                "viscoelastic_law",
+                &["constant-bulk", "constant-poisson"],
+                "constant-bulk",
+            )?
+            .as_str()
+        {
+            "constant-poisson" => Law::ConstantPoisson,
+            _ => Law::ConstantBulk,
+        };
+        let mut fx = Effects::default();
+        let names: Vec<String> = match &raw.effects {
+            None => vec![],
+            Some(Value::Array(a)) => a
+                .iter()
+                .map(|v| {
+                    v.as_str().map(str::to_string).ok_or_else(|| {
+                        f.out_of_range(
+                            "effects",
+                            v.to_string(),
+                            &format!("names from: {}", EFFECTS.join(", ")),
+                        )
+                    })
+                })
+                .collect::<Result<_, _>>()?,
+            Some(other) => {
+                return Err(f.out_of_range(
+                    "effects",
+                    other.to_string(),
+                    &format!("a list of names from: {}", EFFECTS.join(", ")),
+                ));
+            }
+        };
+        for name in &names {
+            if !fx.switch_on(name) {
+                let near = EFFECTS
+                    .iter()
+                    .find(|e| crate::models::params::edit_distance(e, name) <= 2)
+                    .map(|e| format!(" (did you mean \"{e}\"?)"))
+                    .unwrap_or_default();
+                return Err(f.out_of_range(
+                    "effects",
+                    format!("\"{name}\"{near}"),
+                    &format!("names from: {}", EFFECTS.join(", ")),
+                ));
+            }
+        }
+        let needs_plate = fx.winkler
+            || fx.pasternak
+            || fx.damper
+            || fx.membrane
+            || fx.inplane
+            || fx.relative_indentation;
+        if needs_plate && !fx.plate {
+            return Err(f.out_of_range(
+                "effects",
+                format!("{names:?}"),
+                "winkler, pasternak, damper, membrane, inplane and relative-indentation act on the plate: add \"plate\"",
+            ));
+        }
+        let imp: RawImpactor = f.raw(f.table(raw.impactor.as_ref(), "impactor")?, "impactor")?;
+        let mat: RawMaterial = f.raw(f.table(raw.material.as_ref(), "material")?, "material")?;
+        // an optional table: required when its effect is on, checked for unknown keys always
+        fn opt<T: serde::de::DeserializeOwned + Default>(
+            f: &crate::models::params::Fields,
+            v: Option<&Value>,
+            name: &str,
+            on: bool,
+        ) -> Result<T, SceneError> {
+            if on {
+                return f.raw(f.table(v, name)?, name);
+            }
+            match v {
+                Some(Value::Table(t)) => f.raw(t, name),
+                _ => Ok(T::default()),
+            }
+        }
+        let plate: RawPlate = opt(&f, raw.plate.as_ref(), "plate", fx.plate)?;
+        let found: RawFoundation = opt(
+            &f,
+            raw.foundation.as_ref(),
+            "foundation",
+            fx.winkler || fx.pasternak || fx.damper,
+        )?;
+        let inpl: RawInplane = opt(&f, raw.inplane.as_ref(), "inplane", fx.inplane)?;
+        let pos = |v: f64| v > 0.0;
+        let need =
+            |on: bool, v: &Option<Value>, field: &str, ok: &dyn Fn(f64) -> bool, allowed: &str| {
+                if on {
+                    f.num(v.as_ref(), field, None, ok, allowed)
+                } else {
+                    f.num(v.as_ref(), field, Some(0.0), |_| true, allowed)
+                }
+            };
+        if fx.plate {
+            if let Some(m) = &plate.modes {
+                let arr = m.as_array().ok_or_else(|| {
+                    f.out_of_range(
+                        "plate.modes",
+                        m.to_string(),
+                        "a list of odd pairs, e.g. [[1, 1], [1, 3]]",
+                    )
+                })?;
+                for pair in arr {
+                    let v: Vec<i64> = pair
+                        .as_array()
+                        .map(|p| p.iter().filter_map(|x| x.as_integer()).collect())
+                        .unwrap_or_default();
+                    if v.len() != 2 || v.iter().any(|x| *x < 1 || x % 2 == 0 || *x > 99) {
+                        return Err(f.out_of_range(
+                            "plate.modes",
+                            pair.to_string(),
+                            "pairs [m, n] of odd integers 1..99",
+                        ));
+                    }
+                    fx.modes.push((v[0] as u32, v[1] as u32));
+                }
+            }
+            if fx.modes.is_empty() {
+                fx.modes.push((1, 1));
+            }
+        }
+        let params = Params {
+            mass: f.num(
+                imp.mass.as_ref(),
+                "impactor.mass",
+                None,
+                pos,
+                "mass > 0 (kg)",
+            )?,
+            theta_deg: f.num(
+                imp.theta_deg.as_ref(),
+                "impactor.theta_deg",
+                None,
+                |v| v > 0.0 && v < 90.0,
+                "0 < theta_deg < 90 (degrees)",
+            )?,
+            v0: f.num(
+                imp.v0.as_ref(),
+                "impactor.v0",
+                None,
+                pos,
+                "v0 > 0 (m/s), toward the plate",
+            )?,
+            e: f.num(mat.E.as_ref(), "material.E", None, pos, "E > 0 (Pa)")?,
+            nu: f.num(
+                mat.nu.as_ref(),
+                "material.nu",
+                None,
+                |v| v > -1.0 && v < 0.5,
+                "-1 < nu < 0.5",
+            )?,
+            eta: need(
+                fx.viscoelastic,
+                &mat.eta,
+                "material.eta",
+                &pos,
+                "eta > 0 (Pa s) with \"viscoelastic\"",
+            )?,
+            a: need(
+                fx.plate,
+                &plate.a,
+                "plate.a",
+                &pos,
+                "a > 0 (m) with \"plate\"",
+            )?,
+            b: need(
+                fx.plate,
+                &plate.b,
+                "plate.b",
+                &pos,
+                "b > 0 (m) with \"plate\"",
+            )?,
+            h: need(
+                fx.plate,
+                &plate.h,
+                "plate.h",
+                &pos,
+                "h > 0 (m) with \"plate\"",
+            )?,
+            rho: need(
+                fx.plate,
+                &plate.rho,
+                "plate.rho",
+                &pos,
+                "rho > 0 (kg/m^3) with \"plate\"",
+            )?,
+            kw: need(
+                fx.winkler,
+                &found.kw,
+                "foundation.kw",
+                &|v| v >= 0.0,
+                "kw >= 0 (N/m^3) with \"winkler\"",
+            )?,
+            kg: need(
+                fx.pasternak,
+                &found.kg,
+                "foundation.kg",
+                &|v| v >= 0.0,
+                "kg >= 0 (N/m) with \"pasternak\"",
+            )?,
+            ct: need(
+                fx.damper,
+                &found.ct,
+                "foundation.ct",
+                &|v| v >= 0.0,
+                "ct >= 0 (N s/m^3) with \"damper\"",
+            )?,
+            p1: need(
+                fx.inplane,
+                &inpl.p1,
+                "inplane.p1",
+                &|_| true,
+                "p1 (N/m) with \"inplane\"",
+            )?,
+            p2: need(
+                fx.inplane,
+                &inpl.p2,
+                "inplane.p2",
+                &|_| true,
+                "p2 (N/m) with \"inplane\"",
+            )?,
+        };
+        Ok(ConePlateScene {
+            params,
+            effects: fx,
+            variant,
+            law,
+            solve: f.solve(raw.solve.as_ref(), "contact-end", true)?,
+        })
+    }
+
+    fn run(&self) -> Result<(ConePlateOutcome, crate::models::Curves), crate::models::RunError> {
+        use crate::models::RunError;
+        let s = self;
+        let sys =
+            ConePlate::new(s.params.clone(), s.effects.clone(), s.variant, s.law).map_err(|e| {
+                RunError::BadArgument {
+                    arg: "scene".into(),
+                    message: e.to_string(),
+                }
+            })?;
+        let r = run(
+            &sys,
+            s.solve.t_end,
+            &s.solve.samples,
+            s.solve.rtol,
+            s.solve.atol,
+            s.solve.method,
+        )
+        .map_err(|e| {
+            let (alpha, _) = sys.rates();
+            let memory = s.law == Law::ConstantBulk || s.variant == Variant::AsPrinted;
+            if s.effects.viscoelastic && memory && alpha < 0.0 {
+                RunError::NotPassive {
+                    source: e,
+                    rate: -alpha,
+                }
+            } else {
+                RunError::Integrate(e)
+            }
+        })?;
+        let z: Vec<(f64, f64)> = r.trajectory.iter().map(|(t, y)| (*t, y[0])).collect();
+        let p: Vec<(f64, f64)> = r
+            .trajectory
+            .iter()
+            .map(|(t, y)| {
+                (
+                    *t,
+                    sys.contact_force(y).max(0.0) / r.peak_force.max(f64::MIN_POSITIVE)
+                        * r.max_indentation,
+                )
+            })
+            .collect();
+        let mut curves = vec![
+            ("z (m)".to_string(), z),
+            ("P scaled to max z".to_string(), p),
+        ];
+        if s.effects.plate {
+            let f: Vec<(f64, f64)> = r
+                .trajectory
+                .iter()
+                .map(|(t, y)| (*t, sys.centre_deflection(y).unwrap_or(0.0)))
+                .collect();
+            curves.push(("w(a/2, b/2) (m)".to_string(), f));
+        }
+        let out = ConePlateOutcome {
+            model: Self::NAME,
+            variant: if s.variant == Variant::AsPrinted {
+                "as-printed"
+            } else {
+                "corrected"
+            },
+            viscoelastic_law: if s.law == Law::ConstantBulk {
+                "constant-bulk"
+            } else {
+                "constant-poisson"
+            },
+            effects: s.effects.names(),
+            modes: s.effects.modes.clone(),
+            state_dim: sys.state_dim(),
+            method: s.solve.method.name(),
+            samples: r.samples,
+            contact: crate::models::ContactOutcome {
+                ended: r.ended,
+                duration: r.duration,
+                peak_force: r.peak_force,
+                max_indentation: r.max_indentation,
+            },
+            energy: EnergyOutcome {
+                initial: r.energy_initial,
+                final_: r.energy_final,
+                dissipated: r.dissipated,
+                operator_work: r.operator_work,
+                operator_work_min: r.operator_work_min,
+                injected: r.injected,
+                balance_error: r.balance_error,
+            },
+            stats: r.stats,
+            warnings: r.warnings,
+        };
+        Ok((out, curves))
+    }
+}
