@@ -106,6 +106,35 @@ fn load_cone(c: &ClaimSpec, path: &Path, what: &str) -> Result<Box<ConePlateScen
     }
 }
 
+/// The table's rows: each truncation's error at 1e-5 s, 1e-4 s and the window's end, its
+/// observed order in t, and where it stays within 1e-6.
+fn error_rows(curves: &[Curve], t_max: f64) -> String {
+    let mut md = String::new();
+    let at = |cv: &Curve, t: f64| {
+        cv.errors
+            .iter()
+            .min_by(|a, b| (a.0 / t).ln().abs().total_cmp(&(b.0 / t).ln().abs()))
+            .map_or(f64::NAN, |x| x.1)
+    };
+    for cv in curves {
+        md.push_str(&format!(
+            "| {} | {} | {} | {} | {} | {} |\n",
+            cv.name,
+            sig3(at(cv, 1e-5)),
+            sig3(at(cv, 1e-4)),
+            sig3(at(cv, t_max)),
+            cv.order()
+                .map_or("round-off".to_string(), |o| format!("{o:.2}")),
+            if cv.window() > 0.0 {
+                format!("t <= {}", sig3(cv.window()))
+            } else {
+                "none".into()
+            }
+        ));
+    }
+    md
+}
+
 /// Runs the comparison for the scene at `path`.
 pub fn check(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outcome, VerifyError> {
     let scene_err = |m: String| VerifyError::Scene {
@@ -228,28 +257,7 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outcome,
         },
         sig3(t_max)
     );
-    let at = |cv: &Curve, t: f64| {
-        cv.errors
-            .iter()
-            .min_by(|a, b| (a.0 / t).ln().abs().total_cmp(&(b.0 / t).ln().abs()))
-            .map_or(f64::NAN, |x| x.1)
-    };
-    for cv in &curves {
-        md.push_str(&format!(
-            "| {} | {} | {} | {} | {} | {} |\n",
-            cv.name,
-            sig3(at(cv, 1e-5)),
-            sig3(at(cv, 1e-4)),
-            sig3(at(cv, t_max)),
-            cv.order()
-                .map_or("round-off".to_string(), |o| format!("{o:.2}")),
-            if cv.window() > 0.0 {
-                format!("t <= {}", sig3(cv.window()))
-            } else {
-                "none".into()
-            }
-        ));
-    }
+    md.push_str(&error_rows(&curves, t_max));
     let svg_name = "000_series_error.svg".to_string();
     md.push_str(&format!(
         "\n![series error against t]({svg_name})\n\n*Figure: claim {}, the relative error of the series against the integration (data: 000_series_error.csv).*\n",

@@ -230,6 +230,58 @@ pub enum BuildError {
     Eval(#[from] crate::algebra::eval::EvalError),
 }
 
+/// The values of the symbols of the exact Galerkin coefficients (16): the material, the
+/// plate, the effects that are on (the others' coefficients 0) and $\tan\theta$.
+fn galerkin_values(p: &Params, effects: &Effects, lambda: f64, zeta: f64) -> BTreeMap<String, f64> {
+    [
+        ("E", p.e),
+        ("eta", p.eta),
+        ("nu", p.nu),
+        ("lambda", lambda),
+        ("zeta", zeta),
+        ("a", p.a),
+        ("b", p.b),
+        ("h", p.h),
+        ("rho", p.rho),
+        ("Kw", if effects.winkler { p.kw } else { 0.0 }),
+        ("KG", if effects.pasternak { p.kg } else { 0.0 }),
+        ("CT", if effects.damper { p.ct } else { 0.0 }),
+        ("p1", if effects.inplane { p.p1 } else { 0.0 }),
+        ("p2", if effects.inplane { p.p2 } else { 0.0 }),
+        ("tan_theta", p.theta_deg.to_radians().tan()),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_string(), v))
+    .collect()
+}
+
+/// A plate mode with the coefficients of (16) as printed (000): $A_1$, $A_2$ inside the
+/// operator bracket, $A_4$, $A_3$, and with the membrane $A_5$, $A_6$; the load sign 1.
+fn printed_mode(
+    printed: &[crate::algebra::ratfunc::RatFunc],
+    vals: &BTreeMap<String, f64>,
+    membrane: bool,
+    idx: usize,
+) -> Result<Mode, BuildError> {
+    let ev = |k: usize| ratfunc_f64(&printed[k], vals);
+    let (a1, a2) = (ev(0)?, ev(1)?);
+    Ok(Mode {
+        sign: 1.0,
+        a4: ev(3)?,
+        a3: ev(2)?,
+        ct: 0.0,
+        bending: Bending::Memory {
+            k: 1.0,
+            w0: a1,
+            w1: a2,
+        },
+        cubic_el: if membrane { ev(4)? } else { 0.0 },
+        cubic_visc: if membrane { ev(5)? } else { 0.0 },
+        idx,
+        idx_op: Some(idx + 2),
+    })
+}
+
 impl ConePlate {
     /// Builds the system for the named effects.
     pub fn new(
@@ -255,27 +307,7 @@ impl ConePlate {
             ));
         }
         let mut dim = 2;
-        // values for the exact Galerkin coefficients
-        let mut vals: BTreeMap<String, f64> = BTreeMap::new();
-        for (k, v) in [
-            ("E", p.e),
-            ("eta", p.eta),
-            ("nu", p.nu),
-            ("lambda", lambda),
-            ("zeta", zeta),
-            ("a", p.a),
-            ("b", p.b),
-            ("h", p.h),
-            ("rho", p.rho),
-            ("Kw", if effects.winkler { p.kw } else { 0.0 }),
-            ("KG", if effects.pasternak { p.kg } else { 0.0 }),
-            ("CT", if effects.damper { p.ct } else { 0.0 }),
-            ("p1", if effects.inplane { p.p1 } else { 0.0 }),
-            ("p2", if effects.inplane { p.p2 } else { 0.0 }),
-            ("tan_theta", p.theta_deg.to_radians().tan()),
-        ] {
-            vals.insert(k.into(), v);
-        }
+        let vals = galerkin_values(p, &effects, lambda, zeta);
         // contact law
         let contact_coef = if variant == Variant::AsPrinted && effects.plate {
             warnings.push(
@@ -398,30 +430,7 @@ impl ConePlate {
                     }
                     Variant::AsPrinted => {
                         dim += 2;
-                        let (a1, a2) = (ev(&printed[0])?, ev(&printed[1])?);
-                        Mode {
-                            sign: 1.0,
-                            a4: ev(&printed[3])?,
-                            a3: ev(&printed[2])?,
-                            ct: 0.0,
-                            bending: Bending::Memory {
-                                k: 1.0,
-                                w0: a1,
-                                w1: a2,
-                            },
-                            cubic_el: if effects.membrane {
-                                ev(&printed[4])?
-                            } else {
-                                0.0
-                            },
-                            cubic_visc: if effects.membrane {
-                                ev(&printed[5])?
-                            } else {
-                                0.0
-                            },
-                            idx,
-                            idx_op: Some(idx + 2),
-                        }
+                        printed_mode(&printed, &vals, effects.membrane, idx)?
                     }
                 };
                 has_diss |= mode.ct != 0.0

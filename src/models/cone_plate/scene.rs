@@ -140,6 +140,65 @@ pub struct ConePlateOutcome {
     pub warnings: Vec<String>,
 }
 
+/// The scene's `effects`: known names only (a near miss is suggested), and the plate's effects
+/// only with the plate.
+fn read_effects(
+    f: &crate::models::params::Fields,
+    raw: &RawScene,
+) -> Result<Effects, crate::models::SceneError> {
+    let mut fx = Effects::default();
+    let names: Vec<String> = match &raw.effects {
+        None => vec![],
+        Some(Value::Array(a)) => a
+            .iter()
+            .map(|v| {
+                v.as_str().map(str::to_string).ok_or_else(|| {
+                    f.out_of_range(
+                        "effects",
+                        v.to_string(),
+                        &format!("names from: {}", EFFECTS.join(", ")),
+                    )
+                })
+            })
+            .collect::<Result<_, _>>()?,
+        Some(other) => {
+            return Err(f.out_of_range(
+                "effects",
+                other.to_string(),
+                &format!("a list of names from: {}", EFFECTS.join(", ")),
+            ));
+        }
+    };
+    for name in &names {
+        if !fx.switch_on(name) {
+            let near = EFFECTS
+                .iter()
+                .find(|e| crate::models::params::edit_distance(e, name) <= 2)
+                .map(|e| format!(" (did you mean \"{e}\"?)"))
+                .unwrap_or_default();
+            return Err(f.out_of_range(
+                "effects",
+                format!("\"{name}\"{near}"),
+                &format!("names from: {}", EFFECTS.join(", ")),
+            ));
+        }
+    }
+    let needs_plate = fx.winkler
+        || fx.pasternak
+        || fx.damper
+        || fx.membrane
+        || fx.inplane
+        || fx.relative_indentation;
+    if needs_plate && !fx.plate {
+        return Err(f.out_of_range(
+            "effects",
+            format!("{names:?}"),
+            "winkler, pasternak, damper, membrane, inplane and relative-indentation act on the plate: add \"plate\"",
+        ));
+    }
+    Ok(fx)
+}
+
 impl crate::models::Model for ConePlateScene {
     const NAME: &'static str = "cone-plate";
     type Outcome = ConePlateOutcome;
@@ -172,56 +231,7 @@ impl crate::models::Model for ConePlateScene {
             "constant-poisson" => Law::ConstantPoisson,
             _ => Law::ConstantBulk,
         };
-        let mut fx = Effects::default();
-        let names: Vec<String> = match &raw.effects {
-            None => vec![],
-            Some(Value::Array(a)) => a
-                .iter()
-                .map(|v| {
-                    v.as_str().map(str::to_string).ok_or_else(|| {
-                        f.out_of_range(
-                            "effects",
-                            v.to_string(),
-                            &format!("names from: {}", EFFECTS.join(", ")),
-                        )
-                    })
-                })
-                .collect::<Result<_, _>>()?,
-            Some(other) => {
-                return Err(f.out_of_range(
-                    "effects",
-                    other.to_string(),
-                    &format!("a list of names from: {}", EFFECTS.join(", ")),
-                ));
-            }
-        };
-        for name in &names {
-            if !fx.switch_on(name) {
-                let near = EFFECTS
-                    .iter()
-                    .find(|e| crate::models::params::edit_distance(e, name) <= 2)
-                    .map(|e| format!(" (did you mean \"{e}\"?)"))
-                    .unwrap_or_default();
-                return Err(f.out_of_range(
-                    "effects",
-                    format!("\"{name}\"{near}"),
-                    &format!("names from: {}", EFFECTS.join(", ")),
-                ));
-            }
-        }
-        let needs_plate = fx.winkler
-            || fx.pasternak
-            || fx.damper
-            || fx.membrane
-            || fx.inplane
-            || fx.relative_indentation;
-        if needs_plate && !fx.plate {
-            return Err(f.out_of_range(
-                "effects",
-                format!("{names:?}"),
-                "winkler, pasternak, damper, membrane, inplane and relative-indentation act on the plate: add \"plate\"",
-            ));
-        }
+        let mut fx = read_effects(&f, &raw)?;
         let imp: RawImpactor = f.raw(f.table(raw.impactor.as_ref(), "impactor")?, "impactor")?;
         let mat: RawMaterial = f.raw(f.table(raw.material.as_ref(), "material")?, "material")?;
         // an optional table: required when its effect is on, checked for unknown keys always
