@@ -127,18 +127,26 @@ pub(super) fn pendulum_wall(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcom
     }
 }
 
+/// The claim's error with a message.
+fn claim_error(c: &ClaimSpec, message: String) -> VerifyError {
+    VerifyError::BadClaim {
+        id: c.id.clone(),
+        message,
+    }
+}
+
+/// The energy loss of (2.15) for rho and sigma (the model of Fig. 2 at rtol 1e-10).
+fn fig2_loss(c: &ClaimSpec, rho: f64, sigma: f64) -> Result<f64, VerifyError> {
+    crate::models::pendulum_wall::impact(rho, sigma, 1e-10)
+        .map(|r| r.loss)
+        .map_err(|e| claim_error(c, e.to_string()))
+}
+
 /// Fig. 2 and (2.15), part `condition`.
 fn pendulum_wall_condition(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
-    use crate::models::pendulum_wall::{PendulumWall, impact as pimpact};
-    let bad = |m: String| VerifyError::BadClaim {
-        id: c.id.clone(),
-        message: m,
-    };
-    let loss = |rho: f64, sigma: f64| {
-        pimpact(rho, sigma, 1e-10)
-            .map(|r| r.loss)
-            .map_err(|e| bad(e.to_string()))
-    };
+    use crate::models::pendulum_wall::PendulumWall;
+    let bad = |m: String| claim_error(c, m);
+    let loss = |rho: f64, sigma: f64| fig2_loss(c, rho, sigma);
     Ok({
         // the special geometry has F_C perpendicular to GO and (GO, GC) = -1: (2.10) is rho = 1
         let peak = |rho: f64| -> Result<f64, VerifyError> {
@@ -232,16 +240,7 @@ fn pendulum_wall_derivation(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcom
 
 /// Fig. 2 and (2.15), part `figure`.
 fn pendulum_wall_figure(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
-    use crate::models::pendulum_wall::impact as pimpact;
-    let bad = |m: String| VerifyError::BadClaim {
-        id: c.id.clone(),
-        message: m,
-    };
-    let loss = |rho: f64, sigma: f64| {
-        pimpact(rho, sigma, 1e-10)
-            .map(|r| r.loss)
-            .map_err(|e| bad(e.to_string()))
-    };
+    let loss = |rho: f64, sigma: f64| fig2_loss(c, rho, sigma);
     Ok({
         let sigmas: Vec<f64> = (1..=250).map(|k| 0.02 * k as f64).collect();
         let mut lines = Vec::new();
@@ -326,16 +325,7 @@ fn pendulum_wall_figure(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, V
 
 /// Fig. 2 and (2.15), part `fifteen`.
 fn pendulum_wall_fifteen(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
-    use crate::models::pendulum_wall::impact as pimpact;
-    let bad = |m: String| VerifyError::BadClaim {
-        id: c.id.clone(),
-        message: m,
-    };
-    let loss = |rho: f64, sigma: f64| {
-        pimpact(rho, sigma, 1e-10)
-            .map(|r| r.loss)
-            .map_err(|e| bad(e.to_string()))
-    };
+    let loss = |rho: f64, sigma: f64| fig2_loss(c, rho, sigma);
     Ok({
         let mut worst: Vec<String> = Vec::new();
         let mut ok = true;
