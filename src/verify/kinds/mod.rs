@@ -71,7 +71,7 @@ pub(crate) const KIND_TABLE: &[Kind] = &[
     },
     Kind {
         name: "model",
-        validate: |k, c| k.validate_scene_kind(c),
+        validate: |k, c| k.validate_scene_kind(c, true, None),
         check: |k, c, _| k.model(c),
     },
     Kind {
@@ -81,12 +81,12 @@ pub(crate) const KIND_TABLE: &[Kind] = &[
     },
     Kind {
         name: "probability",
-        validate: |k, c| k.validate_scene_kind(c),
+        validate: |k, c| k.validate_scene_kind(c, false, Some("event")),
         check: |k, c, _| k.probability(c),
     },
     Kind {
         name: "map",
-        validate: |k, c| k.validate_scene_kind(c),
+        validate: |k, c| k.validate_scene_kind(c, true, c.require.as_ref().map(|_| "require")),
         check: |k, c, _| k.map(c),
     },
     Kind {

@@ -136,7 +136,7 @@ impl Checked<'_> {
     /// bound on formulas alone whose samples are the symbols' values.
     pub(super) fn validate_bound(&self, c: &ClaimSpec) -> Result<(), VerifyError> {
         if c.scene.is_some() {
-            return self.validate_scene_kind(c);
+            return self.validate_scene_kind(c, false, Some("require"));
         }
         let f = self.file;
         // a bound on formulas alone: the samples are the symbols' values
@@ -173,20 +173,18 @@ impl Checked<'_> {
         Ok(())
     }
 
-    /// Validates a claim of kind `model`, `bound`, `probability`, `map`.
-    pub(super) fn validate_scene_kind(&self, c: &ClaimSpec) -> Result<(), VerifyError> {
+    /// Validates a claim of a kind that runs a scene (`model`, `bound`, `probability`, `map`):
+    /// `gridded` for a grid (`vary`) rather than samples, `ineq_field` the key of its inequality
+    /// if it has one (bound `require`, probability `event`, a map of a region `require`).
+    pub(super) fn validate_scene_kind(
+        &self,
+        c: &ClaimSpec,
+        gridded: bool,
+        ineq_field: Option<&'static str>,
+    ) -> Result<(), VerifyError> {
         let f = self.file;
         let path = self.scene_path(c)?;
         let (_, mut table) = self.scene_table(c)?;
-        let gridded = c.kind == "model" || c.kind == "map";
-        // which inequality a claim has, if any: bound `require`, probability `event`, a map
-        // of a region `require`
-        let ineq_field = match c.kind.as_str() {
-            "bound" => Some("require"),
-            "probability" => Some("event"),
-            "map" if c.require.is_some() => Some("require"),
-            _ => None,
-        };
         if gridded {
             if ineq_field.is_none() {
                 required(
