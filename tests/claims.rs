@@ -282,7 +282,12 @@ fn bad_claims_exit_2_naming_file_claim_and_key_and_write_nothing() {
         (
             "unknown key",
             "[[claim]]\nid = \"t.bad\"\nequation = \"(1)\"\nquote = \"q\"\nkind = \"dimension\"\nprinted = \"x\"\nexpected = \"m\"\n".into(),
-            "unknown field `expected`",
+            "claim t.bad: expected: kind `dimension` does not take this key; allowed: `printed`, `expect`, `where`",
+        ),
+        (
+            "a key of another kind",
+            model("scene = \"hertz.toml\"\nquantity = \"contact.duration\"\ncorrected = \"x\""),
+            "claim t.bad: corrected: kind `model` does not take this key",
         ),
     ];
     for (case, body, want) in &table {

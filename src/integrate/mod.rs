@@ -27,6 +27,7 @@
 pub mod dop853;
 mod dop853_tableau;
 pub mod dopri5;
+mod erk;
 pub mod events;
 pub mod radau5;
 pub mod stats;

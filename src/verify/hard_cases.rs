@@ -775,11 +775,16 @@ pub fn bad_table(bad: &[BadInput]) -> String {
     out
 }
 
-/// Checks one claim of the hard-case "paper" (`verify/hard_cases.toml`): `hard-case` (part: the
-/// case id) or `bad-input`. The catalogue runs once per process.
-pub fn check(
+/// The named checks of the hard cases, by the name a claim's `check` gives.
+pub const CHECKS: &[(&str, super::NamedFn)] = &[
+    ("hard-case", |n, p, c| hard_case(p, c, n.root)),
+    ("bad-input", |n, p, c| bad_input(p, c, n.root)),
+];
+
+/// One case of the catalogue (the claim's `part` names it); the first carries the table.
+fn hard_case(
     paper: &super::PaperClaims,
-    c: &super::ClaimSpec,
+    c: &super::kinds::NamedCheck,
     root: &Path,
 ) -> Result<super::Outcome, super::VerifyError> {
     static CASES: std::sync::OnceLock<Vec<HardCase>> = std::sync::OnceLock::new();
@@ -787,50 +792,51 @@ pub fn check(
         id: c.id.clone(),
         message: m,
     };
-    match c.check.as_str() {
-        "hard-case" => {
-            let cases = CASES.get_or_init(|| catalogue(root));
-            let id = c.part.as_deref().unwrap_or_default();
-            let h = cases
-                .iter()
-                .find(|h| h.id == id)
-                .ok_or_else(|| bad(format!("no hard case `{id}` in the catalogue")))?;
-            let mut o = super::outcome(
-                paper,
-                c,
-                super::holds(h.ok),
-                format!(
-                    "{}. Hard because {}. Method {}; steps {}; error {} (tolerance {}) against {}. Outcome: {}",
-                    h.what,
-                    h.hard,
-                    h.method,
-                    h.steps.map_or("-".into(), |s| s.to_string()),
-                    h.error.map_or("-".into(), |e| format!("{e:.2e}")),
-                    h.tolerance.map_or("-".into(), |e| format!("{e:.0e}")),
-                    h.reference,
-                    h.outcome
-                ),
-            );
-            if id == cases.first().map_or("", |h| h.id.as_str()) {
-                o.extra_md = Some(table(cases));
-            }
-            Ok(o)
-        }
-        "bad-input" => {
-            let b = bad_inputs(root);
-            let n_ok = b.iter().filter(|x| x.ok).count();
-            let mut o = super::outcome(
-                paper,
-                c,
-                super::holds(n_ok == b.len()),
-                format!(
-                    "{} bad scenes parsed: {n_ok} got one message naming the file, the field and what is allowed",
-                    b.len()
-                ),
-            );
-            o.extra_md = Some(bad_table(&b));
-            Ok(o)
-        }
-        other => Err(bad(format!("unknown check `{other}`"))),
+    let cases = CASES.get_or_init(|| catalogue(root));
+    let id = c.part.as_deref().unwrap_or_default();
+    let h = cases
+        .iter()
+        .find(|h| h.id == id)
+        .ok_or_else(|| bad(format!("no hard case `{id}` in the catalogue")))?;
+    let mut o = super::outcome(
+        paper,
+        c,
+        super::holds(h.ok),
+        format!(
+            "{}. Hard because {}. Method {}; steps {}; error {} (tolerance {}) against {}. Outcome: {}",
+            h.what,
+            h.hard,
+            h.method,
+            h.steps.map_or("-".into(), |s| s.to_string()),
+            h.error.map_or("-".into(), |e| format!("{e:.2e}")),
+            h.tolerance.map_or("-".into(), |e| format!("{e:.0e}")),
+            h.reference,
+            h.outcome
+        ),
+    );
+    if id == cases.first().map_or("", |h| h.id.as_str()) {
+        o.extra_md = Some(table(cases));
     }
+    Ok(o)
+}
+
+/// Bad scenes get one message naming the file, the field and what is allowed.
+fn bad_input(
+    paper: &super::PaperClaims,
+    c: &super::kinds::NamedCheck,
+    root: &Path,
+) -> Result<super::Outcome, super::VerifyError> {
+    let b = bad_inputs(root);
+    let n_ok = b.iter().filter(|x| x.ok).count();
+    let mut o = super::outcome(
+        paper,
+        c,
+        super::holds(n_ok == b.len()),
+        format!(
+            "{} bad scenes parsed: {n_ok} got one message naming the file, the field and what is allowed",
+            b.len()
+        ),
+    );
+    o.extra_md = Some(bad_table(&b));
+    Ok(o)
 }

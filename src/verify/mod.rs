@@ -45,122 +45,69 @@ pub struct PaperClaims {
     pub source: PathBuf,
 }
 
-/// One claim as listed in `verify/`.
-#[derive(Clone, Debug, Deserialize)]
+/// What every claim has, whatever its kind.
+#[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct ClaimSpec {
+pub struct Head {
     /// Stable id, e.g. `000.eq22.a1.t2`.
     pub id: String,
     /// Equation number as printed, "(22)", or "Fig. 2".
     pub equation: String,
     /// One-line quote of what the paper states.
     pub quote: String,
-    /// How it is checked: `identity`, `dimension`, `model`, `bound` (generic, [`kinds`]) or
-    /// `check` (a named Rust check).
+    /// How it is checked: a kind of [`kinds::BUILTIN`] (`identity`, `model`, ..., or `check`,
+    /// a named Rust check).
     pub kind: String,
-    /// For `kind = "check"`: which Rust check computes it.
-    #[serde(default)]
-    pub check: String,
-    /// The formula as printed, in the paper's notation (`identity`, `dimension`, `model`).
-    #[serde(default)]
-    pub printed: Option<String>,
-    /// Printed equations (their right-hand sides, in order), for checks of systems of equations.
-    #[serde(default)]
-    pub printed_equations: Vec<String>,
-    /// A printed matrix (rows of formulas), for checks of matrix equations.
-    #[serde(default)]
-    pub printed_matrix: Vec<Vec<String>>,
-    /// `identity`: the derived side, a formula or `@name[k=v,...]` (a derivation of the algebra).
-    #[serde(default)]
-    pub derived: Option<String>,
-    /// `identity`: a corrected formula; when the printed one fails and this one holds, the
-    /// verdict is `holds-with-correction`.
-    #[serde(default)]
-    pub corrected: Option<String>,
-    /// `identity` of exponential polynomials: compare the first `taylor` Taylor coefficients at
-    /// t = 0 (the values of the function and its derivatives there) instead of the functions.
-    #[serde(default)]
-    pub taylor: Option<u32>,
-    /// `identity`: the time symbol of an exponential polynomial (default `t`).
-    #[serde(default)]
-    pub variable: Option<String>,
-    /// `dimension`: the expected unit; `probability`: the claim on the probability
-    /// (`"<= 0.15"`, `">= 0.9"`).
-    #[serde(default)]
-    pub expect: Option<String>,
-    /// `model`: the dotted path of the outcome quantity compared.
-    #[serde(default)]
-    pub quantity: Option<String>,
-    /// `model`, `bound`: scene fields set before anything is varied or sampled (a number or a
-    /// string: `{ "contact.law" = "newton" }`).
-    #[serde(default)]
-    pub set: BTreeMap<String, toml::Value>,
-    /// Definitions for this claim only (`alpha = "-2*(nu + 1)*lambda/(1 - 2*nu)"`): expanded in
-    /// its formulas before the file's definitions, so they may use those and override symbols.
-    #[serde(default, rename = "where")]
-    pub where_: BTreeMap<String, String>,
-    /// `model`, `bound`: formula symbol -> scene field.
-    #[serde(default)]
-    pub bind: BTreeMap<String, String>,
-    /// `model`: the grid, `FIELD=START:STOP:COUNT[:log]` per axis.
-    #[serde(default)]
-    pub vary: Vec<String>,
-    /// `model`: the largest relative difference allowed.
-    #[serde(default)]
-    pub rtol: Option<f64>,
-    /// `bound`: scene field -> distribution (`uniform(a, b)`, `loguniform(a, b)`,
-    /// `normal(mu, sigma)`).
-    #[serde(default)]
-    pub sample: BTreeMap<String, String>,
-    /// `bound`: number of samples.
-    #[serde(default)]
-    pub count: Option<usize>,
-    /// `bound`: seed of the generator.
-    #[serde(default)]
-    pub seed: Option<u64>,
-    /// `bound`: the inequality every sample must satisfy (`map`: the region where it holds).
-    #[serde(default)]
-    pub require: Option<String>,
-    /// `probability`: the inequality whose probability is estimated.
-    #[serde(default)]
-    pub event: Option<String>,
-    /// `probability`: the confidence of the Clopper-Pearson interval (default 0.95).
-    #[serde(default)]
-    pub confidence: Option<f64>,
-    /// Plate modes `(m, n)` to check, where relevant.
-    #[serde(default)]
-    pub modes: Vec<[u32; 2]>,
-    /// Galerkin coefficient name, where relevant.
-    #[serde(default)]
-    pub coefficient: Option<String>,
-    /// Part of a series term, where relevant.
-    #[serde(default)]
-    pub part: Option<String>,
-    /// Highest power for identity checks.
-    #[serde(default)]
-    pub k_max: Option<u32>,
-    /// Scene file used: for `kind = "check"` relative to the repository root, for the generic
-    /// kinds relative to the claims file.
-    #[serde(default)]
-    pub scene: Option<String>,
-    /// `definition`: the symbol the printed formula defines (its unit must be the formula's).
-    #[serde(default)]
-    pub defines: Option<String>,
-    /// `definition`: identities `[printed, derived]` from the equations that use the definition;
-    /// each must hold with the definition substituted.
-    #[serde(default)]
-    pub agrees: Vec<[String; 2]>,
-    /// Any kind: what the verdict assumes beyond the text; a `holds` becomes
-    /// `holds-with-assumption` and the detail names it.
+    /// What the verdict assumes beyond the text; a `holds` becomes `holds-with-assumption` and
+    /// the detail names it.
     #[serde(default)]
     pub assumption: Option<String>,
-    /// `identity` compared in floating point: an absolute tolerance besides the relative 1e-12,
-    /// for a side that should be zero (`int(r^2*sin(lam), lam, 0, 2*pi)`).
-    #[serde(default)]
-    pub atol: Option<f64>,
-    /// `not-checkable`: exactly what is missing from the text.
-    #[serde(default)]
-    pub reason: Option<String>,
+}
+
+impl Head {
+    /// The keys of a head; every other key of a claim belongs to its kind.
+    const KEYS: [&str; 5] = ["id", "equation", "quote", "kind", "assumption"];
+}
+
+/// One claim as listed in `verify/`: its [`Head`] and the keys of its kind, which the kind's
+/// spec reads ([`kinds::Kind::Spec`], `deny_unknown_fields`).
+#[derive(Clone, Debug)]
+pub struct ClaimSpec {
+    /// The claim's head.
+    pub head: Head,
+    /// The kind's keys, as written.
+    pub keys: toml::Table,
+}
+
+impl std::ops::Deref for ClaimSpec {
+    type Target = Head;
+    fn deref(&self) -> &Head {
+        &self.head
+    }
+}
+
+impl<'de> Deserialize<'de> for ClaimSpec {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        let mut keys = toml::Table::deserialize(d)?;
+        let mut head = toml::Table::new();
+        for k in Head::KEYS {
+            if let Some(v) = keys.remove(k) {
+                head.insert(k.to_string(), v);
+            }
+        }
+        let id = head
+            .get("id")
+            .and_then(|v| v.as_str())
+            .unwrap_or("?")
+            .to_string();
+        let head: Head = toml::Value::Table(head)
+            .try_into()
+            .map_err(|e: toml::de::Error| {
+                D::Error::custom(format!("claim {id}: {}", e.message()))
+            })?;
+        Ok(ClaimSpec { head, keys })
+    }
 }
 
 pub use crate::report::{Outcome, Verdict};
@@ -239,7 +186,7 @@ pub enum VerifyError {
 /// An outcome with no LaTeX, extra Markdown or files.
 /// A `holds` under the claim's `assumption` becomes `holds-with-assumption`, the assumption
 /// named first in the detail.
-pub(crate) fn with_assumption(mut o: Outcome, c: &ClaimSpec) -> Outcome {
+pub(crate) fn with_assumption(mut o: Outcome, c: &Head) -> Outcome {
     if let Some(a) = &c.assumption {
         if o.verdict == Verdict::Holds {
             o.verdict = Verdict::HoldsWithAssumption;
@@ -249,12 +196,7 @@ pub(crate) fn with_assumption(mut o: Outcome, c: &ClaimSpec) -> Outcome {
     o
 }
 
-pub(crate) fn outcome(
-    paper: &PaperClaims,
-    c: &ClaimSpec,
-    verdict: Verdict,
-    detail: String,
-) -> Outcome {
+pub(crate) fn outcome(paper: &PaperClaims, c: &Head, verdict: Verdict, detail: String) -> Outcome {
     Outcome {
         id: c.id.clone(),
         paper: paper.paper.clone(),
@@ -389,57 +331,51 @@ pub fn validate_all(papers: &[PaperClaims]) -> Result<(), VerifyError> {
 
 /// What a paper's named checks may use: the folder scenes are read from, and 000's context
 /// (its operator check, computed once).
-struct Named<'a> {
-    root: &'a Path,
-    paper000: paper000::Context,
+pub struct Named<'a> {
+    pub(crate) root: &'a Path,
+    pub(crate) paper000: paper000::Context,
 }
 
-/// A paper's named checks (`kind = "check"`), by its short name.
-type PaperChecks = fn(&mut Named, &PaperClaims, &ClaimSpec) -> Result<Outcome, VerifyError>;
+/// A paper's named check (`kind = "check"`): one function.
+pub type NamedFn = fn(&mut Named, &PaperClaims, &kinds::NamedCheck) -> Result<Outcome, VerifyError>;
 
-/// The papers with named Rust checks; a paper not listed has only the generic kinds.
-const PAPERS: &[(&str, PaperChecks)] = &[
-    ("000", |n, p, c| paper000::check(&mut n.paper000, p, c)),
-    ("001", |_, p, c| paper001::check(p, c)),
-    ("002", |_, p, c| paper002::check(p, c)),
-    ("hard", |n, p, c| hard_cases::check(p, c, n.root)),
+/// The papers with named Rust checks, each with its table of checks by the name a claim's
+/// `check` gives; a paper not listed has only the generic kinds.
+pub const PAPERS: &[(&str, &[(&str, NamedFn)])] = &[
+    ("000", paper000::CHECKS),
+    ("001", paper001::CHECKS),
+    ("002", paper002::CHECKS),
+    ("hard", hard_cases::CHECKS),
 ];
 
-/// Checks every claim of every paper: first every file is validated ([`kinds::Checked`]: a bad
-/// claim stops here, before anything runs), then each claim runs. Scenes named by `check` claims
-/// are read relative to `root`, those of the generic kinds relative to their claims file.
+/// Checks every claim of every paper with the kinds of [`kinds::BUILTIN`] ([`run_with`]).
 pub fn run_all(papers: &[PaperClaims], root: &Path) -> Result<Vec<Outcome>, VerifyError> {
+    run_with(papers, root, kinds::BUILTIN)
+}
+
+/// Checks every claim of every paper: first every file is validated with the kinds of `kinds`
+/// ([`kinds::Checked`]: a bad claim stops here, before anything runs), then each claim runs.
+/// Scenes named by `check` claims are read relative to `root`, those of the generic kinds
+/// relative to their claims file.
+pub fn run_with(
+    papers: &[PaperClaims],
+    root: &Path,
+    kinds: &[kinds::KindEntry],
+) -> Result<Vec<Outcome>, VerifyError> {
     let checked: Vec<kinds::Checked> = papers
         .iter()
-        .map(kinds::Checked::validate)
+        .map(|p| kinds::Checked::validate_with(p, kinds))
         .collect::<Result<_, _>>()?;
-    let mut derivations = kinds::Derivations::default();
-    let mut out = Vec::new();
-    for (p, generic) in papers.iter().zip(&checked) {
-        let mut ctx = Named {
+    let mut session = kinds::Session {
+        derivations: kinds::Derivations::default(),
+        named: Named {
             root,
             paper000: paper000::Context::new(root),
-        };
-        for c in &p.claim {
-            if c.kind != "check" {
-                out.push(generic.check(c, &mut derivations)?);
-                continue;
-            }
-            let mut o = match PAPERS.iter().find(|(name, _)| *name == p.paper) {
-                Some((_, run)) => run(&mut ctx, p, c)?,
-                None => outcome(
-                    p,
-                    c,
-                    Verdict::NotCheckable,
-                    format!(
-                        "no Rust checks exist for paper {}: use a generic kind",
-                        p.paper
-                    ),
-                ),
-            };
-            o.kind = format!("check `{}`", c.check);
-            out.push(with_assumption(o, c));
-        }
+        },
+    };
+    let mut out = Vec::new();
+    for file in &checked {
+        out.extend(file.check_all(&mut session)?);
     }
     out.sort_by(|a, b| a.id.cmp(&b.id));
     Ok(out)

@@ -1,105 +1,109 @@
 //! Checks of 001_989b2e860c39ca83.txt (Sinitsyn's disk, middle part): the friction force and
 //! moment of a sliding and spinning disk by direct quadrature against (2.3).
 
-use super::{ClaimSpec, Outcome, PaperClaims, Verdict, VerifyError, holds, outcome};
+use super::kinds::NamedCheck;
+use super::{NamedFn, Outcome, PaperClaims, Verdict, VerifyError, holds, outcome};
 use crate::models::disk_friction::Plate;
 use crate::report::svg::Scale;
 
-/// Checks one claim of paper 001.
-pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
-    let (verdict, detail) = match c.check.as_str() {
-        "disk-centre-linear" => return disk_centre_linear(paper, c),
-        "disk-centre-solution" => return disk_centre_solution(paper, c),
-        "disk-no-transverse" => return disk_no_transverse(paper, c),
-        "disk-closed-forms" => {
-            // case a): omega+ = omega- - 2 a f u0/(3 rho^2), V+ = V-(1 - (2f/mu) u0/(a omega-))^(mu/2)
-            let (m, rho, a, f, u0) = (1.0, 0.7, 1.0, 0.3, 0.5);
-            let mu = 3.0 * rho * rho / (a * a);
-            let mut worst: f64 = 0.0;
-            let mut rows = Vec::new();
-            for k in [0.003, 0.01, 0.03] {
-                let (v0, w0) = (k, 1.0);
-                let (vp, wp) =
-                    crate::models::disk_friction::impulsive_motion(m, rho, a, f, v0, w0, u0, 0.0)
-                        .map_err(|e| VerifyError::BadClaim {
+/// The named checks of paper 001, by the name a claim's `check` gives.
+pub const CHECKS: &[(&str, NamedFn)] = &[
+    ("disk-centre-linear", |_, p, c| disk_centre_linear(p, c)),
+    ("disk-centre-solution", |_, p, c| disk_centre_solution(p, c)),
+    ("disk-no-transverse", |_, p, c| disk_no_transverse(p, c)),
+    ("disk-closed-forms", |_, p, c| disk_closed_forms(p, c)),
+    ("relaxation", |_, p, c| relaxation(p, c)),
+];
+
+/// Case a) of (2.2) with c = 0: the integrated impact against the closed forms.
+fn disk_closed_forms(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
+    let (verdict, detail) = {
+        // case a): omega+ = omega- - 2 a f u0/(3 rho^2), V+ = V-(1 - (2f/mu) u0/(a omega-))^(mu/2)
+        let (m, rho, a, f, u0) = (1.0, 0.7, 1.0, 0.3, 0.5);
+        let mu = 3.0 * rho * rho / (a * a);
+        let mut worst: f64 = 0.0;
+        let mut rows = Vec::new();
+        for k in [0.003, 0.01, 0.03] {
+            let (v0, w0) = (k, 1.0);
+            let (vp, wp) =
+                crate::models::disk_friction::impulsive_motion(m, rho, a, f, v0, w0, u0, 0.0)
+                    .map_err(|e| VerifyError::BadClaim {
                         id: c.id.clone(),
                         message: e.to_string(),
                     })?;
-                let w_closed = w0 - 2.0 * a * f * u0 / (3.0 * rho * rho);
-                let v_closed = v0 * (1.0 - 2.0 * f / mu * u0 / (a * w0)).powf(mu / 2.0);
-                let (ew, ev) = (
-                    (wp - w_closed).abs() / w_closed,
-                    (vp - v_closed).abs() / v_closed,
-                );
-                worst = worst.max((ew.max(ev)) / (k * k));
-                rows.push(format!(
-                    "V-/(a omega-) = {k}: omega+ off by {ew:.1e}, V+ by {ev:.1e}"
-                ));
-            }
-            (
-                if worst <= 10.0 {
-                    Verdict::Holds
-                } else {
-                    Verdict::Fails
-                },
-                format!(
-                    "(2.2) with c = 0 integrated in the normal impulse (friction force and moment by quadrature, inelastic, m = a = 1, rho = 0.7, f = 0.3, u0 = 0.5) against the closed forms of case a): {}; relative errors / k^2 at most {worst:.2} (a linearisation in k = V/(a omega) must be O(k^2))",
-                    rows.join("; ")
-                ),
-            )
-        }
-        "relaxation" => {
-            use crate::models::relaxation::{Relaxation, energy_history};
-            let sys = Relaxation {
-                kappa: 0.3,
-                d: [0.1, 0.25],
-            };
-            let hist = energy_history(&sys, &[0.2, -0.1, 0.1, 0.15], 300.0, 3000).map_err(|e| {
-                VerifyError::BadClaim {
-                    id: c.id.clone(),
-                    message: e.to_string(),
-                }
-            })?;
-            // H never grows (up to the integration error)
-            let grows = hist
-                .windows(2)
-                .filter(|w| w[1].1 > w[0].1 * (1.0 + 1e-9) + 1e-18)
-                .count();
-            // late-time rate: least-squares slope of ln H over the last third; H ~ exp(-2 sigma t)
-            let late: Vec<(f64, f64)> = hist.iter().skip(2000).map(|(t, h)| (*t, h.ln())).collect();
-            let n = late.len() as f64;
-            let (mt, mh) = (
-                late.iter().map(|x| x.0).sum::<f64>() / n,
-                late.iter().map(|x| x.1).sum::<f64>() / n,
+            let w_closed = w0 - 2.0 * a * f * u0 / (3.0 * rho * rho);
+            let v_closed = v0 * (1.0 - 2.0 * f / mu * u0 / (a * w0)).powf(mu / 2.0);
+            let (ew, ev) = (
+                (wp - w_closed).abs() / w_closed,
+                (vp - v_closed).abs() / v_closed,
             );
-            let slope = late.iter().map(|(t, h)| (t - mt) * (h - mh)).sum::<f64>()
-                / late.iter().map(|(t, _)| (t - mt).powi(2)).sum::<f64>();
-            let rate = -slope / 2.0;
-            let predicted = sys.linear_rate();
-            let rel = (rate - predicted).abs() / predicted;
-            (
-                if grows == 0 && rel < 2e-2 {
-                    Verdict::Holds
-                } else {
-                    Verdict::Fails
-                },
-                format!(
-                    "n = 2, Pi1 = 0.3 (q1^3 + q1 q2^2), Q = -diag(0.1, 0.25) p, from H(0) = {:.4e}: H grew at {grows} of 3000 samples; late-time decay rate of H^(1/2) {rate:.5} 1/s against the linearised system's slowest rate {predicted:.5} 1/s (relative difference {rel:.1e})",
-                    hist[0].1
-                ),
-            )
+            worst = worst.max((ew.max(ev)) / (k * k));
+            rows.push(format!(
+                "V-/(a omega-) = {k}: omega+ off by {ew:.1e}, V+ by {ev:.1e}"
+            ));
         }
-        other => {
-            return Err(VerifyError::BadClaim {
-                id: c.id.clone(),
-                message: format!("unknown check `{other}`"),
-            });
-        }
+        (
+            if worst <= 10.0 {
+                Verdict::Holds
+            } else {
+                Verdict::Fails
+            },
+            format!(
+                "(2.2) with c = 0 integrated in the normal impulse (friction force and moment by quadrature, inelastic, m = a = 1, rho = 0.7, f = 0.3, u0 = 0.5) against the closed forms of case a): {}; relative errors / k^2 at most {worst:.2} (a linearisation in k = V/(a omega) must be O(k^2))",
+                rows.join("; ")
+            ),
+        )
     };
     Ok(outcome(paper, c, verdict, detail))
 }
 
-fn integration_failed(c: &ClaimSpec, e: crate::integrate::IntegrateError) -> VerifyError {
+/// The energy of the relaxing system never grows, and decays at the linearised rate.
+fn relaxation(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
+    let (verdict, detail) = {
+        use crate::models::relaxation::{Relaxation, energy_history};
+        let sys = Relaxation {
+            kappa: 0.3,
+            d: [0.1, 0.25],
+        };
+        let hist = energy_history(&sys, &[0.2, -0.1, 0.1, 0.15], 300.0, 3000).map_err(|e| {
+            VerifyError::BadClaim {
+                id: c.id.clone(),
+                message: e.to_string(),
+            }
+        })?;
+        // H never grows (up to the integration error)
+        let grows = hist
+            .windows(2)
+            .filter(|w| w[1].1 > w[0].1 * (1.0 + 1e-9) + 1e-18)
+            .count();
+        // late-time rate: least-squares slope of ln H over the last third; H ~ exp(-2 sigma t)
+        let late: Vec<(f64, f64)> = hist.iter().skip(2000).map(|(t, h)| (*t, h.ln())).collect();
+        let n = late.len() as f64;
+        let (mt, mh) = (
+            late.iter().map(|x| x.0).sum::<f64>() / n,
+            late.iter().map(|x| x.1).sum::<f64>() / n,
+        );
+        let slope = late.iter().map(|(t, h)| (t - mt) * (h - mh)).sum::<f64>()
+            / late.iter().map(|(t, _)| (t - mt).powi(2)).sum::<f64>();
+        let rate = -slope / 2.0;
+        let predicted = sys.linear_rate();
+        let rel = (rate - predicted).abs() / predicted;
+        (
+            if grows == 0 && rel < 2e-2 {
+                Verdict::Holds
+            } else {
+                Verdict::Fails
+            },
+            format!(
+                "n = 2, Pi1 = 0.3 (q1^3 + q1 q2^2), Q = -diag(0.1, 0.25) p, from H(0) = {:.4e}: H grew at {grows} of 3000 samples; late-time decay rate of H^(1/2) {rate:.5} 1/s against the linearised system's slowest rate {predicted:.5} 1/s (relative difference {rel:.1e})",
+                hist[0].1
+            ),
+        )
+    };
+    Ok(outcome(paper, c, verdict, detail))
+}
+
+fn integration_failed(c: &NamedCheck, e: crate::integrate::IntegrateError) -> VerifyError {
     VerifyError::BadClaim {
         id: c.id.clone(),
         message: e.to_string(),
@@ -132,7 +136,7 @@ fn plate(zeta: f64, theta: f64) -> Plate {
     }
 }
 
-fn disk_centre_linear(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+fn disk_centre_linear(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let h = 1e-4;
     let (mut worst_derived, mut worst_printed): (f64, f64) = (0.0, 0.0);
     let mut rows = Vec::new();
@@ -187,7 +191,7 @@ fn disk_centre_linear(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, Ver
 
 /// (2.9) against the plate integrated in the normal impulse: V(Omega) from the full model, from
 /// (2.9) with the derived coefficients and with the printed ones.
-fn disk_centre_solution(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+fn disk_centre_solution(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let mut details = Vec::new();
     let mut series: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
     let (mut ok_derived, mut printed_worse) = (true, true);
@@ -261,7 +265,7 @@ fn disk_centre_solution(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, V
 
 /// (2.10): with 2 (rho^2 + c^2) = a^2 the base centre stays at rest and
 /// Delta omega = -4 f S/(3 a m); with rho^2 10 % larger it does not.
-fn disk_no_transverse(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+fn disk_no_transverse(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let (zeta, f): (f64, f64) = (0.2, 0.3);
     let theta = (0.5 - zeta * zeta).sqrt();
     let s_end = 0.9 / (4.0 * f / 3.0);

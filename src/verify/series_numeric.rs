@@ -9,7 +9,8 @@
 //! relative error against $t$, its log-log slope at small $t$ (the observed order in $t$), and the
 //! window in which each truncation stays within $10^{-6}$.
 
-use super::{ClaimSpec, Outcome, PaperClaims, Verdict, VerifyError};
+use super::kinds::NamedCheck;
+use super::{Outcome, PaperClaims, Verdict, VerifyError};
 use crate::algebra::eval::Evaluator;
 use crate::algebra::poly::{Q, parse_q};
 use crate::algebra::series::{self, SeriesParams, Viscous};
@@ -94,7 +95,7 @@ pub fn series_params(p: &cone_plate::Params) -> Result<(SeriesParams, SeriesPara
 }
 
 /// The cone-plate scene a claim names.
-fn load_cone(c: &ClaimSpec, path: &Path, what: &str) -> Result<Box<ConePlateScene>, VerifyError> {
+fn load_cone(c: &NamedCheck, path: &Path, what: &str) -> Result<Box<ConePlateScene>, VerifyError> {
     let err = |m: String| VerifyError::Scene {
         id: c.id.clone(),
         message: m,
@@ -136,7 +137,7 @@ fn error_rows(curves: &[Curve], t_max: f64) -> String {
 }
 
 /// Runs the comparison for the scene at `path`.
-pub fn check(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outcome, VerifyError> {
+pub fn check(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Outcome, VerifyError> {
     let scene_err = |m: String| VerifyError::Scene {
         id: c.id.clone(),
         message: m,
@@ -325,7 +326,7 @@ pub fn check(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outcome,
 /// Passivity of the two viscoelastic laws on the cone of the scene at `path`: the work done on
 /// the material, integrated as a state, must never turn negative for a passive law. Plots the
 /// kinetic energy and that work against time for both laws.
-pub fn passivity(paper: &PaperClaims, c: &ClaimSpec, path: &Path) -> Result<Outcome, VerifyError> {
+pub fn passivity(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Outcome, VerifyError> {
     use crate::models::cone_plate::Law;
     let scene_err = |m: String| VerifyError::Scene {
         id: c.id.clone(),

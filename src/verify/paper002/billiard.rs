@@ -4,7 +4,7 @@
 use super::*;
 
 /// The check `billiard-matrix`.
-pub(super) fn billiard_matrix(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+pub(super) fn billiard_matrix(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let bad = |m: &str| VerifyError::BadClaim {
         id: c.id.clone(),
         message: m.into(),
@@ -41,7 +41,7 @@ pub(super) fn billiard_matrix(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outc
 }
 
 /// The check `billiard-312`.
-pub(super) fn billiard_312(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+pub(super) fn billiard_312(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     Ok({
         // m V' = m B* F with F = (1, -mu sin phi, -mu cos phi): the coefficients of (3.12) are
         // the diagonal of m B*; the printed ones are read from the claim
@@ -83,7 +83,7 @@ pub(super) fn billiard_312(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome
 }
 
 /// The check `billiard-313`.
-pub(super) fn billiard_313(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+pub(super) fn billiard_313(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     Ok({
         // r' and r phi' from V' = B* F (derived B*) against the printed (3.13), at sample angles
         let (_, _, _, bs, _) = billiard();
@@ -114,7 +114,7 @@ pub(super) fn billiard_313(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome
 }
 
 /// The check `billiard-314`.
-pub(super) fn billiard_314(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+pub(super) fn billiard_314(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let bad = |m: &str| VerifyError::BadClaim {
         id: c.id.clone(),
         message: m.into(),
@@ -185,7 +185,7 @@ pub(super) fn billiard_314(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome
 /// The check `billiard-fixed-angles`.
 pub(super) fn billiard_fixed_angles(
     paper: &PaperClaims,
-    c: &ClaimSpec,
+    c: &NamedCheck,
 ) -> Result<Outcome, VerifyError> {
     Ok({
         // zeros of sin(2 phi) on (-pi, pi]: where (3.13) keeps phi constant
@@ -232,7 +232,7 @@ pub(super) fn billiard_fixed_angles(
 }
 
 /// The check `balls-wall`.
-pub(super) fn balls_wall(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+pub(super) fn balls_wall(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let bad = |m: &str| VerifyError::BadClaim {
         id: c.id.clone(),
         message: m.into(),
@@ -307,7 +307,10 @@ pub(super) fn balls_wall(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, 
 }
 
 /// The check `billiard-general`.
-pub(super) fn billiard_general(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+pub(super) fn billiard_general(
+    paper: &PaperClaims,
+    c: &NamedCheck,
+) -> Result<Outcome, VerifyError> {
     let bad = |m: &str| VerifyError::BadClaim {
         id: c.id.clone(),
         message: m.into(),

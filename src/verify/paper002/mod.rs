@@ -2,7 +2,8 @@
 //! the pendulum's B* (2.5) and its cut-off condition, and the Coriolis billiard problem
 //! (3.9)-(3.14).
 
-use super::{ClaimSpec, Outcome, PaperClaims, Verdict, VerifyError, holds, outcome};
+use super::kinds::NamedCheck;
+use super::{Outcome, PaperClaims, Verdict, VerifyError, holds, outcome};
 use crate::integrate::{Method, OdeSystem, Options, solve};
 use crate::models::rigid_impact::{Body, Law, b_matrix, impact_with_matrix};
 use crate::report::svg::{Scale, Series};
@@ -108,7 +109,7 @@ pub(super) fn billiard_values(name: &str) -> Option<f64> {
 
 /// The claim's `printed_matrix`, each formula evaluated with `values`.
 pub(super) fn printed_matrix(
-    c: &ClaimSpec,
+    c: &NamedCheck,
     values: &dyn Fn(&str) -> Option<f64>,
 ) -> Result<Matrix3<f64>, VerifyError> {
     let bad = |m: String| VerifyError::BadClaim {
@@ -145,37 +146,34 @@ impl OdeSystem for Coriolis {
     }
 }
 
-/// A named check of this paper: one function each, by topic.
-type Check = fn(&PaperClaims, &ClaimSpec) -> Result<Outcome, VerifyError>;
-
-/// The named checks, by the name a claim's `check` gives.
-const CHECKS: &[(&str, Check)] = &[
-    ("pendulum-bstar", pendulum::pendulum_bstar),
-    ("pendulum-cutoff", pendulum::pendulum_cutoff),
-    ("billiard-matrix", billiard::billiard_matrix),
-    ("billiard-312", billiard::billiard_312),
-    ("billiard-313", billiard::billiard_313),
-    ("billiard-314", billiard::billiard_314),
-    ("billiard-fixed-angles", billiard::billiard_fixed_angles),
-    ("plane-support", supports::plane_support),
-    ("deformable-elements", supports::deformable_elements),
-    ("rest-types", supports::rest_types),
-    ("rolling-ball", rolling::rolling_ball),
-    ("pendulum-wall", pendulum::pendulum_wall),
-    ("balls-wall", billiard::balls_wall),
-    ("rough-support", supports::rough_support),
-    ("proposition-3", random_bodies::proposition_3),
-    ("proposition-2", random_bodies::proposition_2),
-    ("billiard-general", billiard::billiard_general),
+/// The named checks of paper 002, by the name a claim's `check` gives: one function each, in
+/// its topic's file.
+pub const CHECKS: &[(&str, super::NamedFn)] = &[
+    ("pendulum-bstar", |_, p, c| pendulum::pendulum_bstar(p, c)),
+    ("pendulum-cutoff", |_, p, c| pendulum::pendulum_cutoff(p, c)),
+    ("billiard-matrix", |_, p, c| billiard::billiard_matrix(p, c)),
+    ("billiard-312", |_, p, c| billiard::billiard_312(p, c)),
+    ("billiard-313", |_, p, c| billiard::billiard_313(p, c)),
+    ("billiard-314", |_, p, c| billiard::billiard_314(p, c)),
+    ("billiard-fixed-angles", |_, p, c| {
+        billiard::billiard_fixed_angles(p, c)
+    }),
+    ("plane-support", |_, p, c| supports::plane_support(p, c)),
+    ("deformable-elements", |_, p, c| {
+        supports::deformable_elements(p, c)
+    }),
+    ("rest-types", |_, p, c| supports::rest_types(p, c)),
+    ("rolling-ball", |_, p, c| rolling::rolling_ball(p, c)),
+    ("pendulum-wall", |_, p, c| pendulum::pendulum_wall(p, c)),
+    ("balls-wall", |_, p, c| billiard::balls_wall(p, c)),
+    ("rough-support", |_, p, c| supports::rough_support(p, c)),
+    ("proposition-3", |_, p, c| {
+        random_bodies::proposition_3(p, c)
+    }),
+    ("proposition-2", |_, p, c| {
+        random_bodies::proposition_2(p, c)
+    }),
+    ("billiard-general", |_, p, c| {
+        billiard::billiard_general(p, c)
+    }),
 ];
-
-/// Runs the named check of claim `c`.
-pub fn check(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
-    match CHECKS.iter().find(|(name, _)| *name == c.check) {
-        Some((_, run)) => run(paper, c),
-        None => Err(VerifyError::BadClaim {
-            id: c.id.clone(),
-            message: format!("unknown check `{}`", c.check),
-        }),
-    }
-}

@@ -4,7 +4,7 @@
 use super::*;
 
 /// The check `pendulum-bstar`.
-pub(super) fn pendulum_bstar(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+pub(super) fn pendulum_bstar(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     Ok({
         // (2.4): dV_C = (e*, I) e* /(m rho^2), e* = e x OC; compare with (2.5)
         let (m, rho) = (2.0, 0.3);
@@ -45,7 +45,7 @@ pub(super) fn pendulum_bstar(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outco
 }
 
 /// The check `pendulum-cutoff`.
-pub(super) fn pendulum_cutoff(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+pub(super) fn pendulum_cutoff(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let bad = |m: &str| VerifyError::BadClaim {
         id: c.id.clone(),
         message: m.into(),
@@ -114,7 +114,7 @@ pub(super) fn pendulum_cutoff(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outc
     })
 }
 
-pub(super) fn pendulum_wall(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+pub(super) fn pendulum_wall(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     match c.part.as_deref().unwrap_or_default() {
         "condition" => pendulum_wall_condition(paper, c),
         "derivation" => pendulum_wall_derivation(paper, c),
@@ -128,7 +128,7 @@ pub(super) fn pendulum_wall(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcom
 }
 
 /// The claim's error with a message.
-fn claim_error(c: &ClaimSpec, message: String) -> VerifyError {
+fn claim_error(c: &NamedCheck, message: String) -> VerifyError {
     VerifyError::BadClaim {
         id: c.id.clone(),
         message,
@@ -136,14 +136,14 @@ fn claim_error(c: &ClaimSpec, message: String) -> VerifyError {
 }
 
 /// The energy loss of (2.15) for rho and sigma (the model of Fig. 2 at rtol 1e-10).
-fn fig2_loss(c: &ClaimSpec, rho: f64, sigma: f64) -> Result<f64, VerifyError> {
+fn fig2_loss(c: &NamedCheck, rho: f64, sigma: f64) -> Result<f64, VerifyError> {
     crate::models::pendulum_wall::impact(rho, sigma, 1e-10)
         .map(|r| r.loss)
         .map_err(|e| claim_error(c, e.to_string()))
 }
 
 /// Fig. 2 and (2.15), part `condition`.
-fn pendulum_wall_condition(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+fn pendulum_wall_condition(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     use crate::models::pendulum_wall::PendulumWall;
     let bad = |m: String| claim_error(c, m);
     let loss = |rho: f64, sigma: f64| fig2_loss(c, rho, sigma);
@@ -196,7 +196,7 @@ fn pendulum_wall_condition(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome
 }
 
 /// Fig. 2 and (2.15), part `derivation`.
-fn pendulum_wall_derivation(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+fn pendulum_wall_derivation(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     use crate::models::pendulum_wall::PendulumWall;
     Ok({
         // (2.8) with the special geometry: GO = t, GC = -t - d n, F_C = c1 eps_Cn n, F_O = c2 eps_O
@@ -239,7 +239,7 @@ fn pendulum_wall_derivation(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcom
 }
 
 /// Fig. 2 and (2.15), part `figure`.
-fn pendulum_wall_figure(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+fn pendulum_wall_figure(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let loss = |rho: f64, sigma: f64| fig2_loss(c, rho, sigma);
     Ok({
         let sigmas: Vec<f64> = (1..=250).map(|k| 0.02 * k as f64).collect();
@@ -324,7 +324,7 @@ fn pendulum_wall_figure(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, V
 }
 
 /// Fig. 2 and (2.15), part `fifteen`.
-fn pendulum_wall_fifteen(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+fn pendulum_wall_fifteen(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let loss = |rho: f64, sigma: f64| fig2_loss(c, rho, sigma);
     Ok({
         let mut worst: Vec<String> = Vec::new();

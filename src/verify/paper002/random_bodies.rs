@@ -3,7 +3,7 @@
 use super::*;
 
 /// The check `proposition-3`.
-pub(super) fn proposition_3(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+pub(super) fn proposition_3(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let cfgs = configs(0x5EED_0002);
     Ok({
         use crate::models::rigid_impact::{
@@ -137,7 +137,7 @@ pub(super) fn proposition_3(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcom
 }
 
 /// The check `proposition-2`.
-pub(super) fn proposition_2(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+pub(super) fn proposition_2(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     Ok({
         use crate::models::fixed_points::{Hold, b_star, line_meets_both, singular};
         let mut rng = Rng(0x5EED_0022);

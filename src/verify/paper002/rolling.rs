@@ -46,7 +46,7 @@ pub(super) fn rolling_rates(phi: f64, xi: f64, mu: f64, mu_star: f64) -> [f64; 4
 
 /// The claim's `printed_equations`: the right-hand sides of (4.6), in m = 1 units, parsed once.
 pub(super) fn rolling_equations(
-    c: &ClaimSpec,
+    c: &NamedCheck,
 ) -> Result<Vec<crate::algebra::expr::Expr>, VerifyError> {
     let bad = |m: String| VerifyError::BadClaim {
         id: c.id.clone(),
@@ -96,7 +96,7 @@ pub(super) fn rolling_eval(
 /// special case (4.7) (mu = mu*, xi = phi, cos phi = -2/(7 mu)), phi along the model's path.
 pub(super) fn rolling_integrated(
     paper: &PaperClaims,
-    c: &ClaimSpec,
+    c: &NamedCheck,
 ) -> Result<Outcome, VerifyError> {
     use crate::models::rigid_impact::{RoughSupport, SupportMode, impact_rough};
     let bad = |m: String| VerifyError::BadClaim {
@@ -239,7 +239,7 @@ pub(super) fn rolling_integrated(
     ))
 }
 
-pub(super) fn rolling_ball(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+pub(super) fn rolling_ball(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let part = c.part.clone().unwrap_or_default();
     let mut rng = Rng(0x5EED_0046);
     Ok(match part.as_str() {

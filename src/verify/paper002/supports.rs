@@ -5,7 +5,7 @@
 use super::*;
 
 /// The check `rough-support`.
-pub(super) fn rough_support(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+pub(super) fn rough_support(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let cfgs = configs(0x5EED_0002);
     Ok({
         // the impact with friction at C and at the support integrated (rolling, sliding,
@@ -276,7 +276,7 @@ pub(super) fn types_at_rest(p: &Plane) -> Option<[bool; 4]> {
 /// b3^2) + a3 b3)/(rho2^2 + a3^2 + mu* a3 b3) < 0, motion of each of the three types 1, 2 and 4
 /// is possible" (V_A = 0 at the start): seeded random plane configurations, the printed
 /// conditions with beta of (4.8), and the types admitted, computed from the matrices of (3.4).
-pub(super) fn rest_types(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+pub(super) fn rest_types(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let bad = |m: String| VerifyError::BadClaim {
         id: c.id.clone(),
         message: m,
@@ -380,7 +380,7 @@ pub(super) fn rest_types(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, 
 /// support impulse tends to the rigid one.
 pub(super) fn deformable_elements(
     paper: &PaperClaims,
-    c: &ClaimSpec,
+    c: &NamedCheck,
 ) -> Result<Outcome, VerifyError> {
     use crate::models::deformable::{Deformable, simulate};
     use crate::models::support::matrices;
@@ -516,7 +516,7 @@ pub(super) fn deformable_elements(
     })
 }
 
-pub(super) fn plane_support(paper: &PaperClaims, c: &ClaimSpec) -> Result<Outcome, VerifyError> {
+pub(super) fn plane_support(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     use crate::models::support::{classify_sliding, matrices};
     let bad = |m: String| VerifyError::BadClaim {
         id: c.id.clone(),

@@ -1,0 +1,119 @@
+//! Kind `check`: a named Rust check of a paper (`check = "billiard-312"`), run through the
+//! paper's registry ([`crate::verify::PAPERS`]); the claim may still give printed formulas
+//! (`printed`, `printed_equations`, `printed_matrix`), which are read and unit-checked here.
+
+use super::{Checked, Kind, Session, parse_formula};
+use crate::verify::{Head, Outcome, Verdict, VerifyError, outcome};
+use serde::Deserialize;
+use std::ops::Deref;
+
+/// A named check's claim: its head and the keys a named check may read.
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct NamedCheck {
+    /// The claim's id, equation, quote (filled from the claim, not a key here).
+    #[serde(skip)]
+    pub head: Head,
+    /// Which Rust check computes it.
+    pub check: String,
+    /// A printed formula the check reads.
+    #[serde(default)]
+    pub printed: Option<String>,
+    /// Printed equations (their right-hand sides, in order).
+    #[serde(default)]
+    pub printed_equations: Vec<String>,
+    /// A printed matrix (rows of formulas).
+    #[serde(default)]
+    pub printed_matrix: Vec<Vec<String>>,
+    /// A corrected formula the check compares too.
+    #[serde(default)]
+    pub corrected: Option<String>,
+    /// Which part of a check's cases (a hard case's id, a figure's part).
+    #[serde(default)]
+    pub part: Option<String>,
+    /// Highest power, for checks over powers.
+    #[serde(default)]
+    pub k_max: Option<u32>,
+    /// A scene, relative to the repository root.
+    #[serde(default)]
+    pub scene: Option<String>,
+}
+
+impl Deref for NamedCheck {
+    type Target = Head;
+    fn deref(&self) -> &Head {
+        &self.head
+    }
+}
+
+/// A checked `check` claim.
+pub struct Check(NamedCheck);
+
+impl Kind for Check {
+    const NAME: &'static str = "check";
+    type Spec = NamedCheck;
+
+    fn validate(cx: &Checked, c: &Head, mut s: NamedCheck) -> Result<Self, VerifyError> {
+        let f = cx.file;
+        for (i, row) in s.printed_matrix.iter().enumerate() {
+            for (j, text) in row.iter().enumerate() {
+                let field = format!("printed_matrix[{i}][{j}]");
+                let e = parse_formula(f, c, &field, text)?;
+                cx.units_of(c, &field, &e, &[])?;
+            }
+        }
+        if let Some(text) = &s.printed {
+            let e = parse_formula(f, c, "printed", text)?;
+            cx.units_of(c, "printed", &e, &[])?;
+        }
+        for (i, text) in s.printed_equations.iter().enumerate() {
+            let field = format!("printed_equations[{i}]");
+            let e = parse_formula(f, c, &field, text)?;
+            cx.units_of(c, &field, &e, &[])?;
+        }
+        if let Some((_, checks)) = crate::verify::PAPERS.iter().find(|(p, _)| *p == f.paper)
+            && !checks.iter().any(|(name, _)| *name == s.check)
+        {
+            let names: Vec<&str> = checks.iter().map(|(n, _)| *n).collect();
+            return Err(super::claim_err(
+                f,
+                c,
+                "check",
+                format!(
+                    "unknown check `{}` of paper {}; allowed: {}",
+                    s.check,
+                    f.paper,
+                    names.join(", ")
+                ),
+            ));
+        }
+        s.head = c.clone();
+        Ok(Check(s))
+    }
+
+    fn check(&self, cx: &Checked, c: &Head, run: &mut Session) -> Result<Outcome, VerifyError> {
+        let p = cx.file;
+        let named = crate::verify::PAPERS
+            .iter()
+            .find(|(name, _)| *name == p.paper)
+            .and_then(|(_, checks)| checks.iter().find(|(name, _)| *name == self.0.check));
+        let mut o = match named {
+            Some((_, run_check)) => run_check(&mut run.named, p, &self.0)?,
+            None => outcome(
+                p,
+                c,
+                Verdict::NotCheckable,
+                format!(
+                    "no Rust checks exist for paper {}: use a generic kind",
+                    p.paper
+                ),
+            ),
+        };
+        o.kind = format!("check `{}`", self.0.check);
+        Ok(o)
+    }
+
+    fn report(&self, _: &Head) -> String {
+        String::new()
+    }
+}

@@ -1,0 +1,196 @@
+//! Kind `model`: a printed formula, its symbols bound to scene fields, against a quantity the
+//! model produces, over a grid; `holds` when the largest relative difference is at most `rtol`.
+
+use super::scene::{self, Axis, Scene, bind_text, point_text};
+use super::{Checked, Kind, Session, Where, g4};
+use crate::algebra::expr::Expr;
+use crate::algebra::units;
+use crate::verify::{Head, Outcome, Verdict, VerifyError, outcome};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+/// The keys of a `model` claim.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelSpec {
+    /// The scene, relative to the claims file.
+    scene: String,
+    /// Scene fields set before the grid (a number or a string).
+    #[serde(default)]
+    set: BTreeMap<String, toml::Value>,
+    /// Formula symbol -> scene field.
+    #[serde(default)]
+    bind: BTreeMap<String, String>,
+    /// The grid, `FIELD=START:STOP:COUNT[:log]` per axis.
+    #[serde(default)]
+    vary: Vec<String>,
+    /// The dotted path of the outcome quantity compared.
+    quantity: String,
+    /// The printed formula.
+    printed: String,
+    /// The largest relative difference allowed.
+    rtol: f64,
+    /// Definitions for this claim only.
+    #[serde(default, rename = "where")]
+    where_: Where,
+}
+
+/// A checked `model` claim.
+pub struct Model {
+    scene: Scene,
+    axes: Vec<Axis>,
+    vary: Vec<String>,
+    quantity: String,
+    printed_text: String,
+    printed: Expr,
+    rtol: f64,
+    /// The printed formula's unit against the quantity's, when both have one.
+    units_note: Option<String>,
+}
+
+impl Kind for Model {
+    const NAME: &'static str = "model";
+    type Spec = ModelSpec;
+
+    fn validate(cx: &Checked, c: &Head, s: ModelSpec) -> Result<Self, VerifyError> {
+        let scene = Scene::open(cx, c, &s.scene, &s.set, s.bind)?;
+        scene::check_rtol(cx, c, s.rtol)?;
+        let (axes, probe) = scene::axes(cx, c, &s.vary)?;
+        let printed = cx.formula(c, &s.where_, "printed", &s.printed)?;
+        let outcome = scene.probe(cx, c, &probe, &[("printed", &printed)])?;
+        scene::check_quantity(cx, c, &outcome, &s.quantity)?;
+        let units_note = match (
+            cx.units.get(&s.quantity),
+            units::dimension(&printed, &cx.unit_fn()),
+        ) {
+            (Some(u), Ok(pu)) if pu != *u => {
+                Some(format!("; units: the formula is {pu}, the quantity {u}"))
+            }
+            _ => None,
+        };
+        Ok(Model {
+            scene,
+            axes,
+            vary: s.vary,
+            quantity: s.quantity,
+            printed_text: s.printed,
+            printed,
+            rtol: s.rtol,
+            units_note,
+        })
+    }
+
+    fn check(&self, cx: &Checked, c: &Head, _: &mut Session) -> Result<Outcome, VerifyError> {
+        let (quantity, rtol) = (&self.quantity, self.rtol);
+        let q = Expr::Sym(quantity.clone());
+        let (points, rows) = scene::grid(&self.scene, &self.axes, (&q, &self.printed));
+        let mut worst: Option<(f64, usize)> = None;
+        let mut errors = Vec::new();
+        for (i, r) in rows.iter().enumerate() {
+            match r {
+                Ok((m, p)) => {
+                    let rel = (p - m).abs() / m.abs().max(f64::MIN_POSITIVE);
+                    let rel = if rel.is_nan() { f64::INFINITY } else { rel };
+                    if worst.is_none_or(|(w, _)| rel > w) {
+                        worst = Some((rel, i));
+                    }
+                }
+                Err(e) => errors.push(format!("at {}: {e}", point_text(&points[i]))),
+            }
+        }
+        let n = points.len();
+        let (verdict, mut detail) = match worst {
+            Some((w, i)) => {
+                let (m, p) = rows[i].clone().unwrap_or((f64::NAN, f64::NAN));
+                (
+                    if w <= rtol && errors.is_empty() {
+                        Verdict::Holds
+                    } else {
+                        Verdict::Fails
+                    },
+                    format!(
+                        "{n} grid points: largest relative difference {} (rtol {}) at {}: model {quantity} = {}, printed {}",
+                        g4(w),
+                        g4(rtol),
+                        point_text(&points[i]),
+                        g4(m),
+                        g4(p)
+                    ),
+                )
+            }
+            None => (Verdict::NotCheckable, format!("{n} grid points, none ran")),
+        };
+        if !errors.is_empty() {
+            detail.push_str(&format!(
+                "; {} point(s) failed: {}",
+                errors.len(),
+                errors[0]
+            ));
+            if worst.is_some() && verdict == Verdict::Fails {
+                detail.push_str(" (a failed point counts against the claim)");
+            }
+        }
+        if let Some(u) = &self.units_note {
+            detail.push_str(u);
+        }
+        let mut o = outcome(cx.file, c, verdict, detail);
+        if self.axes.len() == 1 && rows.iter().filter(|r| r.is_ok()).count() > 1 {
+            self.plot(c, &mut o, &rows);
+        }
+        Ok(o)
+    }
+
+    fn report(&self, _: &Head) -> String {
+        format!(
+            "Kind `model`. Scene `{}`; `{}` against `{}`{}; grid {}.",
+            self.scene.name,
+            self.quantity,
+            self.printed_text,
+            bind_text(&self.scene.bind),
+            self.vary.join(" x ")
+        )
+    }
+}
+
+impl Model {
+    /// The model's and the printed curve against the grid's one axis, with their data.
+    fn plot(&self, c: &Head, o: &mut Outcome, rows: &[Result<(f64, f64), String>]) {
+        let (a, quantity) = (&self.axes[0], &self.quantity);
+        let mut model_curve = Vec::new();
+        let mut printed_curve = Vec::new();
+        for (v, r) in a.values.iter().zip(rows) {
+            if let Ok((m, p)) = r {
+                model_curve.push((*v, *m));
+                printed_curve.push((*v, *p));
+            }
+        }
+        let scale = if a.log {
+            crate::report::svg::Scale::Log
+        } else {
+            crate::report::svg::Scale::Linear
+        };
+        let name = format!("{}.svg", c.id.replace('.', "_"));
+        let svg = crate::report::svg::plot_curves(
+            &format!("{}: {quantity} (model) and the printed formula", c.id),
+            &a.field,
+            quantity,
+            scale,
+            crate::report::svg::Scale::Linear,
+            &[
+                ("model".to_string(), model_curve.clone()),
+                ("printed".to_string(), printed_curve.clone()),
+            ],
+        );
+        let csv_name = format!("{}.csv", c.id.replace('.', "_"));
+        let mut csv = format!("{},model {quantity},printed\n", a.field);
+        for ((x, m), (_, p)) in model_curve.iter().zip(&printed_curve) {
+            csv.push_str(&format!("{x:e},{m:e},{p:e}\n"));
+        }
+        o.extra_md = Some(format!(
+            "\n\n![{}: the model's {quantity} and the printed formula against {}]({name})\n\n*Figure: claim {}, the model's {quantity} and the printed `{}` against {} (data: [{csv_name}]({csv_name})).*",
+            c.id, a.field, c.id, self.printed, a.field
+        ));
+        o.files.push((name, svg));
+        o.files.push((csv_name, csv));
+    }
+}

@@ -1,0 +1,500 @@
+//! What the kinds that run scenes share (`model`, `map`, `bound`, `probability`): the scene read
+//! once with its `set` fields, the grid of `vary`, the seeded samples of `sample`, the
+//! inequalities, and the statistics of a sampled claim.
+
+use super::{Checked, Where, claim_err, g4};
+use crate::algebra::expr::{self, Expr, Inequality};
+use crate::scene::field_value;
+use crate::verify::{Head, VerifyError};
+use serde_json::Value;
+use std::collections::BTreeMap;
+
+/// A claim's scene: read once, with the claim's `set` fields applied.
+pub(super) struct Scene {
+    /// The scene as the claim names it (relative to the claims file).
+    pub name: String,
+    /// Its path, for messages.
+    pub label: String,
+    /// The scene with `set` applied.
+    pub base: toml::Table,
+    /// Formula symbol -> scene field.
+    pub bind: BTreeMap<String, String>,
+}
+
+impl Scene {
+    /// Reads the scene `name` (relative to the claims file) and applies `set`.
+    pub fn open(
+        cx: &Checked,
+        c: &Head,
+        name: &str,
+        set: &BTreeMap<String, toml::Value>,
+        bind: BTreeMap<String, String>,
+    ) -> Result<Scene, VerifyError> {
+        let path = cx.dir.join(name);
+        if !path.is_file() {
+            return Err(claim_err(
+                cx.file,
+                c,
+                "scene",
+                format!("`{name}`: no such file ({})", path.display()),
+            ));
+        }
+        let mut base = crate::scene::read_table(&path)
+            .map_err(|e| claim_err(cx.file, c, "scene", e.to_string()))?;
+        let label = path.display().to_string();
+        for (field, v) in set {
+            crate::scene::set_value(&mut base, field, v.clone(), &label)
+                .map_err(|e| claim_err(cx.file, c, &format!("set.{field}"), e.to_string()))?;
+        }
+        Ok(Scene {
+            name: name.to_string(),
+            label,
+            base,
+            bind,
+        })
+    }
+
+    /// One run of the scene at `probe` (the first grid point, or the samples' medians), to know
+    /// that the bound fields are numbers and that every symbol of `formulas` (key, formula) is
+    /// bound or a number the model produces; returns the outcome.
+    pub fn probe(
+        &self,
+        cx: &Checked,
+        c: &Head,
+        probe: &[(String, String, f64)],
+        formulas: &[(&str, &Expr)],
+    ) -> Result<Value, VerifyError> {
+        let mut table = self.base.clone();
+        for (key, fields, v) in probe {
+            set_fields(&mut table, fields, *v, "scene")
+                .map_err(|m| claim_err(cx.file, c, key, m))?;
+        }
+        for (sym, field) in &self.bind {
+            if field_value(&table, field).is_none() {
+                return Err(claim_err(
+                    cx.file,
+                    c,
+                    &format!("bind.{sym}"),
+                    format!("scene field `{field}` is not a number in {}", self.label),
+                ));
+            }
+        }
+        let outcome =
+            run_table(&table, &self.label).map_err(|m| claim_err(cx.file, c, "scene", m))?;
+        for (field, e) in formulas {
+            for s in e.free_symbols() {
+                if !self.bind.contains_key(&s) && lookup(&outcome, &s).is_none() {
+                    return Err(claim_err(
+                        cx.file,
+                        c,
+                        field,
+                        format!(
+                            "`{s}` is neither bound to a scene field (bind) nor a number the model produces ({})",
+                            numeric_paths(&outcome).join(", ")
+                        ),
+                    ));
+                }
+            }
+            cx.units_of(c, field, e, &[])?;
+        }
+        Ok(outcome)
+    }
+
+    /// Runs the scene with the fields of one grid point or sample set, and evaluates two
+    /// formulas there: a symbol is a bound scene field (`bind`) or a number the model produces.
+    fn point(&self, pt: &[(String, f64)], sides: (&Expr, &Expr)) -> Result<(f64, f64), String> {
+        let mut t = self.base.clone();
+        for (fields, v) in pt {
+            set_fields(&mut t, fields, *v, &self.label)?;
+        }
+        let out = run_table(&t, &self.label)?;
+        let value = |s: &str| match self.bind.get(s) {
+            Some(field) => field_value(&t, field),
+            None => lookup(&out, s),
+        };
+        Ok((sides.0.eval(&value)?, sides.1.eval(&value)?))
+    }
+}
+
+/// The model's quantity is in the outcome, else an error listing what the model produces.
+pub(super) fn check_quantity(
+    cx: &Checked,
+    c: &Head,
+    outcome: &Value,
+    q: &str,
+) -> Result<(), VerifyError> {
+    if lookup(outcome, q).is_none() {
+        return Err(claim_err(
+            cx.file,
+            c,
+            "quantity",
+            format!(
+                "`{q}`: the model does not produce this number; it produces: {}",
+                numeric_paths(outcome).join(", ")
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// A relative tolerance >= 0.
+pub(super) fn check_rtol(cx: &Checked, c: &Head, rtol: f64) -> Result<(), VerifyError> {
+    if !(rtol.is_finite() && rtol >= 0.0) {
+        return Err(claim_err(
+            cx.file,
+            c,
+            "rtol",
+            format!("{rtol} is not a tolerance >= 0"),
+        ));
+    }
+    Ok(())
+}
+
+/// One grid axis or sampled field.
+#[derive(Clone, Debug)]
+pub(super) struct Axis {
+    pub field: String,
+    pub values: Vec<f64>,
+    pub log: bool,
+}
+
+/// Scene fields set for a probe run: (the claim's key, the field(s), the value).
+pub(super) type Probe = Vec<(String, String, f64)>;
+
+/// The axes of `vary` (at least one), and the probe at the grid's first point.
+pub(super) fn axes(
+    cx: &Checked,
+    c: &Head,
+    vary: &[String],
+) -> Result<(Vec<Axis>, Probe), VerifyError> {
+    if vary.is_empty() {
+        return Err(claim_err(
+            cx.file,
+            c,
+            "vary",
+            "missing; give at least one FIELD=START:STOP:COUNT[:log]".into(),
+        ));
+    }
+    let axes: Vec<Axis> = vary
+        .iter()
+        .map(|s| parse_axis(s).map_err(|m| claim_err(cx.file, c, "vary", m)))
+        .collect::<Result<_, _>>()?;
+    let probe = axes
+        .iter()
+        .map(|a| ("vary".to_string(), a.field.clone(), a.values[0]))
+        .collect();
+    Ok((axes, probe))
+}
+
+fn parse_axis(spec: &str) -> Result<Axis, String> {
+    let (spec, log) = match spec.strip_suffix(":log") {
+        Some(s) => (s, true),
+        None => (spec, false),
+    };
+    let sv = crate::scene::sweep::parse_vary(spec, log).map_err(|e| e.to_string())?;
+    Ok(Axis {
+        field: sv.param,
+        values: sv.values,
+        log,
+    })
+}
+
+/// A grid's points (first axis slowest) and, at each, the two sides compared (or why the point
+/// did not run).
+pub(super) type GridRows = (Vec<Vec<(String, f64)>>, Vec<Result<(f64, f64), String>>);
+
+/// Runs the scene at every point of the grid of `axes`.
+pub(super) fn grid(scene: &Scene, axes: &[Axis], sides: (&Expr, &Expr)) -> GridRows {
+    use rayon::prelude::*;
+    let mut points: Vec<Vec<(String, f64)>> = vec![vec![]];
+    for a in axes {
+        points = points
+            .into_iter()
+            .flat_map(|p| {
+                a.values.iter().map(move |v| {
+                    let mut q = p.clone();
+                    q.push((a.field.clone(), *v));
+                    q
+                })
+            })
+            .collect();
+    }
+    let rows = points.par_iter().map(|pt| scene.point(pt, sides)).collect();
+    (points, rows)
+}
+
+/// A distribution of `sample`.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Dist {
+    Uniform(f64, f64),
+    LogUniform(f64, f64),
+    Normal(f64, f64),
+}
+
+fn parse_dist(text: &str) -> Result<Dist, String> {
+    let help = "expected uniform(a, b), loguniform(a, b) with 0 < a < b, or normal(mu, sigma) with sigma > 0";
+    let t = text.trim();
+    let open = t.find('(').ok_or_else(|| format!("`{text}`: {help}"))?;
+    let inner = t[open + 1..]
+        .strip_suffix(')')
+        .ok_or_else(|| format!("`{text}`: {help}"))?;
+    let args: Vec<f64> = inner
+        .split(',')
+        .map(|s| s.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("`{text}`: {help}"))?;
+    let [a, b] = args[..] else {
+        return Err(format!("`{text}`: two numbers are needed; {help}"));
+    };
+    if !a.is_finite() || !b.is_finite() {
+        return Err(format!("`{text}`: {help}"));
+    }
+    match &t[..open] {
+        "uniform" if a < b => Ok(Dist::Uniform(a, b)),
+        "loguniform" if 0.0 < a && a < b => Ok(Dist::LogUniform(a, b)),
+        "normal" if b > 0.0 => Ok(Dist::Normal(a, b)),
+        _ => Err(format!("`{text}`: {help}")),
+    }
+}
+
+impl Dist {
+    /// The quantile at `u` in (0, 1) (statrs' inverse CDFs).
+    fn quantile(self, u: f64) -> f64 {
+        use statrs::distribution::{ContinuousCDF, Normal, Uniform};
+        match self {
+            Dist::Uniform(a, b) => Uniform::new(a, b).map_or(f64::NAN, |d| d.inverse_cdf(u)),
+            Dist::LogUniform(a, b) => Uniform::new(a.ln(), b.ln())
+                .map_or(f64::NAN, |d| d.inverse_cdf(u))
+                .exp(),
+            Dist::Normal(m, s) => Normal::new(m, s).map_or(f64::NAN, |d| d.inverse_cdf(u)),
+        }
+    }
+}
+
+/// The seeded draws of a sampled claim: `sample`, `count` (1 to 10^6) and `seed`.
+pub(super) struct Samples {
+    /// Scene field(s) (or symbol) -> distribution, as written.
+    pub text: BTreeMap<String, String>,
+    dists: Vec<(String, Dist)>,
+    pub count: usize,
+    pub seed: u64,
+}
+
+impl Samples {
+    /// Reads `sample`, `count` and `seed`.
+    pub fn read(
+        cx: &Checked,
+        c: &Head,
+        text: BTreeMap<String, String>,
+        count: usize,
+        seed: u64,
+    ) -> Result<Samples, VerifyError> {
+        if !(1..=1_000_000).contains(&count) {
+            return Err(claim_err(
+                cx.file,
+                c,
+                "count",
+                format!("{count} is out of range; allowed: 1..=1000000"),
+            ));
+        }
+        if text.is_empty() {
+            return Err(claim_err(
+                cx.file,
+                c,
+                "sample",
+                "missing; give at least one FIELD = \"uniform(a, b)\"".into(),
+            ));
+        }
+        let dists = text
+            .iter()
+            .map(|(k, v)| {
+                parse_dist(v)
+                    .map(|d| (k.clone(), d))
+                    .map_err(|m| claim_err(cx.file, c, &format!("sample.{k}"), m))
+            })
+            .collect::<Result<_, _>>()?;
+        Ok(Samples {
+            text,
+            dists,
+            count,
+            seed,
+        })
+    }
+
+    /// The medians, as a probe of the scene ([`Scene::probe`]).
+    pub fn probe(&self) -> Probe {
+        self.dists
+            .iter()
+            .map(|(k, d)| (format!("sample.{k}"), k.clone(), d.quantile(0.5)))
+            .collect()
+    }
+
+    /// `field ~ distribution, ...` for the report.
+    pub fn described(&self) -> String {
+        self.text
+            .iter()
+            .map(|(k, v)| format!("{k} ~ {v}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
+    /// The draws and, for each, both sides of `ineq` (or why it did not run): with a scene,
+    /// runs of it; without one, the draws are the symbols' values.
+    pub fn run(&self, scene: Option<&Scene>, ineq: &Inequality) -> GridRows {
+        use rayon::prelude::*;
+        let mut rng = crate::rng::Rng(self.seed);
+        let half = 0.5 / (1u64 << 53) as f64;
+        let draws: Vec<Vec<(String, f64)>> = (0..self.count)
+            .map(|_| {
+                self.dists
+                    .iter()
+                    .map(|(k, d)| (k.clone(), d.quantile(rng.next() + half)))
+                    .collect()
+            })
+            .collect();
+        let rows = match scene {
+            None => draws
+                .iter()
+                .map(|pt| {
+                    let value = |s: &str| pt.iter().find(|(k, _)| k == s).map(|(_, v)| *v);
+                    Ok((ineq.lhs.eval(&value)?, ineq.rhs.eval(&value)?))
+                })
+                .collect(),
+            Some(scene) => draws
+                .par_iter()
+                .map(|pt| scene.point(pt, (&ineq.lhs, &ineq.rhs)))
+                .collect(),
+        };
+        (draws, rows)
+    }
+}
+
+/// A claim's inequality (`require` or `event`, named by `field`), definitions expanded.
+pub(super) fn inequality(
+    cx: &Checked,
+    c: &Head,
+    w: &Where,
+    field: &str,
+    text: &str,
+) -> Result<Inequality, VerifyError> {
+    let mut ineq: Inequality = expr::parse_inequality(text)
+        .map_err(|e| claim_err(cx.file, c, field, format!("`{text}`: {e}")))?;
+    ineq.lhs = cx.expand_all(c, w, &ineq.lhs)?;
+    ineq.rhs = cx.expand_all(c, w, &ineq.rhs)?;
+    Ok(ineq)
+}
+
+/// The number at a dotted path of a model's outcome (`contact.duration`, `impulse.2`).
+pub fn lookup(v: &Value, path: &str) -> Option<f64> {
+    let mut cur = v;
+    for part in path.split('.') {
+        cur = match cur {
+            Value::Object(m) => m.get(part)?,
+            Value::Array(a) => a.get(part.parse::<usize>().ok()?)?,
+            _ => return None,
+        };
+    }
+    match cur {
+        Value::Number(n) => n.as_f64(),
+        Value::Bool(b) => Some(f64::from(u8::from(*b))),
+        _ => None,
+    }
+}
+
+/// Sets every field of a `sample` key (one or more fields, separated by spaces, that share one
+/// draw: the two off-diagonal entries of a symmetric inertia).
+fn set_fields(t: &mut toml::Table, fields: &str, v: f64, label: &str) -> Result<(), String> {
+    for field in fields.split_whitespace() {
+        crate::scene::set_field(t, field, v, label).map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+fn run_table(t: &toml::Table, label: &str) -> Result<Value, String> {
+    let scene = crate::scene::parse_table(t, label).map_err(|e| e.to_string())?;
+    scene.run().map(|(v, _)| v).map_err(|e| e.to_string())
+}
+
+/// A claim on a probability: `<= 0.15`, `< 0.15`, `>= 0.9`, `> 0.9`.
+pub(super) fn parse_expectation(text: &str) -> Result<(expr::Rel, f64), String> {
+    let t = text.trim();
+    let help = "expected <= p, < p, >= p or > p with 0 <= p <= 1, e.g. \"<= 0.15\"";
+    let (rel, rest) = if let Some(r) = t.strip_prefix("<=") {
+        (expr::Rel::Le, r)
+    } else if let Some(r) = t.strip_prefix(">=") {
+        (expr::Rel::Ge, r)
+    } else if let Some(r) = t.strip_prefix('<') {
+        (expr::Rel::Lt, r)
+    } else if let Some(r) = t.strip_prefix('>') {
+        (expr::Rel::Gt, r)
+    } else {
+        return Err(format!("`{text}`: {help}"));
+    };
+    let p: f64 = rest
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{text}`: {help}"))?;
+    if !(0.0..=1.0).contains(&p) {
+        return Err(format!("`{text}`: {help}"));
+    }
+    Ok((rel, p))
+}
+
+/// The Clopper-Pearson interval of a binomial proportion: `k` successes in `n` trials at
+/// `confidence` (the exact interval from the Beta quantiles, statrs):
+/// $[B^{-1}(\alpha/2; k, n-k+1),\ B^{-1}(1-\alpha/2; k+1, n-k)]$, with 0 and 1 at the ends.
+pub fn clopper_pearson(k: usize, n: usize, confidence: f64) -> (f64, f64) {
+    use statrs::distribution::{Beta, ContinuousCDF};
+    let alpha = 1.0 - confidence;
+    let (kf, nf) = (k as f64, n as f64);
+    let lo = if k == 0 {
+        0.0
+    } else {
+        Beta::new(kf, nf - kf + 1.0).map_or(f64::NAN, |b| b.inverse_cdf(alpha / 2.0))
+    };
+    let hi = if k >= n {
+        1.0
+    } else {
+        Beta::new(kf + 1.0, nf - kf).map_or(f64::NAN, |b| b.inverse_cdf(1.0 - alpha / 2.0))
+    };
+    (lo, hi)
+}
+
+pub(super) fn point_text(pt: &[(String, f64)]) -> String {
+    pt.iter()
+        .map(|(k, v)| format!("{k} = {}", g4(*v)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// `sym = field, ...` of `bind`, for the report.
+pub(super) fn bind_text(bind: &BTreeMap<String, String>) -> String {
+    if bind.is_empty() {
+        return String::new();
+    }
+    let pairs: Vec<String> = bind.iter().map(|(k, v)| format!("{k} = {v}")).collect();
+    format!(" with {}", pairs.join(", "))
+}
+
+/// Every dotted path of `v` that holds a number, for error messages.
+pub(super) fn numeric_paths(v: &Value) -> Vec<String> {
+    fn go(prefix: &str, v: &Value, out: &mut Vec<String>) {
+        match v {
+            Value::Number(_) | Value::Bool(_) => out.push(prefix.to_string()),
+            Value::Object(m) => {
+                for (k, x) in m {
+                    let p = if prefix.is_empty() {
+                        k.clone()
+                    } else {
+                        format!("{prefix}.{k}")
+                    };
+                    go(&p, x, out);
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    go("", v, &mut out);
+    out
+}
