@@ -6,7 +6,7 @@
 //! ([`impactcheck::perf::wrong_answer`]: a planar impact that differs from the exact planar
 //! solution, or energy gained under a law that dissipates there); each is listed with its seed.
 //! Usage: `rigid_fail [COUNT]` (default 20000).
-use impactcheck::models::rigid_impact::impact_with_matrix;
+use impactcheck::models::rigid_impact::{Contact, impact_with_matrix};
 use impactcheck::perf::{rigid_sample, wrong_answer};
 use std::collections::BTreeMap;
 
@@ -33,7 +33,7 @@ fn main() {
         )
         .is_some();
         planar += u64::from(is_planar);
-        match impact_with_matrix(&s.b, z, s.v, s.mu, s.law, s.e, 1e-10) {
+        match impact_with_matrix(&s.b, Contact::new(z, s.v, s.mu, s.law, s.e), 1e-10) {
             Ok(r) => {
                 if let Some(why) = wrong_answer(&s.b, z, s.v, s.mu, s.law, s.e, &r) {
                     wrong += 1;

@@ -5,6 +5,7 @@
 
 use crate::integrate::workprecision::{WorkPoint, work_precision};
 use crate::integrate::{IntegrateError, Method, OdeSystem};
+use crate::models::rigid_impact::Contact;
 use serde_json::{Value, json};
 use std::time::Instant;
 
@@ -395,11 +396,13 @@ pub fn rigid_case(
     let (b, v, mu, e) = rigid_inputs(i);
     crate::models::rigid_impact::impact_with_matrix(
         &b,
-        nalgebra::Vector3::z(),
-        v,
-        mu,
-        crate::models::rigid_impact::Law::Poisson,
-        e,
+        Contact::new(
+            nalgebra::Vector3::z(),
+            v,
+            mu,
+            crate::models::rigid_impact::Law::Poisson,
+            e,
+        ),
         1e-10,
     )
 }

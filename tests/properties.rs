@@ -8,7 +8,7 @@
 //! energy, and the same scene run in other units.
 
 use impactcheck::cli::run_validated;
-use impactcheck::models::rigid_impact::{Law, impact_with_matrix};
+use impactcheck::models::rigid_impact::{Contact, Law, impact_with_matrix};
 use impactcheck::scene::parse;
 use nalgebra::{Matrix3, Vector3};
 use proptest::prelude::*;
@@ -100,7 +100,7 @@ proptest! {
         let law = if energetic { Law::Energetic } else { Law::Poisson };
         let (b, v, mu, e) =
             degenerate(kind, pick, spd(a, floor), Vector3::new(vt[0], vt[1], -vn), mu, e);
-        let r = impact_with_matrix(&b, Vector3::z(), v, mu, law, e, 1e-10).expect("solves");
+        let r = impact_with_matrix(&b, Contact::new(Vector3::z(), v, mu, law, e), 1e-10).expect("solves");
         let eig = b.symmetric_eigenvalues();
         let (lmin, lmax) = (eig.min(), eig.max());
         let scale = 0.5 * v.norm_squared() / lmin;
@@ -131,7 +131,7 @@ proptest! {
         let (b, v, mu, e) =
             degenerate(3, pick, spd(a, floor), Vector3::new(vt, 0.0, -vn), mu, e);
         let (b, v, mu, e) = degenerate(kind, pick, b, v, mu, e);
-        let r = impact_with_matrix(&b, Vector3::z(), v, mu, law, e, 1e-10).expect("solves");
+        let r = impact_with_matrix(&b, Contact::new(Vector3::z(), v, mu, law, e), 1e-10).expect("solves");
         let exact = impactcheck::models::planar_impact::impact_planar(&b, Vector3::z(), v, mu, law, e)
             .expect("exact")
             .expect("planar");

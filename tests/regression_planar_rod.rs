@@ -19,7 +19,7 @@
 //! matrix B with the integrator. Tolerance: 1e-8 of the impulse's size (the integrator runs at
 //! rtol 1e-10).
 use impactcheck::models::planar_impact::{PLANAR_TOL, PlanarProblem, planar_frame};
-use impactcheck::models::rigid_impact::{Body, Law, b_matrix, impact_with_matrix};
+use impactcheck::models::rigid_impact::{Body, Contact, Law, b_matrix, impact_with_matrix};
 use nalgebra::{Matrix3, Vector3};
 
 /// A uniform rod of mass 1 kg and length 1 m at `deg` degrees to the floor, touching it with
@@ -64,10 +64,14 @@ fn the_rod_on_a_rough_floor_agrees_with_the_exact_planar_solution() {
                         sticks += exact.phases.iter().any(|p| p.kind == "stick") as usize;
                         reversals += exact.phases.iter().any(|p| p.kind == "reversal") as usize;
                         let imp = frame.t * exact.impulse_t + frame.n * exact.impulse_n;
-                        let r = impact_with_matrix(&b, Vector3::z(), v, mu, law, e, 1e-10)
-                            .unwrap_or_else(|err| {
-                                panic!("{deg} deg, slip {slip}, e {e}, mu {mu}, {law:?}: {err}")
-                            });
+                        let r = impact_with_matrix(
+                            &b,
+                            Contact::new(Vector3::z(), v, mu, law, e),
+                            1e-10,
+                        )
+                        .unwrap_or_else(|err| {
+                            panic!("{deg} deg, slip {slip}, e {e}, mu {mu}, {law:?}: {err}")
+                        });
                         let got = Vector3::from(r.impulse);
                         let de_exact = exact.normal_work + exact.tangential_work;
                         assert!(
@@ -100,7 +104,12 @@ fn the_rod_on_a_rough_floor_agrees_with_the_exact_planar_solution() {
 fn a_rod_whose_slip_stops_sticks() {
     let b = rod_matrix(45.0);
     let v = Vector3::new(1.0, 0.0, -1.0);
-    let r = impact_with_matrix(&b, Vector3::z(), v, 1.0, Law::Poisson, 0.5, 1e-10).expect("ends");
+    let r = impact_with_matrix(
+        &b,
+        Contact::new(Vector3::z(), v, 1.0, Law::Poisson, 0.5),
+        1e-10,
+    )
+    .expect("ends");
     let kinds: Vec<_> = r.phases.iter().map(|p| p.kind.as_str()).collect();
     assert_eq!(kinds, ["slip", "stick"]);
     assert!((r.impulse[0] + 0.175).abs() < 1e-8, "{:?}", r.impulse);

@@ -16,17 +16,17 @@
 //! reference is the exact planar solution (`models::planar_impact`) where the case is planar, and
 //! a run at rtol 1e-12 otherwise; tolerance 1e-8 of the impulse.
 use impactcheck::models::planar_impact::impact_planar;
-use impactcheck::models::rigid_impact::{Law, impact_with_matrix};
+use impactcheck::models::rigid_impact::{Contact, Law, impact_with_matrix};
 use impactcheck::perf::critical_mu;
 use nalgebra::{Matrix3, Vector3};
 
 fn check(b: Matrix3<f64>, v: Vector3<f64>, factor: f64, law: Law, e: f64) {
     let mu = critical_mu(&b) * factor;
-    let r = impact_with_matrix(&b, Vector3::z(), v, mu, law, e, 1e-10).expect("ends");
+    let r = impact_with_matrix(&b, Contact::new(Vector3::z(), v, mu, law, e), 1e-10).expect("ends");
     let reference = match impact_planar(&b, Vector3::z(), v, mu, law, e).expect("exact") {
         Some(x) => x.impulse,
         None => {
-            impact_with_matrix(&b, Vector3::z(), v, mu, law, e, 1e-12)
+            impact_with_matrix(&b, Contact::new(Vector3::z(), v, mu, law, e), 1e-12)
                 .expect("ends")
                 .impulse
         }

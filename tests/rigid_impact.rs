@@ -1,7 +1,7 @@
 //! Rigid-body impact in the normal impulse (002_b53e4779673eb6ed.txt section 1): closed forms,
 //! Proposition 1's bounds, Kelvin's formula and energy over random bodies.
 
-use impactcheck::models::rigid_impact::{Body, Law, b_matrix, impact};
+use impactcheck::models::rigid_impact::{Body, Contact, Law, b_matrix, impact};
 use nalgebra::{Matrix3, Vector3};
 use proptest::prelude::*;
 
@@ -33,11 +33,7 @@ fn frictionless_central_impact_closed_form() {
             let r = impact(
                 &b1,
                 &b2,
-                n,
-                Vector3::new(0.0, 0.0, -1.5),
-                0.0,
-                law,
-                e,
+                Contact::new(n, Vector3::new(0.0, 0.0, -1.5), 0.0, law, e),
                 1e-12,
             )
             .expect("solves");
@@ -64,11 +60,13 @@ fn oblique_sphere_on_ground_slip_then_stick() {
         let res = impact(
             &b1,
             &ground(),
-            Vector3::z(),
-            Vector3::new(vt, 0.0, -vn),
-            mu,
-            Law::Poisson,
-            e,
+            Contact::new(
+                Vector3::z(),
+                Vector3::new(vt, 0.0, -vn),
+                mu,
+                Law::Poisson,
+                e,
+            ),
             1e-12,
         )
         .expect("solves");
@@ -133,7 +131,7 @@ proptest! {
         let b2 = Body { mass: Some(m2), inertia: spd(i2), offset: Vector3::from(r2) };
         let law = [Law::Poisson, Law::Energetic][law_i];
         let v = Vector3::new(vt[0], vt[1], -vn);
-        let r = impact(&b1, &b2, Vector3::z(), v, mu, law, e, 1e-10).expect("solves");
+        let r = impact(&b1, &b2, Contact::new(Vector3::z(), v, mu, law, e), 1e-10).expect("solves");
         let scale = 0.5 * v.norm_squared() / r.lambda_min;
         // (1.12): energy does not grow under Poisson's and Stronge's laws
         prop_assert!(r.energy_change <= 1e-8 * scale, "dT = {}", r.energy_change);

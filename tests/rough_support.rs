@@ -3,8 +3,8 @@
 //! support only rolls, the exact vertical balance of the billiard example, and energy.
 
 use impactcheck::models::rigid_impact::{
-    Body, Law, RoughSupport, SmoothSupport, SupportMode, b_matrix, impact_general, impact_rough,
-    kinetic_change_moving,
+    Body, Contact, Law, RoughSupport, SmoothSupport, SupportMode, b_matrix, impact_general,
+    impact_rough, kinetic_change_moving,
 };
 use impactcheck::models::support::{Support, matrices};
 use impactcheck::rng::Rng;
@@ -74,16 +74,26 @@ fn tends_to_the_smooth_support_as_mu_star_vanishes() {
     for _ in 0..40 {
         let c = case(&mut rng);
         let (b, _, smooth) = rough_of(&c, 0.0);
-        let Ok(s) = impact_general(&b, Some(smooth), c.n, c.v, c.mu, Law::Poisson, 0.6, 1e-11)
-        else {
+        let Ok(s) = impact_general(
+            &b,
+            Some(smooth),
+            Contact::new(c.n, c.v, c.mu, Law::Poisson, 0.6),
+            1e-11,
+        ) else {
             continue;
         };
         let si = Vector3::from(s.impulse);
         let mut diffs = Vec::new();
         for mu_star in [1e-3, 1e-6] {
             let (_, rough, _) = rough_of(&c, mu_star);
-            let r = impact_rough(&b, rough, None, c.n, c.v, c.mu, Law::Poisson, 0.6, 1e-11)
-                .expect("a small mu* admits a unique motion");
+            let r = impact_rough(
+                &b,
+                rough,
+                None,
+                Contact::new(c.n, c.v, c.mu, Law::Poisson, 0.6),
+                1e-11,
+            )
+            .expect("a small mu* admits a unique motion");
             diffs.push((Vector3::from(r.impulse) - si).norm() / si.norm());
         }
         // linear in mu*: at 1e-6 the change is below 1e-4 relative (1e-6 times a constant of
@@ -107,15 +117,25 @@ fn a_support_that_only_rolls_matches_rolling_held_by_its_matrix() {
         let (b, rough, _) = rough_of(&c, 50.0);
         let b_roll =
             b - rough.b_tilde.transpose() * rough.b_a.try_inverse().expect("B_A") * rough.b_tilde;
-        let Ok(r) = impact_rough(&b, rough, None, c.n, c.v, c.mu, Law::Energetic, 0.5, 1e-11)
-        else {
+        let Ok(r) = impact_rough(
+            &b,
+            rough,
+            None,
+            Contact::new(c.n, c.v, c.mu, Law::Energetic, 0.5),
+            1e-11,
+        ) else {
             continue;
         };
         if r.support_phases.iter().any(|p| p.kind != "roll") {
             continue;
         }
-        let h = impact_general(&b_roll, None, c.n, c.v, c.mu, Law::Energetic, 0.5, 1e-11)
-            .expect("rolling held");
+        let h = impact_general(
+            &b_roll,
+            None,
+            Contact::new(c.n, c.v, c.mu, Law::Energetic, 0.5),
+            1e-11,
+        )
+        .expect("rolling held");
         let d = (Vector3::from(r.impulse) - Vector3::from(h.impulse)).norm()
             / Vector3::from(h.impulse).norm();
         assert!(d < 1e-8, "{d:e}: {:?} vs {:?}", r.impulse, h.impulse);
@@ -156,11 +176,7 @@ fn billiard_vertical_impulses_balance_exactly() {
             &b,
             rough,
             None,
-            Vector3::x(),
-            v,
-            0.2,
-            Law::Poisson,
-            0.9,
+            Contact::new(Vector3::x(), v, 0.2, Law::Poisson, 0.9),
             1e-11,
         )
         .expect("integrates");
@@ -197,7 +213,7 @@ fn energy_never_grows_under_poisson_and_the_energetic_law() {
         };
         let e = rng.range(0.0, 1.0);
         let (b, rough, _) = rough_of(&c, mu_star);
-        let r = match impact_rough(&b, rough, None, c.n, c.v, c.mu, law, e, 1e-10) {
+        let r = match impact_rough(&b, rough, None, Contact::new(c.n, c.v, c.mu, law, e), 1e-10) {
             Ok(r) => r,
             Err(err) if err.to_string().contains("Painleve") => {
                 painleve += 1;
@@ -243,11 +259,7 @@ fn a_forced_start_mode_is_integrated() {
         &b,
         rough,
         Some(SupportMode::Free),
-        c.n,
-        c.v,
-        0.0,
-        Law::Poisson,
-        0.5,
+        Contact::new(c.n, c.v, 0.0, Law::Poisson, 0.5),
         1e-10,
     )
     .expect("integrates");

@@ -90,11 +90,7 @@ fn free_impact(s: &RigidImpactScene) -> Result<ImpactResult, ImpactError> {
     impact(
         &s.bodies[0],
         &s.bodies[1],
-        s.normal,
-        s.v_rel,
-        s.mu,
-        s.law,
-        s.e,
+        crate::models::rigid_impact::Contact::new(s.normal, s.v_rel, s.mu, s.law, s.e),
         s.rtol,
     )
 }
@@ -138,7 +134,12 @@ fn held_impact(
     let b = held_matrix(s, k, go, axis);
     match planar_or_none(s, &b)? {
         Some(r) => Ok(r),
-        None => impact_general(&b, None, s.normal, s.v_rel, s.mu, s.law, s.e, s.rtol),
+        None => impact_general(
+            &b,
+            None,
+            crate::models::rigid_impact::Contact::new(s.normal, s.v_rel, s.mu, s.law, s.e),
+            s.rtol,
+        ),
     }
 }
 
@@ -222,11 +223,7 @@ pub fn solve_scene_all(
         let mut r = impact_general(
             &b,
             Some(support),
-            s.normal,
-            s.v_rel,
-            s.mu,
-            s.law,
-            s.e,
+            crate::models::rigid_impact::Contact::new(s.normal, s.v_rel, s.mu, s.law, s.e),
             s.rtol,
         )?;
         r.energy_change = energy_of(&r);
@@ -252,11 +249,7 @@ pub fn solve_scene_all(
             &b,
             rough.clone(),
             start,
-            s.normal,
-            s.v_rel,
-            s.mu,
-            s.law,
-            s.e,
+            crate::models::rigid_impact::Contact::new(s.normal, s.v_rel, s.mu, s.law, s.e),
             s.rtol,
         )?;
         r.energy_change = energy_of(&r);

@@ -4,6 +4,7 @@
 //! `tests/hard_cases/`; `tests/hard_cases/main.rs` runs the catalogue and `verify` reports it in
 //! `reports/hard_cases.md`, with the bad-input table of [`bad_inputs`].
 
+use crate::models::rigid_impact::Contact;
 use nalgebra::{Matrix3, Vector3};
 use serde::Serialize;
 use serde_json::Value;
@@ -250,14 +251,18 @@ const RIGID_METHOD: &str = "auto (DOP853, Radau5 once stiffness is detected) in 
 
 /// A particle (B = I/m) whose slip stops exactly when compression ends.
 fn slip_stops_at_compression_end() -> HardCase {
-    use crate::models::rigid_impact::{Law, impact_with_matrix};
+    use crate::models::rigid_impact::{Contact, Law, impact_with_matrix};
     let (mu, e) = (0.5, 0.5);
     let b = Matrix3::identity();
     let v = Vector3::new(mu, 0.0, -1.0);
     let what = "rigid impact of a particle (B = I), mu = 0.5, e = 0.5 (Poisson), V- = (0.5, 0, -1)"
         .to_string();
     let hard = "the slip speed reaches zero exactly at the end of compression: the stick switch and the phase switch coincide";
-    match impact_with_matrix(&b, Vector3::z(), v, mu, Law::Poisson, e, 1e-10) {
+    match impact_with_matrix(
+        &b,
+        Contact::new(Vector3::z(), v, mu, Law::Poisson, e),
+        1e-10,
+    ) {
         Err(err) => failed("slip-stops-at-compression-end", what, hard, err.to_string()),
         Ok(r) => {
             // slip for p in [0, 1] takes (-0.5, 0, 1), then sticking restitution adds (0, 0, 0.5)
@@ -286,7 +291,13 @@ fn stick_slip_threshold() -> HardCase {
     let v = Vector3::new(0.05, 0.0, -1.0);
     let what = "rigid impact with B coupling slip and normal (mu* = 0.3), mu = mu* (1 -+ 1e-12), V- = (0.05, 0, -1)".to_string();
     let hard = "mu at the stick/slip threshold: after the slip stops, sticking is only just possible (or only just not)";
-    let run = |mu: f64| impact_with_matrix(&b, Vector3::z(), v, mu, Law::Poisson, 0.5, 1e-10);
+    let run = |mu: f64| {
+        impact_with_matrix(
+            &b,
+            Contact::new(Vector3::z(), v, mu, Law::Poisson, 0.5),
+            1e-10,
+        )
+    };
     match (run(mu_star * (1.0 - 1e-12)), run(mu_star * (1.0 + 1e-12))) {
         (Ok(a), Ok(c)) => {
             let err = impulse_diff(a.impulse, c.impulse);
@@ -315,8 +326,13 @@ fn stiff_slip_stop() -> HardCase {
         "rigid impact #448 of the sweep benchmark: random SPD B, mu = {mu:.4} just above the stick threshold mu* = 1.3710, e = {e:.3} (Poisson), rtol 1e-10"
     );
     let hard = "the slip stops slowly just above the stick threshold: the slip direction's relaxation rate grows like 1/|V_t|, the equations turn stiff and an explicit method stalls (DOP853 needed more than 1e5 steps)";
-    let run =
-        |rtol: f64| impact_with_matrix(&b, nalgebra::Vector3::z(), v, mu, Law::Poisson, e, rtol);
+    let run = |rtol: f64| {
+        impact_with_matrix(
+            &b,
+            Contact::new(nalgebra::Vector3::z(), v, mu, Law::Poisson, e),
+            rtol,
+        )
+    };
     match (run(1e-10), run(1e-13)) {
         (Ok(a), Ok(r)) => {
             let scale = Vector3::from(r.impulse).norm();
@@ -345,7 +361,11 @@ fn near_singular_b() -> HardCase {
     let v = Vector3::new(0.3, 0.1, -1.0);
     let what = "rigid impact with B of condition number 1e12 (a line through C nearly meets both fixed sets), mu = 0, e = 0.5".to_string();
     let hard = "B* nearly singular: the impulse needed to stop the approach is huge along the near-null direction";
-    match impact_with_matrix(&b, Vector3::z(), v, 0.0, Law::Poisson, 0.5, 1e-10) {
+    match impact_with_matrix(
+        &b,
+        Contact::new(Vector3::z(), v, 0.0, Law::Poisson, 0.5),
+        1e-10,
+    ) {
         Err(e) => failed("near-singular-b", what, hard, e.to_string()),
         Ok(r) => {
             let p = 1.5 / b[(2, 2)];

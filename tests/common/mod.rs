@@ -7,11 +7,13 @@ pub fn check_case(case: u64, phases: &[&str]) -> impactcheck::models::rigid_impa
     let (b, v, mu, e) = impactcheck::perf::rigid_inputs_generic(case);
     let r = impactcheck::models::rigid_impact::impact_with_matrix(
         &b,
-        nalgebra::Vector3::z(),
-        v,
-        mu,
-        impactcheck::models::rigid_impact::Law::Poisson,
-        e,
+        impactcheck::models::rigid_impact::Contact::new(
+            nalgebra::Vector3::z(),
+            v,
+            mu,
+            impactcheck::models::rigid_impact::Law::Poisson,
+            e,
+        ),
         1e-10,
     )
     .unwrap_or_else(|err| panic!("case {case}: {err}"));

@@ -28,18 +28,13 @@ pub(super) fn from_rest(sys: &Keller) -> Mode {
 /// whether its start mode is forced. Runs stage by stage: the decisions between stages
 /// ([`Run::between_stages`]), one stage's integration to its first event ([`Run::stage`]) and
 /// what that event means ([`Run::after_stage`]).
-#[allow(clippy::too_many_arguments)]
 pub(super) fn impact_core(
     b: &Matrix3<f64>,
     at_a: Option<(AtA, Vector3<f64>, bool)>,
-    normal: Vector3<f64>,
-    v_minus: Vector3<f64>,
-    mu: f64,
-    law: Law,
-    e: f64,
+    contact: Contact,
     rtol: f64,
 ) -> Result<ImpactResult, ImpactError> {
-    let inputs = Inputs::checked(b, at_a.as_ref(), normal, v_minus, mu, law, e, rtol)?;
+    let inputs = Inputs::checked(b, at_a.as_ref(), contact, rtol)?;
     let mut run = Run::new(inputs, at_a)?;
     let mut first = true;
     loop {
@@ -85,17 +80,19 @@ struct Inputs {
 }
 
 impl Inputs {
-    #[allow(clippy::too_many_arguments)]
     fn checked(
         b: &Matrix3<f64>,
         at_a: Option<&(AtA, Vector3<f64>, bool)>,
-        normal: Vector3<f64>,
-        v_minus: Vector3<f64>,
-        mu: f64,
-        law: Law,
-        e: f64,
+        contact: Contact,
         rtol: f64,
     ) -> Result<Self, ImpactError> {
+        let Contact {
+            normal,
+            v_minus,
+            mu,
+            law,
+            e,
+        } = contact;
         let bad = out_of_range;
         if normal.norm() <= 0.0 || normal.norm().is_nan() {
             return Err(bad(

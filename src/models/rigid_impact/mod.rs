@@ -219,19 +219,50 @@ fn out_of_range(field: &str, value: String, allowed: &str) -> ImpactError {
     }
 }
 
+/// The conditions of an impact at the contact point C: what every solver takes besides the
+/// bodies (or their matrix B) and the tolerance.
+#[derive(Clone, Copy, Debug)]
+pub struct Contact {
+    /// The contact normal, into the first body.
+    pub normal: Vector3<f64>,
+    /// The relative velocity at C before the impact (m/s), approaching: (V-, n) < 0.
+    pub v_minus: Vector3<f64>,
+    /// Coulomb's friction coefficient at C.
+    pub mu: f64,
+    /// The restitution law.
+    pub law: Law,
+    /// The restitution coefficient, 0 <= e <= 1.
+    pub e: f64,
+}
+
+impl Contact {
+    /// The conditions `normal`, `v_minus`, `mu`, `law`, `e`.
+    pub fn new(normal: Vector3<f64>, v_minus: Vector3<f64>, mu: f64, law: Law, e: f64) -> Self {
+        Contact {
+            normal,
+            v_minus,
+            mu,
+            law,
+            e,
+        }
+    }
+}
+
 /// Solves one impact. `v_minus` is the relative velocity at C before impact (m/s), with
 /// $(\mathbf V^-, \mathbf n) < 0$ (approaching).
-#[allow(clippy::too_many_arguments)]
 pub fn impact(
     b1: &Body,
     b2: &Body,
-    normal: Vector3<f64>,
-    v_minus: Vector3<f64>,
-    mu: f64,
-    law: Law,
-    e: f64,
+    contact: Contact,
     rtol: f64,
 ) -> Result<ImpactResult, ImpactError> {
+    let Contact {
+        normal,
+        v_minus,
+        mu,
+        law,
+        e,
+    } = contact;
     let bad = out_of_range;
     let b = b_matrix(b1, b2).ok_or_else(|| {
         bad(
@@ -240,7 +271,7 @@ pub fn impact(
             "symmetric positive-definite",
         )
     })?;
-    let mut r = impact_with_matrix(&b, normal, v_minus, mu, law, e, rtol)?;
+    let mut r = impact_with_matrix(&b, Contact::new(normal, v_minus, mu, law, e), rtol)?;
     r.energy_change = kinetic_change(b1, b2, &v_minus, &Vector3::from(r.impulse));
     Ok(r)
 }
@@ -251,29 +282,34 @@ pub fn impact(
 /// the bodies wedge) is reported with `cut_off = true`.
 pub fn impact_with_matrix(
     b: &Matrix3<f64>,
-    normal: Vector3<f64>,
-    v_minus: Vector3<f64>,
-    mu: f64,
-    law: Law,
-    e: f64,
+    contact: Contact,
     rtol: f64,
 ) -> Result<ImpactResult, ImpactError> {
-    impact_general(b, None, normal, v_minus, mu, law, e, rtol)
+    let Contact {
+        normal,
+        v_minus,
+        mu,
+        law,
+        e,
+    } = contact;
+    impact_general(b, None, Contact::new(normal, v_minus, mu, law, e), rtol)
 }
 
 /// As [`impact_with_matrix`], with an optional smooth support under the second body (section
 /// 3): the support reacts only while $\alpha < 0$, so $\mathbf B$ switches to $\mathbf B^*$ (3.8).
-#[allow(clippy::too_many_arguments)]
 pub fn impact_general(
     b: &Matrix3<f64>,
     support: Option<SmoothSupport>,
-    normal: Vector3<f64>,
-    v_minus: Vector3<f64>,
-    mu: f64,
-    law: Law,
-    e: f64,
+    contact: Contact,
     rtol: f64,
 ) -> Result<ImpactResult, ImpactError> {
+    let Contact {
+        normal,
+        v_minus,
+        mu,
+        law,
+        e,
+    } = contact;
     let at_a = support.map(|s| {
         (
             AtA {
@@ -293,7 +329,7 @@ pub fn impact_general(
             false,
         )
     });
-    impact_core(b, at_a, normal, v_minus, mu, law, e, rtol)
+    impact_core(b, at_a, Contact::new(normal, v_minus, mu, law, e), rtol)
 }
 
 /// As [`impact_general`], with Coulomb friction $\mu^*$ at the support (002 section 4): the
@@ -301,18 +337,20 @@ pub fn impact_general(
 /// leaves the friction cone or would have to pull; the slide direction at a start from rest
 /// solves (4.5). `start` forces the support's mode at the start (the branches of a Painleve
 /// case with two solutions); `None` takes the one (3.6) admits.
-#[allow(clippy::too_many_arguments)]
 pub fn impact_rough(
     b: &Matrix3<f64>,
     rough: RoughSupport,
     start: Option<SupportMode>,
-    normal: Vector3<f64>,
-    v_minus: Vector3<f64>,
-    mu: f64,
-    law: Law,
-    e: f64,
+    contact: Contact,
     rtol: f64,
 ) -> Result<ImpactResult, ImpactError> {
+    let Contact {
+        normal,
+        v_minus,
+        mu,
+        law,
+        e,
+    } = contact;
     if !(rough.mu > 0.0 && rough.mu.is_finite()) {
         return Err(out_of_range(
             "support.mu",
@@ -344,11 +382,7 @@ pub fn impact_rough(
     impact_core(
         b,
         Some((a, rough.v_a, start.is_some())),
-        normal,
-        v_minus,
-        mu,
-        law,
-        e,
+        Contact::new(normal, v_minus, mu, law, e),
         rtol,
     )
 }

@@ -317,7 +317,7 @@ pub(super) fn billiard_general(
     };
     Ok({
         // the two balls with the second on a smooth table, integrated by the general model
-        use crate::models::rigid_impact::{SmoothSupport, impact_general};
+        use crate::models::rigid_impact::{Contact, SmoothSupport, impact_general};
         use crate::models::support::{Support, matrices};
         let (m, r) = (1.0, 1.0);
         let rho2 = 0.4 * r * r;
@@ -353,11 +353,7 @@ pub(super) fn billiard_general(
             let res = impact_general(
                 &b,
                 Some(support),
-                Vector3::x(),
-                v,
-                mu,
-                Law::Poisson,
-                0.8,
+                Contact::new(Vector3::x(), v, mu, Law::Poisson, 0.8),
                 1e-12,
             )
             .map_err(|e| bad(&e.to_string()))?;

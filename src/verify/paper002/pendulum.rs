@@ -71,8 +71,17 @@ pub(super) fn pendulum_cutoff(paper: &PaperClaims, c: &NamedCheck) -> Result<Out
             for mu in [
                 0.05, 0.1, 0.2, 0.35, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 5.0, 8.0,
             ] {
-                let Ok(r) = impact_with_matrix(&b, Vector3::z(), -es, mu, Law::Poisson, 0.5, 1e-10)
-                else {
+                let Ok(r) = impact_with_matrix(
+                    &b,
+                    crate::models::rigid_impact::Contact::new(
+                        Vector3::z(),
+                        -es,
+                        mu,
+                        Law::Poisson,
+                        0.5,
+                    ),
+                    1e-10,
+                ) else {
                     continue;
                 };
                 total += 1;

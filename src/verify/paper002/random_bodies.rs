@@ -7,7 +7,7 @@ pub(super) fn proposition_3(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
     let cfgs = configs(0x5EED_0002);
     Ok({
         use crate::models::rigid_impact::{
-            RoughSupport, SmoothSupport, impact_general, impact_rough,
+            Contact, RoughSupport, SmoothSupport, impact_general, impact_rough,
         };
         use crate::models::support::{Support, b_star, matrices};
         // three sets over the same seeded bodies: the proposition's (a smooth support with
@@ -53,21 +53,13 @@ pub(super) fn proposition_3(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
                 impact_general(
                     &b,
                     Some(smooth.clone()),
-                    Vector3::z(),
-                    cf.v,
-                    0.0,
-                    law,
-                    cf.e,
+                    Contact::new(Vector3::z(), cf.v, 0.0, law, cf.e),
                     1e-10,
                 ),
                 impact_general(
                     &b,
                     Some(smooth),
-                    Vector3::z(),
-                    cf.v,
-                    cf.mu,
-                    law,
-                    cf.e,
+                    Contact::new(Vector3::z(), cf.v, cf.mu, law, cf.e),
                     1e-10,
                 ),
                 impact_rough(
@@ -80,11 +72,7 @@ pub(super) fn proposition_3(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
                         v_a: Vector3::zeros(),
                     },
                     None,
-                    Vector3::z(),
-                    cf.v,
-                    cf.mu,
-                    law,
-                    cf.e,
+                    Contact::new(Vector3::z(), cf.v, cf.mu, law, cf.e),
                     1e-10,
                 ),
             ];

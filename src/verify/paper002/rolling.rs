@@ -98,7 +98,7 @@ pub(super) fn rolling_integrated(
     paper: &PaperClaims,
     c: &NamedCheck,
 ) -> Result<Outcome, VerifyError> {
-    use crate::models::rigid_impact::{RoughSupport, SupportMode, impact_rough};
+    use crate::models::rigid_impact::{Contact, RoughSupport, SupportMode, impact_rough};
     let bad = |m: String| VerifyError::BadClaim {
         id: c.id.clone(),
         message: m,
@@ -144,11 +144,7 @@ pub(super) fn rolling_integrated(
                 v_a: Vector3::new(xi.cos(), xi.sin(), 0.0),
             },
             Some(SupportMode::Slide),
-            Vector3::x(),
-            v,
-            mu,
-            Law::Poisson,
-            0.5,
+            Contact::new(Vector3::x(), v, mu, Law::Poisson, 0.5),
             1e-11,
         )
     };

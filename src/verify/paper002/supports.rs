@@ -14,7 +14,8 @@ pub(super) fn rough_support(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
         // never grows (Poisson's and the energetic law); (c) the billiard example: the
         // vertical impulses balance, F*_3 = F_3, in every case (rolling or sliding)
         use crate::models::rigid_impact::{
-            RoughSupport, SmoothSupport, impact_general, impact_rough, kinetic_change_moving,
+            Contact, RoughSupport, SmoothSupport, impact_general, impact_rough,
+            kinetic_change_moving,
         };
         use crate::models::support::{Support, matrices};
         let mut rng = Rng(0x5EED_0044);
@@ -55,11 +56,7 @@ pub(super) fn rough_support(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
             if let Ok(s0) = impact_general(
                 &b,
                 Some(smooth),
-                Vector3::z(),
-                cf.v,
-                cf.mu,
-                law,
-                cf.e,
+                Contact::new(Vector3::z(), cf.v, cf.mu, law, cf.e),
                 1e-11,
             ) {
                 let si = Vector3::from(s0.impulse);
@@ -70,11 +67,7 @@ pub(super) fn rough_support(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
                             &b,
                             rough(m),
                             None,
-                            Vector3::z(),
-                            cf.v,
-                            cf.mu,
-                            law,
-                            cf.e,
+                            Contact::new(Vector3::z(), cf.v, cf.mu, law, cf.e),
                             1e-11,
                         )
                         .ok()
@@ -93,11 +86,7 @@ pub(super) fn rough_support(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
                 &b,
                 rough(mu_star),
                 None,
-                Vector3::z(),
-                cf.v,
-                cf.mu,
-                law,
-                cf.e,
+                Contact::new(Vector3::z(), cf.v, cf.mu, law, cf.e),
                 1e-10,
             ) {
                 Ok(r) => {
@@ -134,11 +123,13 @@ pub(super) fn rough_support(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
                     v_a: Vector3::zeros(),
                 },
                 None,
-                Vector3::x(),
-                Vector3::new(-1.0, 0.3, -0.4),
-                0.2,
-                Law::Poisson,
-                0.9,
+                Contact::new(
+                    Vector3::x(),
+                    Vector3::new(-1.0, 0.3, -0.4),
+                    0.2,
+                    Law::Poisson,
+                    0.9,
+                ),
                 1e-11,
             );
             if let Ok(r) = r {
