@@ -10,7 +10,7 @@
 //! so) are counted apart (`CLASSIFIED=1` lists them). Usage: `constrained_fail [COUNT]` (default
 //! 20000), or `constrained_fail --case I` to print case I's scene and result.
 use impactcheck::models::constrained::{ImpactMethod, scene_matrix, solve_scene, solve_scene_all};
-use impactcheck::models::rigid_impact::Law;
+use impactcheck::models::rigid_impact::{Contact, Law};
 use impactcheck::perf::{AGREE, constrained_scene_tagged, wrong_answer};
 use std::collections::BTreeMap;
 
@@ -64,7 +64,7 @@ fn main() {
                         )
                         .is_some();
                         compared += u64::from(planar);
-                        wrong_answer(&b, s.normal, s.v_rel, s.mu, s.law, s.e, &r)
+                        wrong_answer(&b, Contact::new(s.normal, s.v_rel, s.mu, s.law, s.e), &r)
                     }
                     // a support: the energetic law dissipates (the support's impulse does no
                     // positive work: it pushes only while A is at rest along N, and its friction

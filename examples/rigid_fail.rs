@@ -35,7 +35,7 @@ fn main() {
         planar += u64::from(is_planar);
         match impact_with_matrix(&s.b, Contact::new(z, s.v, s.mu, s.law, s.e), 1e-10) {
             Ok(r) => {
-                if let Some(why) = wrong_answer(&s.b, z, s.v, s.mu, s.law, s.e, &r) {
+                if let Some(why) = wrong_answer(&s.b, Contact::new(z, s.v, s.mu, s.law, s.e), &r) {
                     wrong += 1;
                     println!("{i} ({}, {:?}): wrong: {why}", s.law.name(), s.degenerate);
                 }

@@ -73,7 +73,8 @@ pub fn bench_problem(problem: &str, tols: &[f64], repeats: usize) -> Result<Valu
             let t = crate::models::hertz::TAU_UNDAMPED;
             let y0 = vec![0.0, 1.0];
             let r = vec![0.0, -1.0];
-            let p = work_precision(&model, 0.0, &y0, t, &r, &methods, tols, repeats).map_err(e)?;
+            let p =
+                work_precision(&model, (0.0, &y0, t), &r, &methods, tols, repeats).map_err(e)?;
             (t, y0, r, p)
         }
         "cone" => {
@@ -88,7 +89,7 @@ pub fn bench_problem(problem: &str, tols: &[f64], repeats: usize) -> Result<Valu
             let r = crate::integrate::solve(&sys, 0.0, &y0, CONE_T_END, &o)
                 .map_err(e)?
                 .y;
-            let p = work_precision(&sys, 0.0, &y0, CONE_T_END, &r, &methods, tols, repeats)
+            let p = work_precision(&sys, (0.0, &y0, CONE_T_END), &r, &methods, tols, repeats)
                 .map_err(e)?;
             (CONE_T_END, y0, r, p)
         }
@@ -99,7 +100,7 @@ pub fn bench_problem(problem: &str, tols: &[f64], repeats: usize) -> Result<Valu
             let t = 0.9 * cf.release();
             let y0 = vec![0.0, 0.0, 0.0, 1.0];
             let r = cf.state(t).to_vec();
-            let p = work_precision(&sys, 0.0, &y0, t, &r, &methods, tols, repeats).map_err(e)?;
+            let p = work_precision(&sys, (0.0, &y0, t), &r, &methods, tols, repeats).map_err(e)?;
             (t, y0, r, p)
         }
         other => {
@@ -335,13 +336,16 @@ pub const AGREE: f64 = 1e-8;
 /// energetically consistent) the kinetic energy grew by more than that.
 pub fn wrong_answer(
     b: &nalgebra::Matrix3<f64>,
-    normal: nalgebra::Vector3<f64>,
-    v: nalgebra::Vector3<f64>,
-    mu: f64,
-    law: crate::models::rigid_impact::Law,
-    e: f64,
+    contact: Contact,
     r: &crate::models::rigid_impact::ImpactResult,
 ) -> Option<String> {
+    let Contact {
+        normal,
+        v_minus: v,
+        mu,
+        law,
+        e,
+    } = contact;
     use crate::models::planar_impact::{PLANAR_TOL, PlanarProblem, planar_frame};
     use crate::models::rigid_impact::Law;
     let got = nalgebra::Vector3::from(r.impulse);

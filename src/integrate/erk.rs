@@ -7,7 +7,9 @@
 //! The driver is generic over the tableau, so each method is compiled with its own stages
 //! inlined into the loop: one driver costs nothing at run time.
 
-use super::{IntegrateError, OdeSystem, Options, Stats, Stepper, StiffnessTest, initial_step};
+use super::{
+    IntegrateError, OdeSystem, Options, Start, Stats, Stepper, StiffnessTest, initial_step,
+};
 use std::marker::PhantomData;
 
 /// Hairer's safety factor.
@@ -196,18 +198,18 @@ impl<T: Tableau, const N: usize> Erk<T, N> {
         let mut wf = vec![0.0; n];
         let h = match opts.fixed_step.or(opts.h0) {
             Some(h) => h,
-            None => initial_step(
-                sys,
-                t0,
-                y0,
-                &k[..n],
-                T::ORDER,
-                hmax,
-                opts.rtol,
-                opts.atol,
-                &mut wy,
-                &mut wf,
-            ),
+            None => {
+                let start = Start {
+                    t: t0,
+                    y: y0,
+                    f0: &k[..n],
+                    order: T::ORDER,
+                    hmax,
+                    rtol: opts.rtol,
+                    atol: opts.atol,
+                };
+                initial_step(sys, &start, &mut wy, &mut wf)
+            }
         };
         Erk {
             b: Buffers {

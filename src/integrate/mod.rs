@@ -309,31 +309,31 @@ pub fn solve<S: OdeSystem>(
     match opts.method {
         Method::Dopri5 if n == 2 => {
             let st = dopri5::Dopri5::<2>::new(sys, t0, y0, t_end, opts);
-            drive(sys, st, t0, y0, t_end, opts, None)
+            drive(sys, st, (t0, y0, t_end), opts, None)
         }
         Method::Dopri5 => {
             let st = dopri5::Dopri5::<0>::new(sys, t0, y0, t_end, opts);
-            drive(sys, st, t0, y0, t_end, opts, None)
+            drive(sys, st, (t0, y0, t_end), opts, None)
         }
         Method::Dop853 if n == 2 => {
             let st = dop853::Dop853::<2>::new(sys, t0, y0, t_end, opts);
-            drive(sys, st, t0, y0, t_end, opts, None)
+            drive(sys, st, (t0, y0, t_end), opts, None)
         }
         Method::Dop853 => {
             let st = dop853::Dop853::<0>::new(sys, t0, y0, t_end, opts);
-            drive(sys, st, t0, y0, t_end, opts, None)
+            drive(sys, st, (t0, y0, t_end), opts, None)
         }
         Method::Radau5 => {
             let st = radau5::Radau5::new(sys, t0, y0, t_end, opts);
-            drive(sys, st, t0, y0, t_end, opts, None)
+            drive(sys, st, (t0, y0, t_end), opts, None)
         }
         Method::Auto => {
             let first = if n == 2 {
                 let st = dop853::Dop853::<2>::new(sys, t0, y0, t_end, opts);
-                drive(sys, st, t0, y0, t_end, opts, Some(()))?
+                drive(sys, st, (t0, y0, t_end), opts, Some(()))?
             } else {
                 let st = dop853::Dop853::<0>::new(sys, t0, y0, t_end, opts);
-                drive(sys, st, t0, y0, t_end, opts, Some(()))?
+                drive(sys, st, (t0, y0, t_end), opts, Some(()))?
             };
             if first.switched_at.is_none() {
                 return Ok(first);
@@ -361,7 +361,7 @@ pub fn solve<S: OdeSystem>(
             let events: Vec<Event> = opts.events.iter().map(|e| e.reborrow()).collect();
             rest_opts.events = events;
             let st = radau5::Radau5::new(sys, ts, &first.y, t_end, &rest_opts);
-            let mut second = drive(sys, st, ts, &first.y, t_end, &rest_opts, None)?;
+            let mut second = drive(sys, st, (ts, &first.y, t_end), &rest_opts, None)?;
             let mut merged = first;
             merged.stats = merged.stats + second.stats;
             merged.t = second.t;
@@ -380,9 +380,7 @@ pub fn solve<S: OdeSystem>(
 fn drive<S: OdeSystem, St: Stepper>(
     sys: &S,
     mut st: St,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
+    (t0, y0, t_end): (f64, &[f64], f64),
     opts: &Options,
     auto: Option<()>,
 ) -> Result<Solution, IntegrateError> {
@@ -517,20 +515,34 @@ pub(crate) fn rms(e: &[f64], scale: &[f64]) -> f64 {
         .sqrt()
 }
 
-/// Hairer's starting step (HINIT): one extra evaluation of `f`.
-#[allow(clippy::too_many_arguments)]
+/// Where a solve starts, for [`initial_step`]: the time, state and slope there, the method's
+/// order, the largest step and the tolerances.
+pub(crate) struct Start<'a> {
+    pub t: f64,
+    pub y: &'a [f64],
+    pub f0: &'a [f64],
+    pub order: i32,
+    pub hmax: f64,
+    pub rtol: f64,
+    pub atol: f64,
+}
+
+/// Hairer's starting step (HINIT): one extra evaluation of `f`, in the work vectors.
 pub(crate) fn initial_step<S: OdeSystem>(
     sys: &S,
-    t: f64,
-    y: &[f64],
-    f0: &[f64],
-    order: i32,
-    hmax: f64,
-    rtol: f64,
-    atol: f64,
+    start: &Start,
     work_y: &mut [f64],
     work_f: &mut [f64],
 ) -> f64 {
+    let &Start {
+        t,
+        y,
+        f0,
+        order,
+        hmax,
+        rtol,
+        atol,
+    } = start;
     // sums, not means, as in Hairer's HINIT
     let sk = |i: usize| atol + rtol * y[i].abs();
     let (mut dnf, mut dny) = (0.0, 0.0);

@@ -23,12 +23,9 @@ pub struct WorkPoint {
 }
 
 /// Runs `sys` from `(t0, y0)` to `t_end` for each method and tolerance.
-#[allow(clippy::too_many_arguments)]
 pub fn work_precision<S: OdeSystem>(
     sys: &S,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
+    (t0, y0, t_end): (f64, &[f64], f64),
     reference: &[f64],
     methods: &[Method],
     tols: &[f64],

@@ -329,17 +329,14 @@ fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
 /// The impulsive motion (2.2) with c = 0 integrated in the normal impulse S ([`Plate`] with the
 /// centre of mass at the base centre), from sliding speed `v0` and spin `w0` until $u$ has gone
 /// from $-u_0$ to $\varepsilon u_0$. Returns $(V^+, \omega^+)$.
-#[allow(clippy::too_many_arguments)]
 pub fn impulsive_motion(
-    m: f64,
-    rho: f64,
-    a: f64,
-    f: f64,
+    plate: &Plate,
     v0: f64,
     w0: f64,
     u0: f64,
     restitution: f64,
 ) -> Result<(f64, f64), crate::integrate::IntegrateError> {
+    let (m, rho, a, f) = (plate.m, plate.rho, plate.a, plate.f);
     let plate = Plate {
         m,
         rho,

@@ -482,15 +482,7 @@ pub fn to_result(
 mod tests {
     use super::*;
 
-    fn problem(
-        b_tt: f64,
-        b_tn: f64,
-        b_nn: f64,
-        v_t: f64,
-        mu: f64,
-        law: Law,
-        e: f64,
-    ) -> PlanarProblem {
+    fn problem([b_tt, b_tn, b_nn]: [f64; 3], v_t: f64, mu: f64, law: Law, e: f64) -> PlanarProblem {
         PlanarProblem {
             b_tt,
             b_tn,
@@ -508,7 +500,7 @@ mod tests {
     fn central_impact_matches_the_textbook() {
         for law in [Law::Newton, Law::Poisson, Law::Energetic] {
             for e in [0.0, 0.25, 0.5, 0.75, 1.0] {
-                let s = problem(3.0, 0.0, 2.0, 0.0, 0.0, law, e)
+                let s = problem([3.0, 0.0, 2.0], 0.0, 0.0, law, e)
                     .solve()
                     .expect("solves");
                 assert!((s.v_n - e).abs() < 1e-15, "{law:?} {e}: {}", s.v_n);
@@ -527,7 +519,7 @@ mod tests {
         let (b_tt, b_tn, b_nn, mu, e) = (1.0, 0.1, 1.0, 0.5, 0.6);
         let p_c = 1.0 / (b_nn - mu * b_tn);
         for law in [Law::Poisson, Law::Energetic] {
-            let s = problem(b_tt, b_tn, b_nn, 10.0, mu, law, e)
+            let s = problem([b_tt, b_tn, b_nn], 10.0, mu, law, e)
                 .solve()
                 .expect("solves");
             assert!(
@@ -546,7 +538,7 @@ mod tests {
         let (b_tt, b_tn, b_nn) = (2.0, 1.0, 3.0);
         let critical = b_tn / b_tt;
         let run = |mu: f64| {
-            problem(b_tt, b_tn, b_nn, -0.1, mu, Law::Poisson, 0.5)
+            problem([b_tt, b_tn, b_nn], -0.1, mu, Law::Poisson, 0.5)
                 .solve()
                 .expect("solves")
         };
@@ -565,7 +557,7 @@ mod tests {
     #[test]
     fn a_rank_one_matrix_cuts_off() {
         // B* = w w^T with w = (2, 1): stick tau = -b_tn/b_tt = -1/2, dV_n = b_nn + b_tn tau = 0
-        let s = problem(4.0, 2.0, 1.0, 0.0, 1.0, Law::Poisson, 0.5)
+        let s = problem([4.0, 2.0, 1.0], 0.0, 1.0, Law::Poisson, 0.5)
             .solve()
             .expect("solves");
         assert!(s.cut_off);

@@ -44,9 +44,7 @@ fn run_problem<S: OdeSystem>(
     };
     work_precision(
         sys,
-        0.0,
-        y0,
-        t_end,
+        (0.0, y0, t_end),
         &reference,
         &METHODS,
         &tolerances(),

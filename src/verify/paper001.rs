@@ -25,12 +25,23 @@ fn disk_closed_forms(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, Ver
         let mut rows = Vec::new();
         for k in [0.003, 0.01, 0.03] {
             let (v0, w0) = (k, 1.0);
-            let (vp, wp) =
-                crate::models::disk_friction::impulsive_motion(m, rho, a, f, v0, w0, u0, 0.0)
-                    .map_err(|e| VerifyError::BadClaim {
-                        id: c.id.clone(),
-                        message: e.to_string(),
-                    })?;
+            let (vp, wp) = crate::models::disk_friction::impulsive_motion(
+                &Plate {
+                    m,
+                    rho,
+                    a,
+                    f,
+                    c: [0.0, 0.0],
+                },
+                v0,
+                w0,
+                u0,
+                0.0,
+            )
+            .map_err(|e| VerifyError::BadClaim {
+                id: c.id.clone(),
+                message: e.to_string(),
+            })?;
             let w_closed = w0 - 2.0 * a * f * u0 / (3.0 * rho * rho);
             let v_closed = v0 * (1.0 - 2.0 * f / mu * u0 / (a * w0)).powf(mu / 2.0);
             let (ew, ev) = (
