@@ -16,11 +16,10 @@ fn params() -> Params {
         b: 0.2,
         h: 0.002,
         rho: 1200.0,
-        kw: 1.0e6,
-        kg: 1.0e3,
-        ct: 10.0,
-        p1: 0.0,
-        p2: 0.0,
+        kw: Some(1.0e6),
+        kg: Some(1.0e3),
+        ct: Some(10.0),
+        inplane: Some((0.0, 0.0)),
     }
 }
 

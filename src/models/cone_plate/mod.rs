@@ -143,16 +143,28 @@ pub struct Params {
     pub h: f64,
     /// Density (kg/m^3).
     pub rho: f64,
-    /// Winkler modulus (N/m^3).
-    pub kw: f64,
-    /// Pasternak modulus (N/m).
-    pub kg: f64,
-    /// Damper (N s/m^3).
-    pub ct: f64,
-    /// In-plane loads (N/m).
-    pub p1: f64,
-    /// In-plane loads (N/m).
-    pub p2: f64,
+    /// Winkler modulus (N/m^3), with the effect "winkler".
+    pub kw: Option<f64>,
+    /// Pasternak modulus (N/m), with "pasternak".
+    pub kg: Option<f64>,
+    /// Damper (N s/m^3), with "damper".
+    pub ct: Option<f64>,
+    /// In-plane loads $(p_1, p_2)$ (N/m), with "inplane".
+    pub inplane: Option<(f64, f64)>,
+}
+
+impl Params {
+    /// The value of an optional effect's parameter when the effect is named: an error naming it
+    /// when the effect is on and the value is missing; `None` when the effect is off.
+    fn when<T: Copy>(on: bool, v: Option<T>, what: &str) -> Result<Option<T>, BuildError> {
+        match (on, v) {
+            (false, _) => Ok(None),
+            (true, Some(v)) => Ok(Some(v)),
+            (true, None) => Err(BuildError::Unsupported(format!(
+                "the effect needs {what}: give it, or leave the effect out"
+            ))),
+        }
+    }
 }
 
 /// How the contact force depends on the indentation history.
@@ -174,8 +186,8 @@ enum ContactLaw {
 
 #[derive(Clone, Debug)]
 enum Bending {
-    /// $b f$ (+ $b\tau\dot f$).
-    Local { stiff: f64, visc: f64 },
+    /// $b f$ (+ $b\tau\dot f$ when viscoelastic).
+    Local { stiff: f64, visc: Option<f64> },
     /// $(v_\alpha - v_\gamma)$ with $v' = -\delta v + w_0 f + w_1 \dot f$, times `k`.
     Memory { k: f64, w0: f64, w1: f64 },
 }
@@ -185,12 +197,20 @@ struct Mode {
     sign: f64,
     a4: f64,
     a3: f64,
-    ct: f64,
+    /// The foundation damper's term, with "damper".
+    ct: Option<f64>,
     bending: Bending,
-    cubic_el: f64,
-    cubic_visc: f64,
+    /// The cubic membrane terms, with "membrane".
+    membrane: Option<Membrane>,
     idx: usize,
     idx_op: Option<usize>,
+}
+
+/// The membrane terms of a mode: $A_5 f^3$ and, viscoelastic, $A_6 f^2 \dot f$.
+#[derive(Clone, Copy, Debug)]
+struct Membrane {
+    el: f64,
+    visc: Option<f64>,
 }
 
 /// The assembled system.
@@ -232,8 +252,18 @@ pub enum BuildError {
 
 /// The values of the symbols of the exact Galerkin coefficients (16): the material, the
 /// plate, the effects that are on (the others' coefficients 0) and $\tan\theta$.
-fn galerkin_values(p: &Params, effects: &Effects, lambda: f64, zeta: f64) -> BTreeMap<String, f64> {
-    [
+fn galerkin_values(
+    p: &Params,
+    effects: &Effects,
+    lambda: f64,
+    zeta: f64,
+) -> Result<BTreeMap<String, f64>, BuildError> {
+    // an effect that is off has no term: its coefficient's symbol is 0 in the exact forms
+    let kw = Params::when(effects.winkler, p.kw, "foundation.kw")?;
+    let kg = Params::when(effects.pasternak, p.kg, "foundation.kg")?;
+    let ct = Params::when(effects.damper, p.ct, "foundation.ct")?;
+    let (p1, p2) = Params::when(effects.inplane, p.inplane, "inplane.p1 and p2")?.unzip();
+    Ok([
         ("E", p.e),
         ("eta", p.eta),
         ("nu", p.nu),
@@ -243,16 +273,16 @@ fn galerkin_values(p: &Params, effects: &Effects, lambda: f64, zeta: f64) -> BTr
         ("b", p.b),
         ("h", p.h),
         ("rho", p.rho),
-        ("Kw", if effects.winkler { p.kw } else { 0.0 }),
-        ("KG", if effects.pasternak { p.kg } else { 0.0 }),
-        ("CT", if effects.damper { p.ct } else { 0.0 }),
-        ("p1", if effects.inplane { p.p1 } else { 0.0 }),
-        ("p2", if effects.inplane { p.p2 } else { 0.0 }),
+        ("Kw", kw.unwrap_or(0.0)),
+        ("KG", kg.unwrap_or(0.0)),
+        ("CT", ct.unwrap_or(0.0)),
+        ("p1", p1.unwrap_or(0.0)),
+        ("p2", p2.unwrap_or(0.0)),
         ("tan_theta", p.theta_deg.to_radians().tan()),
     ]
     .into_iter()
     .map(|(k, v)| (k.to_string(), v))
-    .collect()
+    .collect())
 }
 
 /// A plate mode with the coefficients of (16) as printed (000): $A_1$, $A_2$ inside the
@@ -269,14 +299,20 @@ fn printed_mode(
         sign: 1.0,
         a4: ev(3)?,
         a3: ev(2)?,
-        ct: 0.0,
         bending: Bending::Memory {
             k: 1.0,
             w0: a1,
             w1: a2,
         },
-        cubic_el: if membrane { ev(4)? } else { 0.0 },
-        cubic_visc: if membrane { ev(5)? } else { 0.0 },
+        ct: None,
+        membrane: if membrane {
+            Some(Membrane {
+                el: ev(4)?,
+                visc: Some(ev(5)?),
+            })
+        } else {
+            None
+        },
         idx,
         idx_op: Some(idx + 2),
     })
@@ -307,7 +343,7 @@ impl ConePlate {
             ));
         }
         let mut dim = 2;
-        let vals = galerkin_values(p, &effects, lambda, zeta);
+        let vals = galerkin_values(p, &effects, lambda, zeta)?;
         // contact law
         let contact_coef = if variant == Variant::AsPrinted && effects.plate {
             warnings.push(
@@ -384,14 +420,14 @@ impl ConePlate {
                             (false, _) => (
                                 Bending::Local {
                                     stiff: bend * e_plane,
-                                    visc: 0.0,
+                                    visc: None,
                                 },
                                 None,
                             ),
                             (true, Law::ConstantPoisson) => (
                                 Bending::Local {
                                     stiff: bend * e_plane,
-                                    visc: bend * e_plane * tau,
+                                    visc: Some(bend * e_plane * tau),
                                 },
                                 None,
                             ),
@@ -407,23 +443,26 @@ impl ConePlate {
                                 )
                             }
                         };
-                        let cubic = if effects.membrane {
-                            ev(&g.parts.cubic)?
+                        let membrane = if effects.membrane {
+                            let cubic = ev(&g.parts.cubic)?;
+                            Some(Membrane {
+                                el: cubic * p.e,
+                                visc: effects.viscoelastic.then_some(2.0 * cubic * p.eta),
+                            })
                         } else {
-                            0.0
+                            None
                         };
                         Mode {
                             sign: f64::from(g.load_sign),
                             a4: ev(&g.parts.a4)?,
                             a3: ev(&g.parts.a3)?,
-                            ct: ev(&g.parts.ct)?,
-                            bending,
-                            cubic_el: cubic * p.e,
-                            cubic_visc: if effects.viscoelastic {
-                                2.0 * cubic * p.eta
+                            ct: if effects.damper {
+                                Some(ev(&g.parts.ct)?)
                             } else {
-                                0.0
+                                None
                             },
+                            bending,
+                            membrane,
                             idx,
                             idx_op,
                         }
@@ -433,9 +472,9 @@ impl ConePlate {
                         printed_mode(&printed, &vals, effects.membrane, idx)?
                     }
                 };
-                has_diss |= mode.ct != 0.0
-                    || mode.cubic_visc != 0.0
-                    || matches!(mode.bending, Bending::Local { visc, .. } if visc != 0.0);
+                has_diss |= mode.ct.is_some()
+                    || mode.membrane.is_some_and(|m| m.visc.is_some())
+                    || matches!(mode.bending, Bending::Local { visc: Some(_), .. });
                 has_opwork |= matches!(mode.bending, Bending::Memory { .. });
                 modes.push(mode);
             }
@@ -551,7 +590,8 @@ impl ConePlate {
                         Bending::Local { stiff, .. } => 0.5 * stiff * f * f,
                         Bending::Memory { .. } => 0.0,
                     };
-                    bend + 0.5 * m.a3 * f * f + 0.25 * m.cubic_el * f.powi(4)
+                    let membrane = m.membrane.map_or(0.0, |mb| 0.25 * mb.el * f.powi(4));
+                    bend + 0.5 * m.a3 * f * f + membrane
                 })
                 .sum::<f64>()
     }
@@ -622,7 +662,11 @@ impl OdeSystem for ConePlate {
         for m in &self.modes {
             let (f, fd) = (y[m.idx], y[m.idx + 1]);
             let bend = match m.bending {
-                Bending::Local { stiff, visc } => {
+                Bending::Local { stiff, visc: None } => stiff * f,
+                Bending::Local {
+                    stiff,
+                    visc: Some(visc),
+                } => {
                     diss += visc * fd * fd;
                     stiff * f + visc * fd
                 }
@@ -637,14 +681,19 @@ impl OdeSystem for ConePlate {
                     force
                 }
             };
-            let membrane = m.cubic_el * f * f * f + m.cubic_visc * f * f * fd;
-            diss += m.ct * fd * fd + m.cubic_visc * f * f * fd * fd;
+            // absent terms are exact zeros, so the sums are those of the full model
+            let ct = m.ct.unwrap_or(0.0);
+            let (cubic_el, cubic_visc) = m
+                .membrane
+                .map_or((0.0, 0.0), |mb| (mb.el, mb.visc.unwrap_or(0.0)));
+            let membrane = cubic_el * f * f * f + cubic_visc * f * f * fd;
+            diss += ct * fd * fd + cubic_visc * f * f * fd * fd;
             let load = m.sign * p;
             if !self.effects.relative_indentation {
                 inj += load * fd;
             }
             dy[m.idx] = fd;
-            dy[m.idx + 1] = (load - bend - m.a3 * f - m.ct * fd - membrane) / m.a4;
+            dy[m.idx + 1] = (load - bend - m.a3 * f - ct * fd - membrane) / m.a4;
         }
         if let Some(i) = self.idx_diss {
             dy[i] = diss;

@@ -266,6 +266,11 @@ impl crate::models::Model for ConePlateScene {
                     f.num(v.as_ref(), field, Some(0.0), |_| true, allowed)
                 }
             };
+        // a foundation's value, read only with its effect (a value >= 0)
+        let when = |on: bool, v: &Option<Value>, field: &str, allowed: &str| {
+            on.then(|| f.num(v.as_ref(), field, None, |x| x >= 0.0, allowed))
+                .transpose()
+        };
         if fx.plate {
             if let Some(m) = &plate.modes {
                 let arr = m.as_array().ok_or_else(|| {
@@ -359,41 +364,35 @@ impl crate::models::Model for ConePlateScene {
                 &pos,
                 "rho > 0 (kg/m^3) with \"plate\"",
             )?,
-            kw: need(
+            kw: when(
                 fx.winkler,
                 &found.kw,
                 "foundation.kw",
-                &|v| v >= 0.0,
                 "kw >= 0 (N/m^3) with \"winkler\"",
             )?,
-            kg: need(
+            kg: when(
                 fx.pasternak,
                 &found.kg,
                 "foundation.kg",
-                &|v| v >= 0.0,
                 "kg >= 0 (N/m) with \"pasternak\"",
             )?,
-            ct: need(
+            ct: when(
                 fx.damper,
                 &found.ct,
                 "foundation.ct",
-                &|v| v >= 0.0,
                 "ct >= 0 (N s/m^3) with \"damper\"",
             )?,
-            p1: need(
-                fx.inplane,
-                &inpl.p1,
-                "inplane.p1",
-                &|_| true,
-                "p1 (N/m) with \"inplane\"",
-            )?,
-            p2: need(
-                fx.inplane,
-                &inpl.p2,
-                "inplane.p2",
-                &|_| true,
-                "p2 (N/m) with \"inplane\"",
-            )?,
+            inplane: if fx.inplane {
+                let p = |v: &Option<Value>, field: &str, allowed: &str| {
+                    f.num(v.as_ref(), field, None, |_| true, allowed)
+                };
+                Some((
+                    p(&inpl.p1, "inplane.p1", "p1 (N/m) with \"inplane\"")?,
+                    p(&inpl.p2, "inplane.p2", "p2 (N/m) with \"inplane\"")?,
+                ))
+            } else {
+                None
+            },
         };
         Ok(ConePlateScene {
             params,
