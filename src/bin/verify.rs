@@ -59,6 +59,21 @@ struct Args {
     /// Solves per work-precision point (median reported).
     #[arg(long, default_value_t = 5)]
     repeats: usize,
+    /// Measure the power of every claim's check: misprint its printed side (a coefficient x2,
+    /// x1/2, +-10 %, an exponent +-1, a sign, a dropped term, a symbol swapped for another of
+    /// the same unit) and rerun it; a misprint that keeps the verdict survives, and the claim
+    /// is marked weak (summary.json: `power`, `weak`; reports/README.md: the weak claims).
+    /// The default run (writing reports/) always measures it; --check, --only and --claims
+    /// only with this flag or --power-sample.
+    #[arg(long)]
+    power: bool,
+    /// Measure the power of N claims only, picked by --power-seed (with --check: compared with
+    /// the baseline's power of those claims).
+    #[arg(long, value_name = "N")]
+    power_sample: Option<usize>,
+    /// The seed that picks the claims of --power-sample (CI gives the commit).
+    #[arg(long, value_name = "TEXT", default_value = "0")]
+    power_seed: String,
 }
 
 fn default_dir(name: &str) -> PathBuf {
@@ -126,10 +141,27 @@ fn run(args: Args) -> Result<bool> {
     } else {
         indicatif::ProgressBar::hidden()
     };
+    let ids: Vec<String> = papers
+        .iter()
+        .flat_map(|p| p.claim.iter().map(|c| c.id.clone()))
+        .collect();
+    let measured = match args.power_sample {
+        Some(n) => verify::power::pick(&ids, n, &args.power_seed),
+        // the default reports always carry the power of every claim
+        None if args.power || (write_reports && !custom && !args.check && args.only.is_none()) => {
+            ids.iter().cloned().collect()
+        }
+        None => Default::default(),
+    };
     let mut outcomes = Vec::new();
     for p in &papers {
         bar.set_message(format!("paper {}", p.paper));
-        outcomes.extend(verify::run_all(std::slice::from_ref(p), &root)?);
+        outcomes.extend(verify::run_measured(
+            std::slice::from_ref(p),
+            &root,
+            verify::kinds::BUILTIN,
+            &|id| measured.contains(id),
+        )?);
         bar.inc(p.claim.len() as u64);
     }
     bar.finish_and_clear();
@@ -203,7 +235,10 @@ fn run(args: Args) -> Result<bool> {
     // the coverage table opens the index, after its first paragraphs
     let coverage = verify::coverage::table(&verify::coverage::compute(&papers), &outcomes);
     if let Some((_, readme)) = files.iter_mut().find(|(n, _)| n == "README.md") {
-        let at = readme.find("| claim | paper |").unwrap_or(readme.len());
+        let at = readme
+            .find("## Power of the checks")
+            .or_else(|| readme.find("| claim | paper |"))
+            .unwrap_or(readme.len());
         readme.insert_str(at, &format!("{coverage}## Every claim\n\n"));
     }
     if !custom {

@@ -7,7 +7,7 @@
 mod outcome;
 pub mod svg;
 
-pub use outcome::{Outcome, PaperInfo, Verdict};
+pub use outcome::{Outcome, PaperInfo, Power, Verdict};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -28,6 +28,12 @@ pub struct SummaryClaim {
     /// What a kind adds (`probability`: `{p, lo, hi, n}`; `valid_fraction`).
     #[serde(flatten)]
     pub extra: BTreeMap<String, serde_json::Value>,
+    /// The power of its check, when measured (`verify --power`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub power: Option<Power>,
+    /// A misprint of its printed side survives its check ([`Power::weak`]).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub weak: bool,
 }
 
 /// `summary.json`: sorted by id, no timestamps or timings.
@@ -57,6 +63,8 @@ pub fn summary(outcomes: &[Outcome]) -> Summary {
             verdict: o.verdict,
             detail: o.detail.clone(),
             extra: o.extra.clone(),
+            power: o.power.clone(),
+            weak: o.power.as_ref().is_some_and(Power::weak),
         })
         .collect();
     claims.sort_by(|a, b| a.id.cmp(&b.id));
@@ -137,6 +145,7 @@ pub fn render(papers: &[PaperInfo], outcomes: &[Outcome]) -> Vec<(String, String
         "{generic} of them are checked by a generic kind from formulas written as text in `verify/*.toml` \
          (identity, dimension, model, bound: see `verify/README.md`); the others by a named Rust check.\n\n"
     ));
+    readme.push_str(&power_section(papers, outcomes));
     readme.push_str("| claim | paper | equation | verdict | detail |\n|---|---|---|---|---|\n");
     for p in papers {
         for o in by_paper.get(p.paper.as_str()).into_iter().flatten() {
@@ -199,6 +208,9 @@ pub fn render(papers: &[PaperInfo], outcomes: &[Outcome]) -> Vec<(String, String
                 o.verdict.as_str(),
                 o.detail
             ));
+            if let Some(line) = o.power.as_ref().map(power_line) {
+                md.push_str(&line);
+            }
             if let Some(p) = &o.printed_latex {
                 md.push_str(&format!("Printed:\n\n$$\n{p}\n$$\n\n"));
             }
@@ -218,6 +230,113 @@ pub fn render(papers: &[PaperInfo], outcomes: &[Outcome]) -> Vec<(String, String
     let json = serde_json::to_string_pretty(&summary(outcomes)).unwrap_or_default();
     files.push(("summary.json".to_string(), json + "\n"));
     files
+}
+
+/// The README's account of the checks' power: how many misprints they see, the weak claims
+/// (a misprint survives) with what each cannot see, and why some were not measured.
+fn power_section(papers: &[PaperInfo], outcomes: &[Outcome]) -> String {
+    let measured: Vec<(&Outcome, &Power)> = outcomes
+        .iter()
+        .filter_map(|o| o.power.as_ref().map(|p| (o, p)))
+        .collect();
+    if measured.is_empty() {
+        return String::new();
+    }
+    let run: Vec<&(&Outcome, &Power)> = measured
+        .iter()
+        .filter(|(_, p)| p.not_measured.is_none())
+        .collect();
+    let mutants: usize = run.iter().map(|(_, p)| p.mutants).sum();
+    let killed: usize = run.iter().map(|(_, p)| p.killed).sum();
+    let weak: Vec<&&(&Outcome, &Power)> = run.iter().filter(|(_, p)| p.weak()).collect();
+    let mut md = format!(
+        "## Power of the checks\n\nEach claim's printed side is misprinted the way misprints happen (a coefficient \
+         x2, x1/2, x1.1, x0.9; an exponent +-1; a sign; a dropped term; a symbol swapped for another of the same \
+         unit; at most 40 per claim) and the claim is checked again: a misprint that keeps the verdict survives. \
+         {} claims measured: {mutants} misprints, {killed} killed ({:.0} %); {} claims see every misprint, \
+         **{} are weak** (a misprint survives), {} not measured.\n\n",
+        run.len(),
+        100.0 * killed as f64 / mutants.max(1) as f64,
+        run.len() - weak.len(),
+        weak.len(),
+        measured.len() - run.len()
+    );
+    if !weak.is_empty() {
+        md.push_str(
+            "| weak claim | killed | surviving misprints (first 3) | what the check cannot see |\n|---|---|---|---|\n",
+        );
+        let report_of = |paper: &str| {
+            papers
+                .iter()
+                .find(|p| p.paper == paper)
+                .map(|p| p.report.clone())
+                .unwrap_or_default()
+        };
+        for (o, p) in &weak {
+            let survivors: Vec<String> = p
+                .survivors
+                .iter()
+                .take(3)
+                .map(|s| format!("`{s}`"))
+                .collect();
+            md.push_str(&format!(
+                "| [{}]({}#{}) | {}/{} | {} | {} |\n",
+                o.id,
+                report_of(&o.paper),
+                anchor(&o.id),
+                p.killed,
+                p.mutants,
+                escape_cell(&survivors.join(", ")),
+                escape_cell(p.blind.as_deref().unwrap_or("**not stated**"))
+            ));
+        }
+        md.push('\n');
+    }
+    let mut why: BTreeMap<&str, usize> = BTreeMap::new();
+    for (_, p) in &measured {
+        if let Some(w) = &p.not_measured {
+            *why.entry(w.as_str()).or_default() += 1;
+        }
+    }
+    if !why.is_empty() {
+        md.push_str("Not measured:\n\n");
+        for (w, n) in &why {
+            md.push_str(&format!("- {n}: {w}\n"));
+        }
+        md.push('\n');
+    }
+    md
+}
+
+/// A claim's power in its paper's report.
+fn power_line(p: &Power) -> String {
+    if let Some(w) = &p.not_measured {
+        return format!("Power: not measured ({w}).\n\n");
+    }
+    let mut line = format!(
+        "Power: {} of {} misprints of the printed side change the verdict",
+        p.killed, p.mutants
+    );
+    if p.excused > 0 {
+        line.push_str(&format!(
+            " ({} more only weaken the inequality and are not counted)",
+            p.excused
+        ));
+    }
+    if p.weak() {
+        line.push_str(&format!(
+            "; **weak**: {} survive ({}). What the check cannot see: {}",
+            p.survivors.len(),
+            p.survivors
+                .iter()
+                .map(|s| format!("`{s}`"))
+                .collect::<Vec<_>>()
+                .join(", "),
+            p.blind.as_deref().unwrap_or("not stated")
+        ));
+    }
+    line.push_str(".\n\n");
+    line
 }
 
 /// Writes rendered files into `dir` through a temporary folder beside it.
@@ -315,6 +434,23 @@ pub fn diff(baseline: &Summary, fresh: &Summary, partial: bool) -> Vec<(String, 
                 id.to_string(),
                 format!("verdict {} -> {}", o.verdict.as_str(), n.verdict.as_str()),
             )),
+            Some(o)
+                if n.power.is_some()
+                    && o.power.as_ref().map(|p| (p.killed, p.mutants))
+                        != n.power.as_ref().map(|p| (p.killed, p.mutants)) =>
+            {
+                let text = |p: &Option<Power>| match p {
+                    Some(p) if p.not_measured.is_none() => {
+                        format!("{}/{} killed", p.killed, p.mutants)
+                    }
+                    Some(_) => "not measured".to_string(),
+                    None => "not in the baseline".to_string(),
+                };
+                out.push((
+                    id.to_string(),
+                    format!("power {} -> {}", text(&o.power), text(&n.power)),
+                ))
+            }
             Some(o) if !same_detail(&o.detail, &n.detail) || o.equation != n.equation => {
                 out.push((
                     id.to_string(),
@@ -348,5 +484,41 @@ mod tests {
         assert!(!same_detail("error up to 8.82e-1", "error up to 8.83e-1"));
         assert!(!same_detail("derived 2/alpha", "derived 3/alpha"));
         assert!(!same_detail("a b", "a b c"));
+    }
+
+    #[test]
+    fn a_check_that_loses_power_is_a_change() {
+        let claim = |power: Option<Power>| SummaryClaim {
+            id: "p.x".into(),
+            paper: "p".into(),
+            equation: "(1)".into(),
+            verdict: Verdict::Holds,
+            detail: "d".into(),
+            extra: BTreeMap::new(),
+            weak: power.as_ref().is_some_and(Power::weak),
+            power,
+        };
+        let sum = |power: Option<Power>| Summary {
+            claims: vec![claim(power)],
+            generated_by: GeneratedBy {
+                version: "0".into(),
+            },
+        };
+        let strong = Power {
+            mutants: 5,
+            killed: 5,
+            ..Power::default()
+        };
+        let weaker = Power {
+            killed: 3,
+            survivors: vec!["a".into(), "b".into()],
+            ..strong.clone()
+        };
+        let changes = diff(&sum(Some(strong.clone())), &sum(Some(weaker)), false);
+        assert_eq!(changes.len(), 1);
+        assert_eq!(changes[0].1, "power 5/5 killed -> 3/5 killed");
+        // not measured in the fresh run (no --power-sample): nothing to compare
+        assert!(diff(&sum(Some(strong.clone())), &sum(None), false).is_empty());
+        assert!(diff(&sum(Some(strong.clone())), &sum(Some(strong)), false).is_empty());
     }
 }

@@ -65,6 +65,53 @@ pub struct Outcome {
     pub kind: String,
     /// Numbers a kind adds to the JSON of the claim (`probability`, `valid_fraction`).
     pub extra: BTreeMap<String, serde_json::Value>,
+    /// The power of the claim's check, when measured (`verify --power`).
+    pub power: Option<Power>,
+}
+
+/// The power of a claim's check: how many misprints of its printed side it sees.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Power {
+    /// Misprints run (equivalent and merely weakening ones not counted).
+    pub mutants: usize,
+    /// Misprints whose verdict differs from the claim's.
+    pub killed: usize,
+    /// The misprints that kept the verdict: which key, and what was changed.
+    pub survivors: Vec<String>,
+    /// Misprints of an inequality that only weaken it (still true; not counted).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub excused: usize,
+    /// Why the power was not measured (a failing claim, no printed side in the claims file).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub not_measured: Option<String>,
+    /// What the check cannot see, as its claim or kind states it (`blind`), given when a
+    /// misprint survives.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub blind: Option<String>,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
+impl Power {
+    /// Power that was not measured, and why.
+    pub fn not_measured(why: String) -> Power {
+        Power {
+            not_measured: Some(why),
+            ..Power::default()
+        }
+    }
+
+    /// Whether a misprint survived: the check cannot see it.
+    pub fn weak(&self) -> bool {
+        !self.survivors.is_empty()
+    }
+
+    /// The share of the mutants killed (`None` when none was run).
+    pub fn score(&self) -> Option<f64> {
+        (self.mutants > 0).then(|| self.killed as f64 / self.mutants as f64)
+    }
 }
 
 /// What the report needs of a paper: its short name, title, source file and report file name.

@@ -12,6 +12,7 @@ pub mod kinds;
 pub mod paper000;
 pub mod paper001;
 pub mod paper002;
+pub mod power;
 pub mod series_numeric;
 
 use serde::Deserialize;
@@ -62,11 +63,15 @@ pub struct Head {
     /// the detail names it.
     #[serde(default)]
     pub assumption: Option<String>,
+    /// What the claim's check cannot see: the misprints of its printed side that keep its
+    /// verdict, and why ([`power`]; the report gives it beside a weak claim).
+    #[serde(default)]
+    pub blind: Option<String>,
 }
 
 impl Head {
     /// The keys of a head; every other key of a claim belongs to its kind.
-    const KEYS: [&str; 5] = ["id", "equation", "quote", "kind", "assumption"];
+    const KEYS: [&str; 6] = ["id", "equation", "quote", "kind", "assumption", "blind"];
 }
 
 /// One claim as listed in `verify/`: its [`Head`] and the keys of its kind, which the kind's
@@ -210,6 +215,7 @@ pub(crate) fn outcome(paper: &PaperClaims, c: &Head, verdict: Verdict, detail: S
         files: vec![],
         kind: String::new(),
         extra: BTreeMap::new(),
+        power: None,
     }
 }
 
@@ -362,20 +368,33 @@ pub fn run_with(
     root: &Path,
     kinds: &[kinds::KindEntry],
 ) -> Result<Vec<Outcome>, VerifyError> {
+    run_measured(papers, root, kinds, &|_| false)
+}
+
+/// [`run_with`], and the power of every claim whose id `power` picks ([`power`]).
+pub fn run_measured(
+    papers: &[PaperClaims],
+    root: &Path,
+    kinds: &[kinds::KindEntry],
+    power: &dyn Fn(&str) -> bool,
+) -> Result<Vec<Outcome>, VerifyError> {
     let checked: Vec<kinds::Checked> = papers
         .iter()
         .map(|p| kinds::Checked::validate_with(p, kinds))
         .collect::<Result<_, _>>()?;
-    let mut session = kinds::Session {
+    let new_session = || kinds::Session {
         derivations: kinds::Derivations::default(),
         named: Named {
             root,
             paper000: paper000::Context::new(root),
         },
     };
+    let mut session = new_session();
     let mut out = Vec::new();
     for file in &checked {
-        out.extend(file.check_all(&mut session)?);
+        let mut outcomes = file.check_all(&mut session)?;
+        file.measure_power(&mut outcomes, power, &new_session);
+        out.extend(outcomes);
     }
     out.sort_by(|a, b| a.id.cmp(&b.id));
     Ok(out)

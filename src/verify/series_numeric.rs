@@ -319,6 +319,7 @@ pub fn check(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Outcome
             ),
         ],
         kind: String::new(),
+        power: None,
         extra: std::collections::BTreeMap::new(),
     })
 }
@@ -432,6 +433,7 @@ pub fn passivity(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Out
             ),
         ],
         kind: String::new(),
+        power: None,
         extra: std::collections::BTreeMap::new(),
     })
 }

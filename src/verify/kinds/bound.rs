@@ -46,6 +46,7 @@ pub struct Bound {
 
 impl Kind for Bound {
     const NAME: &'static str = "bound";
+    const PRINTED: &'static [&'static str] = &["require"];
     type Spec = BoundSpec;
 
     fn validate(cx: &Checked, c: &Head, s: BoundSpec) -> Result<Self, VerifyError> {
@@ -126,7 +127,11 @@ impl Kind for Bound {
         } else {
             Verdict::NotCheckable
         };
-        Ok(outcome(cx.file, c, verdict, detail))
+        let mut o = outcome(cx.file, c, verdict, detail);
+        if let Some((m, _)) = worst {
+            o.extra.insert("least_margin".into(), serde_json::json!(m));
+        }
+        Ok(o)
     }
 
     fn report(&self, _: &Head) -> String {

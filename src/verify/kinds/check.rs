@@ -51,6 +51,7 @@ pub struct Check(NamedCheck);
 
 impl Kind for Check {
     const NAME: &'static str = "check";
+    const PRINTED: &'static [&'static str] = &["printed", "printed_equations", "printed_matrix"];
     type Spec = NamedCheck;
 
     fn validate(cx: &Checked, c: &Head, mut s: NamedCheck) -> Result<Self, VerifyError> {

@@ -40,6 +40,7 @@ pub struct Definition {
 
 impl Kind for Definition {
     const NAME: &'static str = "definition";
+    const PRINTED: &'static [&'static str] = &["printed"];
     type Spec = DefinitionSpec;
 
     fn validate(cx: &Checked, c: &Head, s: DefinitionSpec) -> Result<Self, VerifyError> {

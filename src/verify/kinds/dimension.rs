@@ -33,6 +33,10 @@ pub struct Dimension {
 
 impl Kind for Dimension {
     const NAME: &'static str = "dimension";
+    const BLIND: Option<&'static str> = Some(
+        "a unit check sees only the misprints that change the unit: a coefficient, a sign, a dropped term of the same unit or a symbol of the same unit keep it",
+    );
+    const PRINTED: &'static [&'static str] = &["printed"];
     type Spec = DimensionSpec;
 
     fn validate(cx: &Checked, c: &Head, s: DimensionSpec) -> Result<Self, VerifyError> {

@@ -65,6 +65,7 @@ pub struct Identity {
 
 impl Kind for Identity {
     const NAME: &'static str = "identity";
+    const PRINTED: &'static [&'static str] = &["printed"];
     type Spec = IdentitySpec;
 
     fn validate(cx: &Checked, c: &Head, s: IdentitySpec) -> Result<Self, VerifyError> {

@@ -63,6 +63,7 @@ pub struct Map {
 
 impl Kind for Map {
     const NAME: &'static str = "map";
+    const PRINTED: &'static [&'static str] = &["require", "printed"];
     type Spec = MapSpec;
 
     fn validate(cx: &Checked, c: &Head, s: MapSpec) -> Result<Self, VerifyError> {

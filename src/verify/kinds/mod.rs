@@ -56,6 +56,12 @@ pub trait Kind: Sized + Send + Sync + 'static {
     /// The kind's keys besides `id`, `equation`, `quote`, `kind` and `assumption` (a serde
     /// struct with `deny_unknown_fields`).
     type Spec: DeserializeOwned;
+    /// The keys that hold the paper's printed side (formulas, inequalities, or lists of them):
+    /// what [`super::power`] misprints to measure the check's power.
+    const PRINTED: &'static [&'static str] = &[];
+    /// What every check of this kind cannot see (a dimension check: a misprint that keeps the
+    /// unit); a claim's own `blind` says more.
+    const BLIND: Option<&'static str> = None;
     /// Checks the keys, formulas, units and scenes, and builds the checked claim.
     fn validate(cx: &Checked, head: &Head, spec: Self::Spec) -> Result<Self, VerifyError>;
     /// Computes the verdict, its detail and any figures.
@@ -92,7 +98,11 @@ impl<K: Kind> Claim for K {
 pub struct KindEntry {
     /// The name claims give it.
     pub name: &'static str,
-    validate: Validate,
+    /// The keys holding the printed side ([`Kind::PRINTED`]).
+    pub printed: &'static [&'static str],
+    /// What no check of the kind can see ([`Kind::BLIND`]).
+    pub blind: Option<&'static str>,
+    pub(crate) validate: Validate,
 }
 
 /// A kind's validation, its spec type erased.
@@ -102,6 +112,8 @@ type Validate = fn(&Checked, &ClaimSpec) -> Result<Box<dyn Claim>, VerifyError>;
 pub const fn kind<K: Kind>() -> KindEntry {
     KindEntry {
         name: K::NAME,
+        printed: K::PRINTED,
+        blind: K::BLIND,
         validate: validate_as::<K>,
     }
 }
@@ -189,6 +201,10 @@ pub struct Checked<'a> {
     dir: PathBuf,
     /// The checked claims, in the file's order.
     claims: Vec<Box<dyn Claim>>,
+    /// The kind of each claim, in the file's order.
+    entries: Vec<KindEntry>,
+    /// Symbols of the same unit as each symbol (for [`super::power`]'s swaps).
+    same_unit: BTreeMap<String, Vec<String>>,
 }
 
 fn parse_formula(
@@ -238,6 +254,7 @@ impl<'a> Checked<'a> {
             };
             let claim = (k.validate)(&me, c)?;
             me.claims.push(claim);
+            me.entries.push(*k);
         }
         Ok(me)
     }
@@ -299,7 +316,10 @@ impl<'a> Checked<'a> {
             def_units: BTreeMap::new(),
             dir,
             claims: Vec::new(),
+            entries: Vec::new(),
+            same_unit: BTreeMap::new(),
         };
+        me.same_unit = super::power::same_unit_table(&me.units);
         let def_units = me
             .defs
             .iter()
@@ -331,6 +351,39 @@ impl<'a> Checked<'a> {
                 Ok(super::with_assumption(o, &c.head))
             })
             .collect()
+    }
+
+    /// Measures the power of each claim for which `pick(id)` holds, given its outcome of
+    /// [`Checked::check_all`] ([`super::power::measure`]).
+    pub fn measure_power<'s>(
+        &self,
+        outcomes: &mut [Outcome],
+        pick: &dyn Fn(&str) -> bool,
+        new_session: &(dyn Fn() -> Session<'s> + Sync),
+    ) {
+        for ((c, entry), o) in self.file.claim.iter().zip(&self.entries).zip(outcomes) {
+            if pick(&c.id) {
+                o.power = Some(super::power::measure(self, entry, c, o, new_session));
+            }
+        }
+    }
+
+    /// The file's symbols of the same unit as `s`.
+    pub(crate) fn same_unit(&self, s: &str) -> Vec<String> {
+        self.same_unit.get(s).cloned().unwrap_or_default()
+    }
+
+    /// The file's definitions expanded in `e` (for misprints inside them).
+    pub(crate) fn expand_defs(&self, e: &Expr) -> Expr {
+        let mut cur = e.clone();
+        for _ in 0..20 {
+            let next = self.expand(&cur);
+            if next == cur {
+                break;
+            }
+            cur = next;
+        }
+        cur
     }
 
     /// Every symbol of `e` has a unit (or is a definition, or one of `also`).

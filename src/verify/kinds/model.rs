@@ -50,6 +50,7 @@ pub struct Model {
 
 impl Kind for Model {
     const NAME: &'static str = "model";
+    const PRINTED: &'static [&'static str] = &["printed"];
     type Spec = ModelSpec;
 
     fn validate(cx: &Checked, c: &Head, s: ModelSpec) -> Result<Self, VerifyError> {

@@ -52,6 +52,7 @@ pub struct Probability {
 
 impl Kind for Probability {
     const NAME: &'static str = "probability";
+    const PRINTED: &'static [&'static str] = &["event"];
     type Spec = ProbabilitySpec;
 
     fn validate(cx: &Checked, c: &Head, s: ProbabilitySpec) -> Result<Self, VerifyError> {

@@ -1,0 +1,664 @@
+//! The power of a claim's check: misprints of its printed side, and whether the check sees them.
+//!
+//! A verdict is worth the check behind it. For each claim whose verdict holds (or holds with
+//! its correction), the printed side (the kind's printed keys, [`super::kinds::Kind::PRINTED`],
+//! or `corrected` where the printed form fails and the correction holds) is perturbed the way
+//! misprints happen, and the claim is validated and checked again with the misprint in place:
+//!
+//! - a coefficient $\times 2$, $\times 1/2$, $\times 1.1$, $\times 0.9$ (each literal, and the
+//!   whole side, for formulas whose coefficient is a symbol);
+//! - an exponent $\pm 1$;
+//! - a sign (a unary minus dropped, `+` and `-` exchanged, the whole side negated);
+//! - a dropped term of a sum;
+//! - a symbol swapped for another of the same unit in the file's `[symbols]`.
+//!
+//! A mutant is **killed** when the verdict changes (or the misprint is refused at validation,
+//! or its check stops with an error), and **survives** otherwise. Not counted: a mutant equal to
+//! the printed side or to an earlier mutant (the same values at three points of its symbols:
+//! `a*b` with `a` and `b` swapped), and, for an inequality that holds, a misprint that only
+//! weakens it (it still holds, with a least margin over the samples at least the printed one's:
+//! a true but weaker statement that no check could refute). The file definitions a printed side
+//! uses are expanded first, so a misprint inside a definition is among the mutants.
+//!
+//! A claim that fails is not measured (a misprint of a wrong formula stays wrong; its check's
+//! power is measured on `corrected` where the claim gives one), nor is a claim with no printed
+//! side in the claims file (a named check whose printed values are in Rust; the report says so).
+//!
+//! Written by hand: mutation of formulas (as cargo-mutants and PIT mutate code) is a walk over
+//! our own [`Expr`]; no crate does it.
+
+use super::kinds::{Checked, KindEntry, Session};
+use super::{ClaimSpec, Outcome, Verdict};
+use crate::algebra::expr::{self, Expr, Inequality, Op};
+use crate::algebra::poly::Q;
+use crate::algebra::units::Unit;
+use num_traits::{Signed, Zero};
+use std::collections::BTreeMap;
+
+pub use crate::report::Power;
+
+/// One misprint of a formula: what was changed, and the formula with it.
+#[derive(Clone, Debug)]
+pub struct Mutant {
+    /// What was changed (`coefficient 3.2181 x2`, `exponent of (m/k) +1`).
+    pub what: String,
+    /// The formula with the misprint.
+    pub expr: Expr,
+}
+
+/// Every misprint of `e` of the kinds above; `swaps(s)` gives the symbols of the same unit as
+/// `s`.
+pub fn mutants(e: &Expr, swaps: &dyn Fn(&str) -> Vec<String>) -> Vec<Mutant> {
+    // a bound variable (of `int`, `diff`, `at`) is not a paper's symbol, nor is a model's
+    // outcome (`contact.duration`): neither is swapped, or swapped in
+    let mut bound = Vec::new();
+    bound_variables(e, &mut bound);
+    let paper = |s: &str| !bound.iter().any(|b| b == s) && !s.contains('.');
+    let swaps = |s: &str| -> Vec<String> {
+        if !paper(s) {
+            return Vec::new();
+        }
+        swaps(s).into_iter().filter(|t| paper(t)).collect()
+    };
+    let mut out = whole(e);
+    walk(e, false, &swaps, &mut out);
+    out
+}
+
+/// The variables that `int`, `diff` and `at` bind in `e`.
+fn bound_variables(e: &Expr, out: &mut Vec<String>) {
+    match e {
+        Expr::Num(_) | Expr::Sym(_) | Expr::Pi => {}
+        Expr::Neg(a) | Expr::Call(_, a) => bound_variables(a, out),
+        Expr::Bin(_, a, b) => {
+            bound_variables(a, out);
+            bound_variables(b, out);
+        }
+        Expr::Calc(_, body, var, extra) => {
+            out.push(var.clone());
+            bound_variables(body, out);
+            extra.iter().for_each(|x| bound_variables(x, out));
+        }
+    }
+}
+
+/// The whole side scaled and negated.
+fn whole(e: &Expr) -> Vec<Mutant> {
+    let mut out: Vec<Mutant> = FACTORS
+        .iter()
+        .map(|(name, f)| Mutant {
+            what: format!("the whole side {name}"),
+            expr: Expr::Bin(Op::Mul, Box::new(Expr::Num(f())), Box::new(e.clone())),
+        })
+        .collect();
+    out.push(Mutant {
+        what: "the whole side negated".into(),
+        expr: negate(e),
+    });
+    out
+}
+
+/// A misprint's factor, made on demand (a `Q` is not `const`).
+type Factor = fn() -> Q;
+
+/// The coefficient misprints: x2, x1/2, x1.1, x0.9.
+const FACTORS: [(&str, Factor); 4] = [
+    ("x2", || Q::from_integer(2.into())),
+    ("x1/2", || Q::new(1.into(), 2.into())),
+    ("x1.1", || Q::new(11.into(), 10.into())),
+    ("x0.9", || Q::new(9.into(), 10.into())),
+];
+
+fn negate(e: &Expr) -> Expr {
+    match e {
+        Expr::Neg(a) => (**a).clone(),
+        _ => Expr::Neg(Box::new(e.clone())),
+    }
+}
+
+fn num(v: Q) -> Expr {
+    if v.is_negative() {
+        Expr::Neg(Box::new(Expr::Num(-v)))
+    } else {
+        Expr::Num(v)
+    }
+}
+
+fn short(e: &Expr) -> String {
+    let s = e.to_string();
+    if s.chars().count() <= 40 {
+        s
+    } else {
+        format!("{}...", s.chars().take(37).collect::<String>())
+    }
+}
+
+/// The misprints at `e` itself, then those inside it, each rebuilt into `e`.
+fn walk(e: &Expr, in_exponent: bool, swaps: &dyn Fn(&str) -> Vec<String>, out: &mut Vec<Mutant>) {
+    local(e, in_exponent, swaps, out);
+    let inner = |child: &Expr, exp: bool, rebuild: &dyn Fn(Expr) -> Expr, out: &mut Vec<Mutant>| {
+        let mut sub = Vec::new();
+        walk(child, exp, swaps, &mut sub);
+        out.extend(sub.into_iter().map(|m| Mutant {
+            what: m.what,
+            expr: rebuild(m.expr),
+        }));
+    };
+    match e {
+        Expr::Num(_) | Expr::Sym(_) | Expr::Pi => {}
+        Expr::Neg(a) => inner(a, in_exponent, &|m| Expr::Neg(Box::new(m)), out),
+        Expr::Call(f, a) => inner(a, in_exponent, &|m| Expr::Call(*f, Box::new(m)), out),
+        Expr::Bin(op, a, b) => {
+            inner(
+                a,
+                in_exponent,
+                &|m| Expr::Bin(*op, Box::new(m), b.clone()),
+                out,
+            );
+            inner(
+                b,
+                in_exponent || *op == Op::Pow,
+                &|m| Expr::Bin(*op, a.clone(), Box::new(m)),
+                out,
+            );
+        }
+        Expr::Calc(c, body, var, extra) => {
+            let rebuild_body = |m: Expr| Expr::Calc(*c, Box::new(m), var.clone(), extra.clone());
+            inner(body, in_exponent, &rebuild_body, out);
+            for i in 0..extra.len() {
+                let rebuild = |m: Expr| {
+                    let mut x = extra.clone();
+                    x[i] = m;
+                    Expr::Calc(*c, body.clone(), var.clone(), x)
+                };
+                inner(&extra[i], in_exponent, &rebuild, out);
+            }
+        }
+    }
+}
+
+/// The misprints of the node `e` alone.
+fn local(e: &Expr, in_exponent: bool, swaps: &dyn Fn(&str) -> Vec<String>, out: &mut Vec<Mutant>) {
+    match e {
+        Expr::Num(v) if !in_exponent && !v.is_zero() => {
+            for (name, f) in FACTORS {
+                out.push(Mutant {
+                    what: format!("coefficient {} {name}", e),
+                    expr: num(v * f()),
+                });
+            }
+        }
+        Expr::Sym(s) => {
+            for t in swaps(s) {
+                out.push(Mutant {
+                    what: format!("`{s}` swapped for `{t}`"),
+                    expr: Expr::Sym(t),
+                });
+            }
+        }
+        Expr::Neg(a) => out.push(Mutant {
+            what: format!("sign of -{} dropped", short(a)),
+            expr: (**a).clone(),
+        }),
+        Expr::Bin(Op::Pow, base, x) => {
+            for (name, d) in [("+1", 1i64), ("-1", -1)] {
+                let d = Q::from_integer(d.into());
+                let shifted = match x.exact_constant() {
+                    Some(v) => num(v + d),
+                    None => Expr::Bin(Op::Add, x.clone(), Box::new(num(d))),
+                };
+                out.push(Mutant {
+                    what: format!("exponent of {} {name}", short(base)),
+                    expr: Expr::Bin(Op::Pow, base.clone(), Box::new(shifted)),
+                });
+            }
+        }
+        Expr::Bin(op @ (Op::Add | Op::Sub), a, b) => {
+            let flipped = if *op == Op::Add { Op::Sub } else { Op::Add };
+            out.push(Mutant {
+                what: format!("sign of the term {}", short(b)),
+                expr: Expr::Bin(flipped, a.clone(), b.clone()),
+            });
+            out.push(Mutant {
+                what: format!("term {} dropped", short(b)),
+                expr: (**a).clone(),
+            });
+            out.push(Mutant {
+                what: format!("term {} dropped", short(a)),
+                expr: if *op == Op::Add {
+                    (**b).clone()
+                } else {
+                    negate(b)
+                },
+            });
+        }
+        _ => {}
+    }
+}
+
+/// How many symbol values a fingerprint may look up: nested integrals evaluated by
+/// quadrature cost 1024 evaluations per level, and a formula too dear to evaluate is not
+/// fingerprinted (its mutants are run, none merged as equivalent).
+const FINGERPRINT_BUDGET: usize = 200_000;
+
+/// Values of a formula's symbols at three points (a hash of the name picks each in
+/// [0.35, 0.85], where every function of the formula language is defined).
+fn fingerprint(values: &[&Expr]) -> Option<Vec<f64>> {
+    let mut out = Vec::new();
+    let spent = std::cell::Cell::new(0usize);
+    for point in 0..3u64 {
+        let value = |s: &str| {
+            spent.set(spent.get() + 1);
+            if spent.get() > FINGERPRINT_BUDGET {
+                return None;
+            }
+            let mut h: u64 = 0xcbf2_9ce4_8422_2325 ^ point.wrapping_mul(0x9e37_79b9_7f4a_7c15);
+            for b in s.bytes() {
+                h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+            }
+            Some(0.35 + 0.5 * ((h >> 11) as f64 / (1u64 << 53) as f64))
+        };
+        for e in values {
+            let v = e.eval(&value).ok()?;
+            if !v.is_finite() {
+                return None;
+            }
+            out.push(v);
+        }
+    }
+    Some(out)
+}
+
+fn same(a: &[f64], b: &[f64]) -> bool {
+    a.iter()
+        .zip(b)
+        .all(|(x, y)| (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1e-300))
+}
+
+/// A printed key of a claim: where it is in the claim's keys, and its text.
+#[derive(Clone, Debug)]
+struct Target {
+    /// `printed`, `printed_equations[2]`, `printed_matrix[0][1]`.
+    path: Vec<PathPart>,
+    text: String,
+}
+
+#[derive(Clone, Debug)]
+enum PathPart {
+    Key(String),
+    Index(usize),
+}
+
+fn targets(keys: &toml::Table, names: &[&str]) -> Vec<Target> {
+    fn go(v: &toml::Value, path: Vec<PathPart>, out: &mut Vec<Target>) {
+        match v {
+            toml::Value::String(s) => out.push(Target {
+                path,
+                text: s.clone(),
+            }),
+            toml::Value::Array(a) => {
+                for (i, x) in a.iter().enumerate() {
+                    let mut p = path.clone();
+                    p.push(PathPart::Index(i));
+                    go(x, p, out);
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    for name in names {
+        if let Some(v) = keys.get(*name) {
+            go(v, vec![PathPart::Key(name.to_string())], &mut out);
+        }
+    }
+    out
+}
+
+fn path_text(path: &[PathPart]) -> String {
+    path.iter()
+        .map(|p| match p {
+            PathPart::Key(k) => k.clone(),
+            PathPart::Index(i) => format!("[{i}]"),
+        })
+        .collect()
+}
+
+fn replaced(keys: &toml::Table, path: &[PathPart], text: String) -> toml::Table {
+    fn put(v: &mut toml::Value, path: &[PathPart], text: String) {
+        match path.split_first() {
+            None => *v = toml::Value::String(text),
+            Some((PathPart::Index(i), rest)) => {
+                if let Some(x) = v.as_array_mut().and_then(|a| a.get_mut(*i)) {
+                    put(x, rest, text);
+                }
+            }
+            Some((PathPart::Key(k), rest)) => {
+                if let Some(x) = v.as_table_mut().and_then(|t| t.get_mut(k)) {
+                    put(x, rest, text);
+                }
+            }
+        }
+    }
+    let mut v = toml::Value::Table(keys.clone());
+    put(&mut v, path, text);
+    match v {
+        toml::Value::Table(t) => t,
+        _ => keys.clone(),
+    }
+}
+
+/// A side read as a formula or as an inequality, to mutate.
+enum Side {
+    Formula(Expr),
+    Relation(Inequality),
+}
+
+impl Side {
+    fn read(text: &str, cx: &Checked) -> Option<Side> {
+        if text.contains('@') {
+            return None;
+        }
+        let side = match expr::parse_inequality(text) {
+            Ok(i) => Side::Relation(Inequality {
+                lhs: cx.expand_defs(&i.lhs),
+                rel: i.rel,
+                rhs: cx.expand_defs(&i.rhs),
+            }),
+            Err(_) => Side::Formula(cx.expand_defs(&expr::parse(text).ok()?)),
+        };
+        Some(side)
+    }
+
+    fn exprs(&self) -> Vec<&Expr> {
+        match self {
+            Side::Formula(e) => vec![e],
+            Side::Relation(i) => vec![&i.lhs, &i.rhs],
+        }
+    }
+
+    /// Every misprint, as (what, text).
+    fn mutants(&self, swaps: &dyn Fn(&str) -> Vec<String>) -> Vec<(String, String, Vec<f64>)> {
+        let mut out = Vec::new();
+        let mut seen: Vec<Vec<f64>> = fingerprint(&self.exprs()).into_iter().collect();
+        let mut keep = |what: String, text: String, vals: Vec<&Expr>| {
+            let fp = fingerprint(&vals);
+            if let Some(fp) = &fp {
+                if seen.iter().any(|s| same(s, fp)) {
+                    return;
+                }
+                seen.push(fp.clone());
+            }
+            out.push((what, text, fp.unwrap_or_default()));
+        };
+        match self {
+            Side::Formula(e) => {
+                for m in mutants(e, swaps) {
+                    keep(m.what, m.expr.to_string(), vec![&m.expr]);
+                }
+            }
+            Side::Relation(i) => {
+                for m in mutants(&i.lhs, swaps) {
+                    let text = format!("{} {} {}", m.expr, i.rel.symbol(), i.rhs);
+                    keep(format!("left: {}", m.what), text, vec![&m.expr, &i.rhs]);
+                }
+                for m in mutants(&i.rhs, swaps) {
+                    let text = format!("{} {} {}", i.lhs, i.rel.symbol(), m.expr);
+                    keep(format!("right: {}", m.what), text, vec![&i.lhs, &m.expr]);
+                }
+            }
+        }
+        out
+    }
+}
+
+/// How many mutants a claim runs at most (a seeded sample of its mutants beyond that, spread
+/// over their kinds in order).
+pub const MAX_MUTANTS: usize = 40;
+
+/// The keys whose misprints a claim's power is measured on, given its verdict (`None`: not
+/// measured, and why).
+fn measured_keys(
+    entry: &KindEntry,
+    spec: &ClaimSpec,
+    verdict: Verdict,
+) -> Result<Vec<&'static str>, String> {
+    match verdict {
+        Verdict::Fails => Err("fails: a misprint of a wrong formula stays wrong (power is measured on `corrected` where a claim gives one)".into()),
+        Verdict::NotCheckable => Err("not checkable".into()),
+        Verdict::HoldsWithCorrection if spec.keys.contains_key("corrected") => Ok(vec!["corrected"]),
+        Verdict::HoldsWithCorrection => Err("holds with a correction computed in Rust".into()),
+        _ => {
+            let keys: Vec<&'static str> = entry
+                .printed
+                .iter()
+                .copied()
+                .filter(|k| spec.keys.contains_key(*k))
+                .collect();
+            if keys.is_empty() {
+                Err("no printed side in the claims file (the printed values are in the Rust check)".into())
+            } else {
+                Ok(keys)
+            }
+        }
+    }
+}
+
+/// The least margin an inequality check reached (`extra.least_margin`), if it records one.
+fn least_margin(o: &Outcome) -> Option<f64> {
+    o.extra.get("least_margin").and_then(|v| v.as_f64())
+}
+
+/// What became of one mutant.
+enum Fate {
+    Killed,
+    Survived(String),
+    /// An inequality's mutant that keeps the verdict by weakening the inequality (its least
+    /// margin is no smaller than the printed one's): no check could kill it.
+    Excused,
+}
+
+/// Measures the power of one claim: each misprint validated and checked as the claim would
+/// be, the mutants in parallel, each worker with a session of its own from `new_session`.
+pub fn measure<'s>(
+    cx: &Checked,
+    entry: &KindEntry,
+    spec: &ClaimSpec,
+    original: &Outcome,
+    new_session: &(dyn Fn() -> Session<'s> + Sync),
+) -> Power {
+    use rayon::prelude::*;
+    let keys = match measured_keys(entry, spec, original.verdict) {
+        Ok(k) => k,
+        Err(why) => return Power::not_measured(why),
+    };
+    let swaps = |s: &str| cx.same_unit(s);
+    let mut all: Vec<(String, Target, String)> = Vec::new();
+    let mut unread = Vec::new();
+    for t in targets(&spec.keys, &keys) {
+        let Some(side) = Side::read(&t.text, cx) else {
+            unread.push(path_text(&t.path));
+            continue;
+        };
+        for (what, text, _) in side.mutants(&swaps) {
+            all.push((what, t.clone(), text));
+        }
+    }
+    if all.is_empty() {
+        let why = if unread.is_empty() {
+            "no misprint of the printed side differs from it".to_string()
+        } else {
+            format!("the printed side ({}) is not a formula", unread.join(", "))
+        };
+        return Power::not_measured(why);
+    }
+    let picked = sample(all.len(), MAX_MUTANTS, &spec.id);
+    let base_margin = least_margin(original);
+    let fates: Vec<Fate> = picked
+        .par_iter()
+        .map_init(new_session, |run, &i| {
+            let (what, target, text) = &all[i];
+            let mut mutated = spec.clone();
+            mutated.keys = replaced(&spec.keys, &target.path, text.clone());
+            let verdict = (entry.validate)(cx, &mutated)
+                .and_then(|claim| claim.run(cx, &spec.head, run))
+                .map(|o| super::with_assumption(o, &spec.head));
+            match verdict {
+                Ok(o) if o.verdict == original.verdict => match (base_margin, least_margin(&o)) {
+                    (Some(b), Some(m)) if m >= b - 1e-12 * b.abs().max(1.0) => Fate::Excused,
+                    _ => Fate::Survived(format!("{}: {what}", path_text(&target.path))),
+                },
+                _ => Fate::Killed,
+            }
+        })
+        .collect();
+    let mut power = Power {
+        mutants: 0,
+        killed: 0,
+        survivors: Vec::new(),
+        excused: 0,
+        not_measured: None,
+        blind: None,
+    };
+    for fate in fates {
+        match fate {
+            Fate::Killed => {
+                power.mutants += 1;
+                power.killed += 1;
+            }
+            Fate::Survived(what) => {
+                power.mutants += 1;
+                power.survivors.push(what);
+            }
+            Fate::Excused => power.excused += 1,
+        }
+    }
+    if power.weak() {
+        power.blind = spec
+            .head
+            .blind
+            .clone()
+            .or_else(|| entry.blind.map(str::to_string));
+    }
+    power
+}
+
+/// `k` of `n` indices, spread evenly with a seeded offset (all of them when `n <= k`).
+fn sample(n: usize, k: usize, seed: &str) -> Vec<usize> {
+    if n <= k {
+        return (0..n).collect();
+    }
+    let offset = (fnv(seed) % n as u64) as usize;
+    let mut out: Vec<usize> = (0..k).map(|i| (offset + i * n / k) % n).collect();
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// `n` of the claims `ids`, picked by `seed` (the `n` smallest hashes of seed and id).
+pub fn pick(ids: &[String], n: usize, seed: &str) -> std::collections::BTreeSet<String> {
+    let mut keyed: Vec<(u64, &String)> = ids
+        .iter()
+        .map(|id| (fnv(&format!("{seed}/{id}")), id))
+        .collect();
+    keyed.sort();
+    keyed
+        .into_iter()
+        .take(n)
+        .map(|(_, id)| id.clone())
+        .collect()
+}
+
+fn fnv(s: &str) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in s.bytes() {
+        h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+    }
+    h
+}
+
+/// Symbols of the same unit, by unit (for the swaps).
+pub(crate) fn same_unit_table(units: &BTreeMap<String, Unit>) -> BTreeMap<String, Vec<String>> {
+    let mut out = BTreeMap::new();
+    for (s, u) in units {
+        let others: Vec<String> = units
+            .iter()
+            .filter(|(t, v)| *t != s && *v == u)
+            .map(|(t, _)| t.clone())
+            .take(3)
+            .collect();
+        out.insert(s.clone(), others);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn texts(f: &str) -> Vec<String> {
+        let e = expr::parse(f).unwrap();
+        mutants(&e, &|s| if s == "k" { vec!["c".into()] } else { vec![] })
+            .into_iter()
+            .map(|m| m.expr.to_string())
+            .collect()
+    }
+
+    #[test]
+    fn every_kind_of_misprint_is_made() {
+        // by hand: the misprints of 3.2*(m/k)^(2/5) - v
+        let t = texts("3.2*(m/k)^(2/5) - v");
+        for want in [
+            "6.4*(m/k)^(2/5) - v",
+            "1.6*(m/k)^(2/5) - v",
+            "3.52*(m/k)^(2/5) - v",
+            "2.88*(m/k)^(2/5) - v",
+            "3.2*(m/k)^1.4 - v",
+            "3.2*(m/k)^-0.6 - v",
+            "3.2*(m/k)^(2/5) + v",
+            "3.2*(m/k)^(2/5)",
+            "-v",
+            "3.2*(m/c)^(2/5) - v",
+            "-(3.2*(m/k)^(2/5) - v)",
+        ] {
+            assert!(t.contains(&want.to_string()), "{want} missing from {t:?}");
+        }
+        // the exponent's literals are not scaled as coefficients
+        assert!(!t.iter().any(|x| x.contains("(4/5)") || x.contains("(1/5)")));
+        // a misprint's text reads back as the misprint: (m/k)^-0.6 at m = 2, k = 1 is 2^-0.6
+        let back = expr::parse("3.2*(m/k)^-0.6 - v").unwrap();
+        let at = |s: &str| match s {
+            "m" => Some(2.0),
+            "k" => Some(1.0),
+            _ => Some(0.0),
+        };
+        assert!((back.eval(&at).unwrap() - 3.2 * 2f64.powf(-0.6)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn equivalent_mutants_are_not_counted() {
+        // a*b with a and b of the same unit: the swap a -> b gives b*b (kept), and a
+        // whole-side x2 equals the literal's x2 in 2*a*b (kept once)
+        let cxless = Side::Formula(expr::parse("2*a*b").unwrap());
+        let m = cxless.mutants(&|s| match s {
+            "a" => vec!["b".into()],
+            "b" => vec!["a".into()],
+            _ => vec![],
+        });
+        let doubled = m
+            .iter()
+            .filter(|(_, t, _)| t.contains("4*a*b") || t.starts_with("2*(2*a*b)") || t == "2*2*a*b")
+            .count();
+        assert_eq!(doubled, 1, "{m:?}");
+        assert!(m.iter().any(|(_, t, _)| t == "2*b*b"));
+        assert!(m.iter().any(|(_, t, _)| t == "2*a*a"));
+    }
+
+    #[test]
+    fn samples_are_spread_and_distinct() {
+        let s = sample(100, 40, "x");
+        assert_eq!(s.len(), 40);
+        assert!(s.windows(2).all(|w| w[0] < w[1]));
+        assert_eq!(sample(5, 40, "x"), vec![0, 1, 2, 3, 4]);
+    }
+}
