@@ -528,7 +528,7 @@ quote = "A = x y"
 kind = "definition"
 printed = "x*y"
 defines = "A"
-agrees = [["A", "int(int(1, s, 0, y), u, 0, x)"], ["int(int(u^2, s, 0, y), u, 0, x)", "x^3*y/3"]]
+agrees = [["A", "int(int(1, s, 0, y), u, 0, x)"], ["int(int(u^2, s, 0, y), u, 0, x)", "A*x^2/3"]]
 
 [[claim]]
 id = "t.area-unit"
@@ -574,6 +574,21 @@ reason = "the page is missing"
     assert_eq!(
         (nc.1, nc.2.as_str()),
         (Verdict::NotCheckable, "the page is missing")
+    );
+
+    // a use that does not read the printed formula (no `A` in it) checks nothing: refused
+    let text = std::fs::read_to_string(&p).unwrap().replace(
+        r#"["int(int(u^2, s, 0, y), u, 0, x)", "A*x^2/3"]"#,
+        r#"["int(int(u^2, s, 0, y), u, 0, x)", "x^3*y/3"]"#,
+    );
+    std::fs::write(&p, text).unwrap();
+    let papers = load_claims(&p).expect("loads");
+    let err = impactcheck::verify::validate_all(&papers)
+        .expect_err("a use without the defined symbol")
+        .to_string();
+    assert!(
+        err.contains("claim t.area: agrees[1]: the use does not contain `A`"),
+        "{err}"
     );
 }
 

@@ -153,17 +153,17 @@ fn run(args: Args) -> Result<bool> {
         }
         None => Default::default(),
     };
-    let mut outcomes = Vec::new();
-    for p in &papers {
-        bar.set_message(format!("paper {}", p.paper));
-        outcomes.extend(verify::run_measured(
-            std::slice::from_ref(p),
-            &root,
-            verify::kinds::BUILTIN,
-            &|id| measured.contains(id),
-        )?);
-        bar.inc(p.claim.len() as u64);
-    }
+    // one run over all papers: every verdict, then the power of the measured claims
+    bar.set_message(if measured.is_empty() {
+        "checking".to_string()
+    } else {
+        format!("checking, then the power of {} claims", measured.len())
+    });
+    bar.enable_steady_tick(std::time::Duration::from_millis(500));
+    let mut outcomes = verify::run_measured(&papers, &root, verify::kinds::BUILTIN, &|id| {
+        measured.contains(id)
+    })?;
+    bar.inc(outcomes.len() as u64);
     bar.finish_and_clear();
     outcomes.sort_by(|a, b| a.id.cmp(&b.id));
     let fresh = report::summary(&outcomes);

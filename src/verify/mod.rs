@@ -390,9 +390,14 @@ pub fn run_measured(
         },
     };
     let mut session = new_session();
-    let mut out = Vec::new();
+    let mut per_file = Vec::new();
     for file in &checked {
-        let mut outcomes = file.check_all(&mut session)?;
+        per_file.push(file.check_all(&mut session)?);
+    }
+    // every verdict first, then the power: the misprints' formulas must not reach the checks
+    // (a symbol's first appearance orders the terms that details print)
+    let mut out = Vec::new();
+    for (file, mut outcomes) in checked.iter().zip(per_file) {
         file.measure_power(&mut outcomes, power, &new_session);
         out.extend(outcomes);
     }

@@ -1,12 +1,14 @@
 //! Kind `definition`: a symbol's defining formula, checked for its unit (`defines`) and against
-//! the equations that use it (`agrees`: identities that must hold with the definition
-//! substituted).
+//! the equations that use it (`agrees`: identities written with the defined symbol, which must
+//! hold with the printed formula substituted for it; a use without the symbol is refused, as it
+//! holds or fails whatever is printed).
 
 use super::identity::{Identity, IdentitySpec};
 use super::{Checked, Claim, Kind, Session, Where, claim_err, parse_formula};
 use crate::algebra::expr::Expr;
 use crate::algebra::units::{self, Unit};
 use crate::verify::{Head, Outcome, Verdict, VerifyError, outcome};
+use num_traits::Zero;
 use serde::Deserialize;
 
 /// The keys of a `definition` claim.
@@ -33,7 +35,7 @@ pub struct DefinitionSpec {
 pub struct Definition {
     printed_text: String,
     printed: Expr,
-    defines: Option<(String, Unit)>,
+    defines: (String, Unit),
     /// Each use as written, and as an identity with the definition substituted.
     uses: Vec<([String; 2], Identity)>,
 }
@@ -49,7 +51,7 @@ impl Kind for Definition {
         cx.units_of(c, "printed", &raw, &["m", "n"])?;
         let defines = match &s.defines {
             Some(d) => match cx.units.get(d) {
-                Some(u) => Some((d.clone(), *u)),
+                Some(u) => (d.clone(), *u),
                 None => {
                     return Err(claim_err(
                         f,
@@ -59,26 +61,36 @@ impl Kind for Definition {
                     ));
                 }
             },
-            None if s.agrees.is_empty() => {
+            None => {
                 return Err(claim_err(
                     f,
                     c,
-                    "agrees",
-                    "a definition needs `defines` (the symbol, whose unit is checked) or `agrees` (identities from the equations that use it), or both".into(),
+                    "defines",
+                    "missing: a definition names the symbol it defines (its unit is checked, and its uses in `agrees` read the printed formula through it)".into(),
                 ));
             }
-            None => None,
         };
         let mut local = s.where_.clone();
-        if let Some(d) = &s.defines {
-            local.insert(d.clone(), s.printed.clone());
-        }
+        local.insert(defines.0.clone(), s.printed.clone());
         let mut uses = Vec::new();
         for (i, [l, r]) in s.agrees.iter().enumerate() {
+            let mut reads = false;
             for (side, text) in [("printed", l), ("derived", r)] {
                 let field = format!("agrees[{i}].{side}");
                 let e = parse_formula(f, c, &field, text)?;
+                reads |= e.symbols().contains(&defines.0);
                 cx.units_of(c, &field, &e, &["m", "n"])?;
+            }
+            if !reads {
+                return Err(claim_err(
+                    f,
+                    c,
+                    &format!("agrees[{i}]"),
+                    format!(
+                        "the use does not contain `{}`: it holds or fails whatever the printed formula is, so it checks nothing of the definition (write the use with `{}`, which stands for `printed`)",
+                        defines.0, defines.0
+                    ),
+                ));
             }
             let spec = IdentitySpec {
                 printed: l.clone(),
@@ -101,17 +113,18 @@ impl Kind for Definition {
         let p = &self.printed;
         let mut ok = true;
         let mut parts = Vec::new();
-        if let Some((d, want)) = &self.defines {
-            match units::dimension(p, &cx.unit_fn()) {
-                Ok(u) if u == *want => parts.push(format!("`{d}` and `{p}` are both {u}")),
-                Ok(u) => {
-                    ok = false;
-                    parts.push(format!("`{d}` is {want} but `{p}` is {u}"));
-                }
-                Err(e) => {
-                    ok = false;
-                    parts.push(format!("`{p}` has no single unit: {e}"));
-                }
+        let (d, want) = &self.defines;
+        let zero = p.exact_constant().is_some_and(|v| v.is_zero());
+        match units::dimension(p, &cx.unit_fn()) {
+            _ if zero => parts.push(format!("`{d}` is {want}, and a printed 0 has every unit")),
+            Ok(u) if u == *want => parts.push(format!("`{d}` and `{p}` are both {u}")),
+            Ok(u) => {
+                ok = false;
+                parts.push(format!("`{d}` is {want} but `{p}` is {u}"));
+            }
+            Err(e) => {
+                ok = false;
+                parts.push(format!("`{p}` has no single unit: {e}"));
             }
         }
         for (i, ([l, r], identity)) in self.uses.iter().enumerate() {
@@ -135,11 +148,8 @@ impl Kind for Definition {
 
     fn report(&self, _: &Head) -> String {
         format!(
-            "Kind `definition`{}: `{}`; checked for units and against {} use(s).",
-            self.defines
-                .as_ref()
-                .map(|(d, _)| format!(" of `{d}`"))
-                .unwrap_or_default(),
+            "Kind `definition` of `{}`: `{}`; checked for units and against {} use(s).",
+            self.defines.0,
             self.printed_text,
             self.uses.len()
         )
