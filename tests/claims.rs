@@ -634,3 +634,47 @@ assumption = "x is real"
     let bad = get("t.wrong");
     assert_eq!(bad.1, Verdict::Fails, "{}", bad.2);
 }
+
+#[test]
+fn bounds_search_for_their_extreme_and_sharp_asks_it_to_be_attained() {
+    // by hand: q (1 - q) on [0, 1] peaks at 1/4 (q = 1/2). Three samples miss the peak; the
+    // search from them finds it: q (1 - q) <= 0.24 fails there though no sample violates it;
+    // <= 1/4 holds and is sharp; <= 0.3 holds but is not sharp
+    let claim = |id: &str, rhs: &str, sharp: bool| {
+        format!(
+            "[[claim]]\nid = \"{id}\"\nequation = \"(1)\"\nquote = \"q\"\nkind = \"bound\"\nsample = {{ q = \"uniform(0, 0.2)\" }}\ncount = 3\nseed = 5\nrequire = \"q*(1 - q) <= {rhs}\"\nsharp = {sharp}\n"
+        )
+    };
+    let body = [
+        claim("t.tight", "0.24", false),
+        claim("t.peak", "0.25", true),
+        claim("t.loose", "0.3", true),
+    ]
+    .concat()
+    .replace("uniform(0, 0.2)", "uniform(0, 1)");
+    let p = claims_file("extreme", &body);
+    let text = std::fs::read_to_string(&p)
+        .unwrap()
+        .replace("[symbols]\n", "[symbols]\nq = \"1\"\n");
+    std::fs::write(&p, text).unwrap();
+    let v = verdicts(&p);
+    let get = |id: &str| v.iter().find(|(i, ..)| i == id).expect(id).clone();
+    let tight = get("t.tight");
+    assert_eq!(tight.1, Verdict::Fails, "{}", tight.2);
+    assert!(
+        tight.2.contains("0 violate"),
+        "no sample violates: {}",
+        tight.2
+    );
+    assert!(tight.2.contains("found a violation"), "{}", tight.2);
+    let peak = get("t.peak");
+    assert_eq!(peak.1, Verdict::Holds, "{}", peak.2);
+    assert!(
+        peak.2.contains("sharp: the bound is attained"),
+        "{}",
+        peak.2
+    );
+    let loose = get("t.loose");
+    assert_eq!(loose.1, Verdict::Fails, "{}", loose.2);
+    assert!(loose.2.contains("NOT sharp"), "{}", loose.2);
+}

@@ -3,7 +3,7 @@
 //! `holds` when no sample violates it.
 
 use super::scene::{self, Samples, Scene, point_text};
-use super::{Checked, Kind, Session, Where, claim_err, g4};
+use super::{Checked, Kind, Session, Where, claim_err, extreme, g4};
 use crate::algebra::expr::Inequality;
 use crate::verify::{Head, Outcome, Verdict, VerifyError, outcome};
 use serde::Deserialize;
@@ -32,6 +32,9 @@ pub struct BoundSpec {
     seed: u64,
     /// The inequality every sample must satisfy.
     require: String,
+    /// The bound is attained: the extreme found must come within [`SHARP`] (relative) of it.
+    #[serde(default)]
+    sharp: bool,
     /// Definitions for this claim only.
     #[serde(default, rename = "where")]
     where_: Where,
@@ -42,6 +45,34 @@ pub struct Bound {
     scene: Option<Scene>,
     samples: Samples,
     require: Inequality,
+    sharp: bool,
+}
+
+/// How close (relative margin) the extreme of a `sharp` bound must come to it.
+pub const SHARP: f64 = 1e-3;
+
+impl Bound {
+    /// The search for the extreme from the [`extreme::STARTS`] samples with the least margin.
+    fn search(&self, rows: &[Result<(f64, f64), String>]) -> Option<extreme::Extreme> {
+        let units = self.samples.unit_draws();
+        let mut order: Vec<(f64, usize)> = rows
+            .iter()
+            .enumerate()
+            .filter_map(|(i, r)| {
+                r.as_ref()
+                    .ok()
+                    .map(|(l, r)| (self.require.margin(*l, *r), i))
+            })
+            .filter(|(m, _)| m.is_finite())
+            .collect();
+        order.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let starts: Vec<Vec<f64>> = order
+            .iter()
+            .take(extreme::STARTS)
+            .map(|(_, i)| units[*i].clone())
+            .collect();
+        extreme::search(&self.samples, self.scene.as_ref(), &self.require, &starts)
+    }
 }
 
 impl Kind for Bound {
@@ -72,6 +103,7 @@ impl Kind for Bound {
             scene,
             samples,
             require,
+            sharp: s.sharp,
         })
     }
 
@@ -120,7 +152,54 @@ impl Kind for Bound {
                 point_text(&draws[*i])
             ));
         }
-        let verdict = if violations > 0 {
+        // the adversarial search, from the samples closest to the bound
+        let found = if violations == 0 && worst.is_some() {
+            self.search(&rows)
+        } else {
+            None
+        };
+        let mut least = worst.map(|(m, _)| m);
+        let mut ratio =
+            worst.and_then(|(_, i)| rows[i].as_ref().ok().and_then(|s| extreme::ratio(ineq, *s)));
+        let mut searched_violation = false;
+        if let Some(x) = &found {
+            let holds = ineq.rel.holds(x.sides.0, x.sides.1);
+            searched_violation = !holds;
+            detail.push_str(&format!(
+                "; a search for the extreme (Nelder-Mead from the {} closest samples, {} evaluations) {} at {} ({} {} {}, margin {})",
+                extreme::STARTS,
+                x.evaluations,
+                if holds { "reached" } else { "found a violation" },
+                point_text(&x.point),
+                g4(x.sides.0),
+                ineq.rel.symbol(),
+                g4(x.sides.1),
+                g4(x.margin)
+            ));
+            if least.is_none_or(|m| x.margin < m) {
+                least = Some(x.margin);
+                ratio = extreme::ratio(ineq, x.sides).or(ratio);
+            }
+        }
+        if let Some(q) = ratio {
+            detail.push_str(&format!("; largest ratio to the bound {}", g4(q)));
+        }
+        let sharp_missed = self.sharp && least.is_none_or(|m| m > SHARP);
+        if self.sharp {
+            detail.push_str(&match least {
+                Some(m) if m <= SHARP => format!(
+                    "; sharp: the bound is attained within {} (relative)",
+                    g4(SHARP)
+                ),
+                Some(m) => format!(
+                    "; NOT sharp: the extreme found stays {} (relative) from the bound, more than {}",
+                    g4(m),
+                    g4(SHARP)
+                ),
+                None => "; sharp: nothing ran to look for the extreme".into(),
+            });
+        }
+        let verdict = if violations > 0 || searched_violation || sharp_missed {
             Verdict::Fails
         } else if errors.is_empty() && ran > 0 {
             Verdict::Holds
@@ -128,8 +207,11 @@ impl Kind for Bound {
             Verdict::NotCheckable
         };
         let mut o = outcome(cx.file, c, verdict, detail);
-        if let Some((m, _)) = worst {
+        if let Some(m) = least {
             o.extra.insert("least_margin".into(), serde_json::json!(m));
+        }
+        if let Some(q) = ratio {
+            o.extra.insert("largest_ratio".into(), serde_json::json!(q));
         }
         Ok(o)
     }

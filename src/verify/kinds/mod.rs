@@ -35,6 +35,7 @@ mod check;
 mod definition;
 mod derivations;
 mod dimension;
+mod extreme;
 mod identity;
 mod map;
 mod model;

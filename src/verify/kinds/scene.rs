@@ -342,30 +342,51 @@ impl Samples {
     /// runs of it; without one, the draws are the symbols' values.
     pub fn run(&self, scene: Option<&Scene>, ineq: &Inequality) -> GridRows {
         use rayon::prelude::*;
-        let mut rng = crate::rng::Rng(self.seed);
-        let half = 0.5 / (1u64 << 53) as f64;
-        let draws: Vec<Vec<(String, f64)>> = (0..self.count)
-            .map(|_| {
-                self.dists
-                    .iter()
-                    .map(|(k, d)| (k.clone(), d.quantile(rng.next() + half)))
-                    .collect()
-            })
-            .collect();
+        let draws: Vec<Vec<(String, f64)>> =
+            self.unit_draws().iter().map(|u| self.point_at(u)).collect();
         let rows = match scene {
-            None => draws
-                .iter()
-                .map(|pt| {
-                    let value = |s: &str| pt.iter().find(|(k, _)| k == s).map(|(_, v)| *v);
-                    Ok((ineq.lhs.eval(&value)?, ineq.rhs.eval(&value)?))
-                })
-                .collect(),
-            Some(scene) => draws
+            None => draws.iter().map(|pt| Self::sides(None, ineq, pt)).collect(),
+            Some(_) => draws
                 .par_iter()
-                .map(|pt| scene.point(pt, (&ineq.lhs, &ineq.rhs)))
+                .map(|pt| Self::sides(scene, ineq, pt))
                 .collect(),
         };
         (draws, rows)
+    }
+
+    /// The seeded draws in the unit cube: each coordinate the probability of its field's
+    /// distribution below the value drawn.
+    pub fn unit_draws(&self) -> Vec<Vec<f64>> {
+        let mut rng = crate::rng::Rng(self.seed);
+        let half = 0.5 / (1u64 << 53) as f64;
+        (0..self.count)
+            .map(|_| self.dists.iter().map(|_| rng.next() + half).collect())
+            .collect()
+    }
+
+    /// The values of the fields at a point of the unit cube (each coordinate clamped into
+    /// [1e-9, 1 - 1e-9], so a normal stays finite).
+    pub fn point_at(&self, u: &[f64]) -> Vec<(String, f64)> {
+        self.dists
+            .iter()
+            .zip(u)
+            .map(|((k, d), u)| (k.clone(), d.quantile(u.clamp(1e-9, 1.0 - 1e-9))))
+            .collect()
+    }
+
+    /// Both sides of `ineq` at one point: a run of the scene, or the symbols' values.
+    pub fn sides(
+        scene: Option<&Scene>,
+        ineq: &Inequality,
+        pt: &[(String, f64)],
+    ) -> Result<(f64, f64), String> {
+        match scene {
+            Some(scene) => scene.point(pt, (&ineq.lhs, &ineq.rhs)),
+            None => {
+                let value = |s: &str| pt.iter().find(|(k, _)| k == s).map(|(_, v)| *v);
+                Ok((ineq.lhs.eval(&value)?, ineq.rhs.eval(&value)?))
+            }
+        }
     }
 }
 
