@@ -41,8 +41,39 @@ pub struct SummaryClaim {
 pub struct Summary {
     /// Every claim.
     pub claims: Vec<SummaryClaim>,
+    /// The distinct errors the claims show ([`findings`]).
+    #[serde(default)]
+    pub findings: Vec<Finding>,
     /// The version that wrote it.
     pub generated_by: GeneratedBy,
+}
+
+/// One distinct error of a paper, and every claim that shows it.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Eq)]
+pub struct Finding {
+    /// Its short name (a claim's `finding`, or the claim's id when it names none).
+    pub name: String,
+    /// The claims that show it (verdict `fails` or `holds-with-correction`).
+    pub claims: Vec<String>,
+}
+
+/// The distinct errors the outcomes show: every claim that fails or holds only with a
+/// correction is in exactly one, grouped by its `finding` (a claim naming none is a finding of
+/// its own), sorted by name.
+pub fn findings(outcomes: &[Outcome]) -> Vec<Finding> {
+    let mut by: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    for o in outcomes {
+        if matches!(o.verdict, Verdict::Fails | Verdict::HoldsWithCorrection) {
+            let name = o.finding.clone().unwrap_or_else(|| o.id.clone());
+            by.entry(name).or_default().push(o.id.clone());
+        }
+    }
+    by.into_iter()
+        .map(|(name, mut claims)| {
+            claims.sort();
+            Finding { name, claims }
+        })
+        .collect()
 }
 
 /// Who wrote the summary.
@@ -70,6 +101,7 @@ pub fn summary(outcomes: &[Outcome]) -> Summary {
     claims.sort_by(|a, b| a.id.cmp(&b.id));
     Summary {
         claims,
+        findings: findings(outcomes),
         generated_by: GeneratedBy {
             version: env!("CARGO_PKG_VERSION").to_string(),
         },
@@ -130,7 +162,18 @@ pub fn render(papers: &[PaperInfo], outcomes: &[Outcome]) -> Vec<(String, String
     };
     let (n_papers, papers_list) = count(false);
     let (n_hard, hard_list) = count(true);
-    readme.push_str(&format!("{n_papers} claims of the papers: {papers_list}."));
+    let paper_findings: Vec<Finding> = findings(
+        &outcomes
+            .iter()
+            .filter(|o| o.paper != "hard")
+            .cloned()
+            .collect::<Vec<_>>(),
+    );
+    let showing: usize = paper_findings.iter().map(|f| f.claims.len()).sum();
+    readme.push_str(&format!(
+        "{n_papers} claims of the papers: {papers_list}. The {showing} claims that fail or hold only with a correction show **{} distinct findings** (claims that show the same error share one: `findings` in `summary.json`, listed in each paper's report).",
+        paper_findings.len()
+    ));
     if n_hard > 0 {
         readme.push_str(&format!(
             " Apart from them, {n_hard} solver robustness cases (`hard.*`): {hard_list}."
@@ -186,6 +229,7 @@ pub fn render(papers: &[PaperInfo], outcomes: &[Outcome]) -> Vec<(String, String
             ));
         }
         md.push('\n');
+        md.push_str(&findings_section(&list));
         for o in &list {
             let by = if o.kind.starts_with("check") {
                 format!(
@@ -230,6 +274,30 @@ pub fn render(papers: &[PaperInfo], outcomes: &[Outcome]) -> Vec<(String, String
     let json = serde_json::to_string_pretty(&summary(outcomes)).unwrap_or_default();
     files.push(("summary.json".to_string(), json + "\n"));
     files
+}
+
+/// A paper's distinct findings, each with the claims that show it.
+fn findings_section(list: &[&Outcome]) -> String {
+    let owned: Vec<Outcome> = list.iter().map(|o| (*o).clone()).collect();
+    let found = findings(&owned);
+    if found.is_empty() {
+        return "No claim of this paper fails or needs a correction.\n\n".into();
+    }
+    let showing: usize = found.iter().map(|f| f.claims.len()).sum();
+    let mut md = format!(
+        "## Findings\n\n{showing} claims fail or hold only with a correction; they show {} distinct findings:\n\n| finding | claims |\n|---|---|\n",
+        found.len()
+    );
+    for f in &found {
+        let links: Vec<String> = f
+            .claims
+            .iter()
+            .map(|id| format!("[{id}](#{})", anchor(id)))
+            .collect();
+        md.push_str(&format!("| {} | {} |\n", f.name, links.join(", ")));
+    }
+    md.push('\n');
+    md
 }
 
 /// The README's account of the checks' power: how many misprints they see, the weak claims
@@ -500,6 +568,7 @@ mod tests {
         };
         let sum = |power: Option<Power>| Summary {
             claims: vec![claim(power)],
+            findings: vec![],
             generated_by: GeneratedBy {
                 version: "0".into(),
             },
@@ -520,5 +589,50 @@ mod tests {
         // not measured in the fresh run (no --power-sample): nothing to compare
         assert!(diff(&sum(Some(strong.clone())), &sum(None), false).is_empty());
         assert!(diff(&sum(Some(strong.clone())), &sum(Some(strong)), false).is_empty());
+    }
+
+    #[test]
+    fn every_error_is_in_one_finding_and_shared_names_group() {
+        let o = |id: &str, verdict: Verdict, finding: Option<&str>| Outcome {
+            id: id.into(),
+            paper: "p".into(),
+            equation: "(1)".into(),
+            quote: String::new(),
+            verdict,
+            detail: String::new(),
+            printed_latex: None,
+            derived_latex: None,
+            extra_md: None,
+            files: vec![],
+            kind: String::new(),
+            extra: BTreeMap::new(),
+            power: None,
+            finding: finding.map(str::to_string),
+        };
+        let out = [
+            o("p.a", Verdict::Fails, Some("wrong-a1")),
+            o("p.b", Verdict::Fails, Some("wrong-a1")),
+            o("p.c", Verdict::HoldsWithCorrection, None),
+            o("p.d", Verdict::Fails, None),
+            o("p.e", Verdict::Holds, Some("wrong-a1")),
+        ];
+        let f = findings(&out);
+        let got: Vec<(&str, Vec<&str>)> = f
+            .iter()
+            .map(|f| {
+                (
+                    f.name.as_str(),
+                    f.claims.iter().map(String::as_str).collect(),
+                )
+            })
+            .collect();
+        assert_eq!(
+            got,
+            vec![
+                ("p.c", vec!["p.c"]),
+                ("p.d", vec!["p.d"]),
+                ("wrong-a1", vec!["p.a", "p.b"]),
+            ]
+        );
     }
 }

@@ -67,6 +67,8 @@ pub struct Outcome {
     pub extra: BTreeMap<String, serde_json::Value>,
     /// The power of the claim's check, when measured (`verify --power`).
     pub power: Option<Power>,
+    /// The error it shows, named as every claim that shows it names it (`finding`).
+    pub finding: Option<String>,
 }
 
 /// The power of a claim's check: how many misprints of its printed side it sees.

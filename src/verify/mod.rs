@@ -67,11 +67,24 @@ pub struct Head {
     /// verdict, and why ([`power`]; the report gives it beside a weak claim).
     #[serde(default)]
     pub blind: Option<String>,
+    /// The error the claim shows, as a short name shared by every claim that shows it (a
+    /// wrong coefficient seen in seven terms of one equation is one finding): the reports count
+    /// distinct findings beside claims.
+    #[serde(default)]
+    pub finding: Option<String>,
 }
 
 impl Head {
     /// The keys of a head; every other key of a claim belongs to its kind.
-    const KEYS: [&str; 6] = ["id", "equation", "quote", "kind", "assumption", "blind"];
+    const KEYS: [&str; 7] = [
+        "id",
+        "equation",
+        "quote",
+        "kind",
+        "assumption",
+        "blind",
+        "finding",
+    ];
 }
 
 /// One claim as listed in `verify/`: its [`Head`] and the keys of its kind, which the kind's
@@ -216,6 +229,7 @@ pub(crate) fn outcome(paper: &PaperClaims, c: &Head, verdict: Verdict, detail: S
         kind: String::new(),
         extra: BTreeMap::new(),
         power: None,
+        finding: c.finding.clone(),
     }
 }
 
@@ -316,6 +330,18 @@ pub(crate) fn check_names(file: &PaperClaims) -> Result<(), VerifyError> {
         });
     }
     for c in &file.claim {
+        if let Some(f) = &c.finding
+            && !safe_name(f)
+        {
+            return Err(VerifyError::Claim {
+                file: file.source.display().to_string(),
+                id: c.id.clone(),
+                field: "finding".into(),
+                message: format!(
+                    "{f:?}: allowed: a short name of letters, digits, '.', '-' and '_' (e.g. \"000-missing-h\")"
+                ),
+            });
+        }
         if !safe_name(&c.id) {
             return Err(VerifyError::Claim {
                 file: file.source.display().to_string(),

@@ -320,6 +320,7 @@ pub fn check(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Outcome
         ],
         kind: String::new(),
         power: None,
+        finding: None,
         extra: std::collections::BTreeMap::new(),
     })
 }
@@ -434,6 +435,7 @@ pub fn passivity(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Out
         ],
         kind: String::new(),
         power: None,
+        finding: None,
         extra: std::collections::BTreeMap::new(),
     })
 }

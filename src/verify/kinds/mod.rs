@@ -349,6 +349,7 @@ impl<'a> Checked<'a> {
                 if o.kind.is_empty() {
                     o.kind = c.kind.clone();
                 }
+                o.finding = c.head.finding.clone();
                 Ok(super::with_assumption(o, &c.head))
             })
             .collect()
