@@ -678,3 +678,20 @@ fn bounds_search_for_their_extreme_and_sharp_asks_it_to_be_attained() {
     assert_eq!(loose.1, Verdict::Fails, "{}", loose.2);
     assert!(loose.2.contains("NOT sharp"), "{}", loose.2);
 }
+
+#[test]
+fn an_identity_undefined_at_its_points_does_not_hold() {
+    // by hand: sqrt(q - 3) is not a real number for q in [0.5, 2], where identities are
+    // compared; NaN = NaN must not count as agreement (f64::max drops a NaN)
+    let p = claims_file(
+        "undefined",
+        "[[claim]]\nid = \"t.nan\"\nequation = \"(1)\"\nquote = \"q\"\nkind = \"identity\"\nprinted = \"sqrt(q - 3)\"\nderived = \"sqrt(q - 3)*exp(0*q)\"\n",
+    );
+    let text = std::fs::read_to_string(&p)
+        .unwrap()
+        .replace("[symbols]\n", "[symbols]\nq = \"1\"\n");
+    std::fs::write(&p, text).unwrap();
+    let v = verdicts(&p);
+    assert_eq!(v[0].1, Verdict::Fails, "{}", v[0].2);
+    assert!(v[0].2.contains("not a finite number"), "{}", v[0].2);
+}

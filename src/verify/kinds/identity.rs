@@ -293,6 +293,7 @@ impl Identity {
         let mut rng = crate::rng::Rng(0x1D_E27);
         let (mut worst, mut worst_abs): (f64, f64) = (0.0, 0.0);
         let atol = self.atol.unwrap_or(0.0);
+        let mut undefined = 0;
         for _ in 0..8 {
             let vals: BTreeMap<String, f64> = syms
                 .iter()
@@ -311,13 +312,21 @@ impl Identity {
             let b = d
                 .eval(&get)
                 .map_err(|m| claim_err(cx.file, c, "derived", m))?;
-            // the difference beyond the absolute tolerance, relative to the larger side
+            // the difference beyond the absolute tolerance, relative to the larger side; a side
+            // that is not a finite number there (outside a function's domain) is no agreement
+            // (`f64::max` would drop a NaN)
+            if !(a.is_finite() && b.is_finite()) {
+                undefined += 1;
+                worst = f64::INFINITY;
+                worst_abs = f64::INFINITY;
+                continue;
+            }
             let excess = ((a - b).abs() - atol).max(0.0);
             let rel = excess / a.abs().max(b.abs()).max(f64::MIN_POSITIVE);
-            worst = worst.max(if rel.is_nan() { f64::INFINITY } else { rel });
+            worst = worst.max(rel);
             worst_abs = worst_abs.max((a - b).abs());
         }
-        let text = match self.atol {
+        let mut text = match self.atol {
             Some(atol) => format!(
                 "not rational: compared in floating point at 8 seeded points in [0.5, 2]; largest difference {} (atol {}), largest relative excess {}",
                 g4(worst_abs),
@@ -329,6 +338,11 @@ impl Identity {
                 g4(worst)
             ),
         };
+        if undefined > 0 {
+            text.push_str(&format!(
+                "; at {undefined} of the 8 points a side is not a finite number (outside a function's domain)"
+            ));
+        }
         Ok((worst <= 1e-12, text))
     }
 }

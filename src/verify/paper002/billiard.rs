@@ -20,20 +20,38 @@ pub(super) fn billiard_matrix(paper: &PaperClaims, c: &NamedCheck) -> Result<Out
             _ => return Err(bad("part must be B, BA, Btilde or Bstar")),
         };
         let printed = printed_matrix(c, &billiard_values)?;
-        let same = (derived - printed).abs().max() <= 1e-12 * printed.abs().max();
+        let agree =
+            |d: &Matrix3<f64>, p: &Matrix3<f64>| (d - p).abs().max() <= 1e-12 * p.abs().max();
+        let same = agree(&derived, &printed);
         let ratio = printed.abs().max() / derived.abs().max();
+        // m = R = 1 cannot tell a power of m or R: the same at m = 1.7, R = 1.3
+        let (m2, r2) = (1.7, 1.3);
+        let (b2, ba2, bt2, bs2, _) = billiard_at(m2, r2);
+        let derived2 = match which.as_str() {
+            "B" => b2,
+            "BA" => ba2,
+            "Btilde" => bt2,
+            _ => bs2,
+        };
+        let printed2 = printed_matrix(c, &billiard_values_at(m2, r2))?;
+        let same2 = agree(&derived2, &printed2);
         outcome(
             paper,
             c,
-            holds(same),
+            holds(same && same2),
             format!(
-                "m = 1, R = 1, rho^2 = 0.4 R^2 (R^2/rho^2 = {k}): derived from the definitions {}; printed {}{}",
+                "m = 1, R = 1, rho^2 = 0.4 R^2 (R^2/rho^2 = {k}): derived from the definitions {}; printed {}{}; at m = {m2}, R = {r2}: {}",
                 fmt_m(&derived),
                 fmt_m(&printed),
                 if same {
                     String::new()
                 } else {
                     format!("; printed/derived (largest entries) = {ratio:.4}")
+                },
+                if same2 {
+                    "derived = printed".to_string()
+                } else {
+                    format!("derived {}, printed {}", fmt_m(&derived2), fmt_m(&printed2))
                 }
             ),
         )

@@ -75,7 +75,14 @@ pub(super) fn fmt_m(m: &Matrix3<f64>) -> String {
 /// The two billiard balls of section 3 with m = 1, R = 1, rho^2 = 0.4 R^2: (B, B_A, B~, B*)
 /// computed from the definitions (1.7), (3.4), (3.8).
 pub(super) fn billiard() -> (Matrix3<f64>, Matrix3<f64>, Matrix3<f64>, Matrix3<f64>, f64) {
-    let (m, r) = (1.0, 1.0);
+    billiard_at(1.0, 1.0)
+}
+
+/// [`billiard`] for balls of mass `m` and radius `r` (rho^2 = 0.4 r^2).
+pub(super) fn billiard_at(
+    m: f64,
+    r: f64,
+) -> (Matrix3<f64>, Matrix3<f64>, Matrix3<f64>, Matrix3<f64>, f64) {
     let rho2 = 0.4 * r * r;
     let j2inv = Matrix3::identity() / (m * rho2);
     let g1c = Vector3::new(r, 0.0, 0.0);
@@ -100,9 +107,15 @@ pub(super) fn billiard() -> (Matrix3<f64>, Matrix3<f64>, Matrix3<f64>, Matrix3<f
 
 /// The values of the billiard configuration: m = 1, R = 1, rho^2 = 0.4 R^2.
 pub(super) fn billiard_values(name: &str) -> Option<f64> {
-    match name {
-        "m" | "R" => Some(1.0),
-        "rho" => Some(0.4f64.sqrt()),
+    billiard_values_at(1.0, 1.0)(name)
+}
+
+/// The values of a billiard configuration of mass `m` and radius `r` (rho^2 = 0.4 r^2).
+pub(super) fn billiard_values_at(m: f64, r: f64) -> impl Fn(&str) -> Option<f64> {
+    move |name| match name {
+        "m" => Some(m),
+        "R" => Some(r),
+        "rho" => Some(0.4f64.sqrt() * r),
         _ => None,
     }
 }
