@@ -34,6 +34,9 @@ pub struct SummaryClaim {
     /// A misprint of its printed side survives its check ([`Power::weak`]).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub weak: bool,
+    /// What it tests beyond the paper (`extends`), when it does.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub extends: Option<String>,
 }
 
 /// `summary.json`: sorted by id, no timestamps or timings.
@@ -58,12 +61,13 @@ pub struct Finding {
 }
 
 /// The distinct errors the outcomes show: every claim that fails or holds only with a
-/// correction is in exactly one, grouped by its `finding` (a claim naming none is a finding of
+/// correction, and does not extend the paper (`extends`), is in exactly one, grouped by its `finding` (a claim naming none is a finding of
 /// its own), sorted by name.
 pub fn findings(outcomes: &[Outcome]) -> Vec<Finding> {
     let mut by: BTreeMap<String, Vec<String>> = BTreeMap::new();
     for o in outcomes {
-        if matches!(o.verdict, Verdict::Fails | Verdict::HoldsWithCorrection) {
+        if matches!(o.verdict, Verdict::Fails | Verdict::HoldsWithCorrection) && o.extends.is_none()
+        {
             let name = o.finding.clone().unwrap_or_else(|| o.id.clone());
             by.entry(name).or_default().push(o.id.clone());
         }
@@ -96,6 +100,7 @@ pub fn summary(outcomes: &[Outcome]) -> Summary {
             extra: o.extra.clone(),
             power: o.power.clone(),
             weak: o.power.as_ref().is_some_and(Power::weak),
+            extends: o.extends.clone(),
         })
         .collect();
     claims.sort_by(|a, b| a.id.cmp(&b.id));
@@ -170,9 +175,12 @@ pub fn render(papers: &[PaperInfo], outcomes: &[Outcome]) -> Vec<(String, String
             .collect::<Vec<_>>(),
     );
     let showing: usize = paper_findings.iter().map(|f| f.claims.len()).sum();
+    let extending: Vec<&Outcome> = outcomes.iter().filter(|o| o.extends.is_some()).collect();
     readme.push_str(&format!(
-        "{n_papers} claims of the papers: {papers_list}. The {showing} claims that fail or hold only with a correction show **{} distinct findings** (claims that show the same error share one: `findings` in `summary.json`, listed in each paper's report).",
-        paper_findings.len()
+        "{n_papers} claims of the papers: {papers_list}. The {showing} claims that fail or hold only with a correction show **{} distinct findings** (claims that show the same error share one: `findings` in `summary.json`, listed in each paper's report). {} claims test more than the paper states (`extends`: a range, a model or a condition the paper does not claim); their verdicts are the tool's extension, not the paper's errors ({} of them fail).",
+        paper_findings.len(),
+        extending.len(),
+        extending.iter().filter(|o| o.verdict == Verdict::Fails).count()
     ));
     if n_hard > 0 {
         readme.push_str(&format!(
@@ -565,6 +573,7 @@ mod tests {
             extra: BTreeMap::new(),
             weak: power.as_ref().is_some_and(Power::weak),
             power,
+            extends: None,
         };
         let sum = |power: Option<Power>| Summary {
             claims: vec![claim(power)],
@@ -608,6 +617,7 @@ mod tests {
             extra: BTreeMap::new(),
             power: None,
             finding: finding.map(str::to_string),
+            extends: None,
         };
         let out = [
             o("p.a", Verdict::Fails, Some("wrong-a1")),

@@ -69,6 +69,8 @@ pub struct Outcome {
     pub power: Option<Power>,
     /// The error it shows, named as every claim that shows it names it (`finding`).
     pub finding: Option<String>,
+    /// What the claim tests beyond the paper (`extends`): its verdict is the tool's extension.
+    pub extends: Option<String>,
 }
 
 /// The power of a claim's check: how many misprints of its printed side it sees.

@@ -72,11 +72,16 @@ pub struct Head {
     /// distinct findings beside claims.
     #[serde(default)]
     pub finding: Option<String>,
+    /// What the claim tests beyond what the paper states (a range, a model, a condition the
+    /// paper's assumptions exclude): its verdict is the tool's extension, not the paper's error,
+    /// and a fail of it is no finding.
+    #[serde(default)]
+    pub extends: Option<String>,
 }
 
 impl Head {
     /// The keys of a head; every other key of a claim belongs to its kind.
-    const KEYS: [&str; 7] = [
+    const KEYS: [&str; 8] = [
         "id",
         "equation",
         "quote",
@@ -84,6 +89,7 @@ impl Head {
         "assumption",
         "blind",
         "finding",
+        "extends",
     ];
 }
 
@@ -230,6 +236,7 @@ pub(crate) fn outcome(paper: &PaperClaims, c: &Head, verdict: Verdict, detail: S
         extra: BTreeMap::new(),
         power: None,
         finding: c.finding.clone(),
+        extends: c.extends.clone(),
     }
 }
 

@@ -321,6 +321,7 @@ pub fn check(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Outcome
         kind: String::new(),
         power: None,
         finding: None,
+        extends: None,
         extra: std::collections::BTreeMap::new(),
     })
 }
@@ -436,6 +437,7 @@ pub fn passivity(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Out
         kind: String::new(),
         power: None,
         finding: None,
+        extends: None,
         extra: std::collections::BTreeMap::new(),
     })
 }

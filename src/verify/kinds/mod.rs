@@ -350,6 +350,10 @@ impl<'a> Checked<'a> {
                     o.kind = c.kind.clone();
                 }
                 o.finding = c.head.finding.clone();
+                o.extends = c.head.extends.clone();
+                if let Some(x) = &c.head.extends {
+                    o.detail = format!("extends the paper ({x}): {}", o.detail);
+                }
                 Ok(super::with_assumption(o, &c.head))
             })
             .collect()
