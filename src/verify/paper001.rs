@@ -16,6 +16,7 @@ pub const CHECKS: &[(&str, NamedFn)] = &[
 ];
 
 /// Case a) of (2.2) with c = 0: the integrated impact against the closed forms.
+/// Case a) of (2.4): the claim's `printed_equations` are omega+ and V+ as printed.
 fn disk_closed_forms(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let (verdict, detail) = {
         // case a): omega+ = omega- - 2 a f u0/(3 rho^2), V+ = V-(1 - (2f/mu) u0/(a omega-))^(mu/2)
@@ -42,11 +43,27 @@ fn disk_closed_forms(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, Ver
                 id: c.id.clone(),
                 message: e.to_string(),
             })?;
-            let w_closed = w0 - 2.0 * a * f * u0 / (3.0 * rho * rho);
-            let v_closed = v0 * (1.0 - 2.0 * f / mu * u0 / (a * w0)).powf(mu / 2.0);
+            let values = |s: &str| {
+                Some(match s {
+                    "omega_minus" => w0,
+                    "V_minus" => v0,
+                    "a" => a,
+                    "f" => f,
+                    "rho" => rho,
+                    "mu" => mu,
+                    "u0" => u0,
+                    _ => return None,
+                })
+            };
+            let printed = c.printed_values(
+                2,
+                "omega+ and V+ of case a), formulas of omega_minus, V_minus, a, f, rho, mu, u0",
+                &values,
+            )?;
+            let (w_closed, v_closed) = (printed[0], printed[1]);
             let (ew, ev) = (
-                (wp - w_closed).abs() / w_closed,
-                (vp - v_closed).abs() / v_closed,
+                (wp - w_closed).abs() / w_closed.abs(),
+                (vp - v_closed).abs() / v_closed.abs(),
             );
             worst = worst.max((ew.max(ev)) / (k * k));
             rows.push(format!(
@@ -129,12 +146,20 @@ fn derived_delta_nu(zeta: f64, theta: f64) -> (f64, f64) {
     )
 }
 
-fn printed_delta_nu(zeta: f64, theta: f64) -> (f64, f64) {
-    let s = 2.0 * zeta * zeta - 1.0;
-    (
-        zeta * (2.0 * theta.powi(3) / s + 1.0),
-        13.0 * theta.powi(3) / (2.0 * s * s),
-    )
+/// delta and nu of (2.8) as printed: the claim's `printed_equations`, formulas of zeta = c/a and
+/// theta = rho/a.
+fn printed_delta_nu(c: &NamedCheck, zeta: f64, theta: f64) -> Result<(f64, f64), VerifyError> {
+    let values = |s: &str| match s {
+        "zeta" => Some(zeta),
+        "theta" => Some(theta),
+        _ => None,
+    };
+    let p = c.printed_values(
+        2,
+        "delta and nu of (2.8), formulas of zeta and theta",
+        &values,
+    )?;
+    Ok((p[0], p[1]))
 }
 
 fn plate(zeta: f64, theta: f64) -> Plate {
@@ -162,7 +187,7 @@ fn disk_centre_linear(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, Ve
         let delta = p.slope(0.0);
         let nu = (p.slope(h) - p.slope(-h)) / (2.0 * h);
         let (dd, nd) = derived_delta_nu(zeta, theta);
-        let (dp, np) = printed_delta_nu(zeta, theta);
+        let (dp, np) = printed_delta_nu(c, zeta, theta)?;
         // the paper's V is measured with the opposite orientation for theta = -pi/2: compare |delta|
         worst_derived = worst_derived.max((delta - dd).abs()).max((nu - nd).abs());
         worst_printed = worst_printed
@@ -184,14 +209,12 @@ fn disk_centre_linear(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, Ve
         c,
         verdict,
         format!(
-            "dV/dOmega of the plate (pressure linear, centre of pressure = centre of mass at c from O, instantaneous centre on the line through O perpendicular to the lines of equal pressure), from (2.2) with the force and moment by quadrature; delta = dV/dOmega at V/Omega = 0 and nu = its derivative (central difference, step {h:e}) for five (zeta, theta): the printed delta = zeta (2 theta^3/(2 zeta^2 - 1) + 1), nu = 13 theta^3/(2 (2 zeta^2 - 1)^2) are off by up to {worst_printed:.2e}; the forms that follow from the pure-spin force 4 f c/(3a), moment 2 f a/3 - 4 f c^2/(3a) about G and their q-derivatives, delta = zeta (2 theta^2/(2 zeta^2 - 1) + 1), nu = 3 theta^2/(2 (2 zeta^2 - 1)^2), agree to {worst_derived:.1e} (the printed theta^3 and 13 theta^3 read as theta^2 and 3 theta^2; delta's sign follows the orientation of V, which the paper flips with theta = -pi/2)"
+            "dV/dOmega of the plate (pressure linear, centre of pressure = centre of mass at c from O, instantaneous centre on the line through O perpendicular to the lines of equal pressure), from (2.2) with the force and moment by quadrature; delta = dV/dOmega at V/Omega = 0 and nu = its derivative (central difference, step {h:e}) for five (zeta, theta): the printed delta = {}, nu = {} are off by up to {worst_printed:.2e}; the forms that follow from the pure-spin force 4 f c/(3a), moment 2 f a/3 - 4 f c^2/(3a) about G and their q-derivatives, delta = zeta (2 theta^2/(2 zeta^2 - 1) + 1), nu = 3 theta^2/(2 (2 zeta^2 - 1)^2), agree to {worst_derived:.1e} (delta's sign follows the orientation of V, which the paper flips with theta = -pi/2)",
+            c.printed_equations[0], c.printed_equations[1]
         ),
     );
     o.derived_latex = Some(
         r"\delta = \zeta\left(\frac{2\theta^2}{2\zeta^2-1}+1\right),\quad \nu = \frac{3\theta^2}{2(2\zeta^2-1)^2}".into(),
-    );
-    o.printed_latex = Some(
-        r"\delta = \zeta\left(\frac{2\theta^3}{2\zeta^2-1}+1\right),\quad v = \frac{13\theta^3}{2(2\zeta^2-1)^2}".into(),
     );
     o.extra_md = Some(format!(
         "| zeta = c/a | theta = rho/a | delta, plate | delta, derived | delta, printed | nu, plate | nu, derived | nu, printed |\n|---|---|---|---|---|---|---|---|\n{}",
@@ -209,7 +232,7 @@ fn disk_centre_solution(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, 
     for (zeta, theta) in [(0.02, 0.5), (0.05, 0.5)] {
         let p = plate(zeta, theta);
         let (dd, nd) = derived_delta_nu(zeta, theta);
-        let (dp, np) = printed_delta_nu(zeta, theta);
+        let (dp, np) = printed_delta_nu(c, zeta, theta)?;
         let (w0, v0) = (1.0, 0.0);
         // omega falls at about 2 f (a^2 - 2 c^2)/(3 a m rho^2) per unit impulse: run to omega0/4
         let rate = 2.0 * p.f * (1.0 - 2.0 * zeta * zeta) / (3.0 * theta * theta);
@@ -276,9 +299,51 @@ fn disk_centre_solution(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, 
 
 /// (2.10): with 2 (rho^2 + c^2) = a^2 the base centre stays at rest and
 /// Delta omega = -4 f S/(3 a m); with rho^2 10 % larger it does not.
+/// (2.10): the claim's `printed_equations` are the condition as printed, as `lhs - rhs` (a
+/// formula of rho, c, a), and Delta omega as printed (a formula of f, S, a, m). rho is found
+/// where the printed condition holds (bisection on rho in (0, a)).
 fn disk_no_transverse(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let (zeta, f): (f64, f64) = (0.2, 0.3);
-    let theta = (0.5 - zeta * zeta).sqrt();
+    let printed = |rho: f64, s: f64| {
+        let values = |name: &str| {
+            Some(match name {
+                "rho" => rho,
+                "c" => zeta,
+                "a" => 1.0,
+                "m" => 1.0,
+                "f" => f,
+                "S" => s,
+                _ => return None,
+            })
+        };
+        c.printed_values(
+            2,
+            "the condition as lhs - rhs (rho, c, a) and Delta omega (f, S, a, m)",
+            &values,
+        )
+    };
+    let (mut lo, mut hi) = (1e-9, 1.0);
+    let (g_lo, g_hi) = (printed(lo, 0.0)?[0], printed(hi, 0.0)?[0]);
+    if g_lo.signum() == g_hi.signum() {
+        return Ok(outcome(
+            paper,
+            c,
+            Verdict::Fails,
+            format!(
+                "the printed condition {} = 0 has no root rho in (0, a) at a = m = 1, c = 0.2 a (values {g_lo:.3e} and {g_hi:.3e} at the ends)",
+                c.printed_equations[0]
+            ),
+        ));
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if printed(mid, 0.0)?[0].signum() == g_lo.signum() {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let theta = 0.5 * (lo + hi);
     let s_end = 0.9 / (4.0 * f / 3.0);
     let run = |theta: f64| {
         let p = Plate {
@@ -294,7 +359,7 @@ fn disk_no_transverse(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, Ve
     let (mut v_max, mut w_err): (f64, f64) = (0.0, 0.0);
     for (s, y) in &path {
         v_max = v_max.max(y[0].hypot(y[1]));
-        w_err = w_err.max((y[2] - (1.0 - 4.0 * f * s / 3.0)).abs());
+        w_err = w_err.max((y[2] - (1.0 + printed(theta, *s)?[1])).abs());
     }
     let control = run((1.1 * 0.5 - zeta * zeta).sqrt()).map_err(|e| integration_failed(c, e))?;
     let v_ctrl = control
@@ -306,7 +371,8 @@ fn disk_no_transverse(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, Ve
         c,
         holds(v_max <= 1e-9 && w_err <= 1e-9 && v_ctrl > 1e-3),
         format!(
-            "Plate with a = m = 1, f = 0.3, c = 0.2 a, rho^2 = a^2/2 - c^2 (so 2 (rho^2 + c^2) = a^2), spinning about O (V = 0, omega = 1), integrated in the normal impulse (DOP853, rtol 1e-11, force and moment by quadrature) to S = {s_end:.3}: max |v_O| = {v_max:.1e} a omega0, omega(S) against 1 - 4 f S/(3 a m) within {w_err:.1e}; with rho^2 10 % larger the base centre reaches |v_O| = {v_ctrl:.3e} a omega0. Hence the closing statement too: a^2 = 2 l c with l = (rho^2 + c^2)/c the reduced length, and c = a/4 gives l = 2a"
+            "Plate with a = m = 1, f = 0.3, c = 0.2 a, rho = {theta:.6} a where the printed {} = 0, spinning about O (V = 0, omega = 1), integrated in the normal impulse (DOP853, rtol 1e-11, force and moment by quadrature) to S = {s_end:.3}: max |v_O| = {v_max:.1e} a omega0, omega(S) - omega0 against the printed Delta omega = {} within {w_err:.1e}; with rho^2 10 % larger the base centre reaches |v_O| = {v_ctrl:.3e} a omega0. Hence the closing statement too: a^2 = 2 l c with l = (rho^2 + c^2)/c the reduced length, and c = a/4 gives l = 2a",
+            c.printed_equations[0], c.printed_equations[1]
         ),
     ))
 }

@@ -39,6 +39,96 @@ pub struct NamedCheck {
     pub scene: Option<String>,
 }
 
+/// A printed value that is a number: NaN or an infinity (a root of a negative number, a pole)
+/// is an error, so that no comparison (`f64::max` drops a NaN) passes it by.
+fn finite(x: f64) -> Result<f64, String> {
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        Err(format!("evaluates to {x}"))
+    }
+}
+
+impl NamedCheck {
+    fn bad(&self, message: String) -> VerifyError {
+        VerifyError::BadClaim {
+            id: self.head.id.clone(),
+            message,
+        }
+    }
+
+    /// The claim's `printed`, evaluated with `values`; `what` says what the check expects there.
+    pub fn printed_value(
+        &self,
+        what: &str,
+        values: &dyn Fn(&str) -> Option<f64>,
+    ) -> Result<f64, VerifyError> {
+        let text = self
+            .printed
+            .as_deref()
+            .ok_or_else(|| self.bad(format!("needs `printed`: {what}")))?;
+        let e = crate::algebra::expr::parse(text).map_err(|e| self.bad(format!("printed: {e}")))?;
+        e.eval(values)
+            .and_then(finite)
+            .map_err(|e| self.bad(format!("printed: {e}")))
+    }
+
+    /// The claim's `printed_equations`, exactly `n` of them, each evaluated with `values`;
+    /// `what` says what the check expects there.
+    pub fn printed_values(
+        &self,
+        n: usize,
+        what: &str,
+        values: &dyn Fn(&str) -> Option<f64>,
+    ) -> Result<Vec<f64>, VerifyError> {
+        if self.printed_equations.len() != n {
+            return Err(self.bad(format!("printed_equations must give {n} formulas: {what}")));
+        }
+        self.printed_equations
+            .iter()
+            .enumerate()
+            .map(|(k, text)| {
+                crate::algebra::expr::parse(text)
+                    .map_err(|e| e.to_string())
+                    .and_then(|e| e.eval(values))
+                    .and_then(finite)
+                    .map_err(|e| self.bad(format!("printed_equations[{k}]: {e}")))
+            })
+            .collect()
+    }
+
+    /// The claim's `printed_matrix` as rows of `width` numbers (any number of rows), each
+    /// formula evaluated with `values`; `what` says what a row is.
+    pub fn printed_rows(
+        &self,
+        width: usize,
+        what: &str,
+        values: &dyn Fn(&str) -> Option<f64>,
+    ) -> Result<Vec<Vec<f64>>, VerifyError> {
+        if self.printed_matrix.is_empty() || self.printed_matrix.iter().any(|r| r.len() != width) {
+            return Err(self.bad(format!(
+                "printed_matrix must be rows of {width} formulas: {what}"
+            )));
+        }
+        self.printed_matrix
+            .iter()
+            .enumerate()
+            .map(|(i, row)| {
+                row.iter()
+                    .enumerate()
+                    .map(|(j, text)| {
+                        crate::algebra::expr::parse(text)
+                            .map_err(|e| e.to_string())
+                            .and_then(|e| e.eval(values))
+                            .and_then(finite)
+                            .map_err(|e| self.bad(format!("printed_matrix[{i}][{j}]: {e}")))
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+}
+
 impl Deref for NamedCheck {
     type Target = Head;
     fn deref(&self) -> &Head {

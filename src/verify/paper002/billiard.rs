@@ -100,10 +100,13 @@ pub(super) fn billiard_312(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcom
     })
 }
 
-/// The check `billiard-313`.
+/// The check `billiard-313`: the claim's `printed_equations` are V1', r', r phi' of (3.13) as
+/// printed (formulas of m, mu, phi).
 pub(super) fn billiard_313(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     Ok({
-        // r' and r phi' from V' = B* F (derived B*) against the printed (3.13), at sample angles
+        // r' and r phi' from V' = B* F (derived B*) against the printed (3.13), at sample angles;
+        // at m = 1 (the derived B*'s) and, for the powers of m, the printed side also at m = 1.7
+        // against the derived one scaled by 1/m (B* is proportional to 1/m)
         let (_, _, _, bs, _) = billiard();
         let mu = 0.3;
         let mut worst: f64 = 0.0;
@@ -113,25 +116,33 @@ pub(super) fn billiard_313(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcom
             let dv = bs * f;
             let r_dot = phi.sin() * dv.y + phi.cos() * dv.z;
             let r_phi_dot = phi.cos() * dv.y - phi.sin() * dv.z;
-            let pr = -mu * (6.0 + phi.sin().powi(2));
-            let pp = -0.5 * mu * (2.0 * phi).sin();
-            worst = worst
-                .max((r_dot - pr).abs())
-                .max((r_phi_dot - pp).abs())
-                .max((dv.x - 2.0).abs());
+            for m in [1.0, 1.7] {
+                let values = |s: &str| match s {
+                    "m" => Some(m),
+                    "mu" => Some(mu),
+                    "phi" => Some(phi),
+                    _ => None,
+                };
+                let p = c.printed_values(3, "V1', r', r phi' of (3.13)", &values)?;
+                worst = worst
+                    .max((r_dot / m - p[1]).abs())
+                    .max((r_phi_dot / m - p[2]).abs())
+                    .max((dv.x / m - p[0]).abs());
+            }
         }
         outcome(
             paper,
             c,
             holds(worst <= 1e-12),
             format!(
-                "V1', r', r phi' from V' = B* F (derived B*, m = 1) against (3.13) at 36 angles: max difference {worst:.2e}"
+                "V1', r', r phi' from V' = B* F (derived B*, m = 1 and 1.7) against (3.13) at 36 angles: max difference {worst:.2e}"
             ),
         )
     })
 }
 
-/// The check `billiard-314`.
+/// The check `billiard-314`: the claim's `printed` is r of (3.14) as printed (a formula of r0,
+/// phi0, phi).
 pub(super) fn billiard_314(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let bad = |m: &str| VerifyError::BadClaim {
         id: c.id.clone(),
@@ -165,8 +176,13 @@ pub(super) fn billiard_314(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcom
             let mut pts = Vec::new();
             let mut prev = phi0;
             for (_, y) in &sol.trajectory {
-                let closed =
-                    r0 * (y[1].sin() / phi0.sin()).powi(6) * (y[1].cos() / phi0.cos()).powi(-7);
+                let values = |s: &str| match s {
+                    "r0" => Some(r0),
+                    "phi0" => Some(phi0),
+                    "phi" => Some(y[1]),
+                    _ => None,
+                };
+                let closed = c.printed_value("r of (3.14), a formula of r0, phi0, phi", &values)?;
                 worst = worst.max((y[0] - closed).abs() / y[0].abs().max(1e-3));
                 monotone &= y[1].abs() >= prev.abs() - 1e-12;
                 prev = y[1];
@@ -200,7 +216,8 @@ pub(super) fn billiard_314(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcom
     })
 }
 
-/// The check `billiard-fixed-angles`.
+/// The check `billiard-fixed-angles`: the claim's `printed_equations` are the angles (radians)
+/// where the paper says phi stays constant.
 pub(super) fn billiard_fixed_angles(
     paper: &PaperClaims,
     c: &NamedCheck,
@@ -227,7 +244,11 @@ pub(super) fn billiard_fixed_angles(
         }
         zeros.sort_by(f64::total_cmp);
         zeros.dedup();
-        let printed = [-180.0, -90.0, 90.0, 180.0];
+        let printed: Vec<f64> = c
+            .printed_values(c.printed_equations.len(), "the printed angles", &|_| None)?
+            .into_iter()
+            .map(f64::to_degrees)
+            .collect();
         let extra: Vec<f64> = zeros
             .iter()
             .copied()
@@ -242,8 +263,8 @@ pub(super) fn billiard_fixed_angles(
             c,
             holds(extra.is_empty()),
             format!(
-                "phi' = 0 in (3.13) where sin 2 phi = 0: at {:?} degrees; the printed list (+-180, +-90) misses {:?} (V_t pointing along N; excluded only by the paper's assumption (V-, N) < 0)",
-                zeros, extra
+                "phi' = 0 in (3.13) where sin 2 phi = 0: at {:?} degrees; the printed list {:?} misses {:?} (V_t pointing along N; excluded only by the paper's assumption (V-, N) < 0)",
+                zeros, printed, extra
             ),
         )
     })

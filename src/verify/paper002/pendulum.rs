@@ -3,7 +3,8 @@
 
 use super::*;
 
-/// The check `pendulum-bstar`.
+/// The check `pendulum-bstar`: the claim's `printed_matrix` is B* of (2.5) as printed, a matrix
+/// of m, rho and the coordinates alpha1..3 of e* = e x OC.
 pub(super) fn pendulum_bstar(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     Ok({
         // (2.4): dV_C = (e*, I) e* /(m rho^2), e* = e x OC; compare with (2.5)
@@ -15,7 +16,15 @@ pub(super) fn pendulum_bstar(paper: &PaperClaims, c: &NamedCheck) -> Result<Outc
             let dw = e_axis * (oc.cross(&i).dot(&e_axis) / (m * rho * rho));
             dw.cross(&oc)
         }));
-        let printed = es * es.transpose() / (m * rho * rho);
+        let values = |s: &str| match s {
+            "m" => Some(m),
+            "rho" => Some(rho),
+            "alpha1" => Some(es.x),
+            "alpha2" => Some(es.y),
+            "alpha3" => Some(es.z),
+            _ => None,
+        };
+        let printed = printed_matrix(c, &values)?;
         let eig = SymmetricEigen::new(derived).eigenvalues;
         let mut ev: Vec<f64> = eig.iter().copied().collect();
         ev.sort_by(f64::total_cmp);
@@ -247,15 +256,27 @@ fn pendulum_wall_derivation(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
     })
 }
 
-/// Fig. 2 and (2.15), part `figure`.
+/// Fig. 2 and (2.15), part `figure`: the claim's `printed_matrix` gives, per curve, rho, the
+/// sigma of the largest loss and that loss as printed (rows `[rho, sigma, loss]`).
 fn pendulum_wall_figure(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let loss = |rho: f64, sigma: f64| fig2_loss(c, rho, sigma);
+    let printed_rows =
+        c.printed_rows(3, "rho, the sigma of the largest loss, that loss", &|_| {
+            None
+        })?;
+    if printed_rows.len() != 2 {
+        return Err(claim_error(
+            c,
+            "printed_matrix must give Fig. 2's two curves, one row each".into(),
+        ));
+    }
     Ok({
         let sigmas: Vec<f64> = (1..=250).map(|k| 0.02 * k as f64).collect();
         let mut lines = Vec::new();
         let mut curves = Vec::new();
         let mut ok = true;
-        for (rho, printed) in [(0.5, 0.36), (2.0, 0.53)] {
+        for row in &printed_rows {
+            let (rho, printed_sigma, printed) = (row[0], row[1], row[2]);
             let vals = sigmas
                 .iter()
                 .map(|s| loss(rho, *s))
@@ -265,11 +286,11 @@ fn pendulum_wall_figure(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, 
                     (0, f64::MIN),
                     |a, (i, v)| if *v > a.1 { (i, *v) } else { a },
                 );
-            let at_one = (sigmas[imax] - 1.0).abs() <= 0.021;
+            let at_one = (sigmas[imax] - printed_sigma).abs() <= 0.021;
             let close = (vmax - printed).abs() <= 0.02;
             ok &= at_one && close;
             lines.push(format!(
-                "rho = {rho}: maximum loss {:.1}% at sigma = {:.2} (printed: about {:.0}% at sigma = 1)",
+                "rho = {rho}: maximum loss {:.1}% at sigma = {:.2} (printed: about {:.0}% at sigma = {printed_sigma})",
                 100.0 * vmax,
                 sigmas[imax],
                 100.0 * printed
@@ -303,7 +324,9 @@ fn pendulum_wall_figure(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, 
             format!("| {sig} | {} | {} |", at(0), at(1))
         };
         let table = format!(
-            "Relative energy loss -dT/T0 in % (T0: the pendulum's kinetic energy before impact; the loss is what is dissipated while the suspension point O is braked after the contact unloads, (2.13)):\n\n| sigma = c1/c2 | rho = 0.5 | rho = 2 |\n|---|---|---|\n{}",
+            "Relative energy loss -dT/T0 in % (T0: the pendulum's kinetic energy before impact; the loss is what is dissipated while the suspension point O is braked after the contact unloads, (2.13)):\n\n| sigma = c1/c2 | {} | {} |\n|---|---|---|\n{}",
+            curves[0].0,
+            curves[1].0,
             picks.iter().map(|s| row(*s)).collect::<Vec<_>>().join("\n")
         );
         let same = curves[0]
@@ -332,26 +355,33 @@ fn pendulum_wall_figure(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, 
     })
 }
 
-/// Fig. 2 and (2.15), part `fifteen`.
+/// Fig. 2 and (2.15), part `fifteen`: the claim's `printed_matrix` gives the intervals of rho
+/// as printed (rows `[lo, hi]`), `printed_equations` the interval of sigma, `printed` the bound
+/// on the loss.
 fn pendulum_wall_fifteen(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     let loss = |rho: f64, sigma: f64| fig2_loss(c, rho, sigma);
+    let none = |_: &str| None;
+    let intervals = c.printed_rows(2, "an interval of rho, [lo, hi]", &none)?;
+    let sig = c.printed_values(2, "the interval of sigma, lo and hi", &none)?;
+    let bound = c.printed_value("the bound on the relative loss", &none)?;
     Ok({
         let mut worst: Vec<String> = Vec::new();
         let mut ok = true;
-        for (lo, hi) in [(0.02, 0.3), (0.7, 1.4), (3.0, 10.0)] {
+        for row in &intervals {
+            let (lo, hi) = (row[0], row[1]);
             let mut m = (0.0f64, 0.0, 0.0);
             // interior points only: the intervals are open
             for i in 1..12 {
                 let rho = lo + (hi - lo) * i as f64 / 12.0;
                 for k in 1..=50 {
-                    let sigma = 0.1 * k as f64 - 0.001;
+                    let sigma = sig[0] + (sig[1] - sig[0]) * k as f64 / 50.0 - 0.001;
                     let l = loss(rho, sigma)?;
                     if l > m.0 {
                         m = (l, rho, sigma);
                     }
                 }
             }
-            ok &= m.0 <= 0.15;
+            ok &= m.0 <= bound;
             worst.push(format!(
                 "rho in ({lo}, {hi}): max {:.1}% at rho = {:.2}, sigma = {:.2}",
                 100.0 * m.0,
@@ -364,7 +394,10 @@ fn pendulum_wall_fifteen(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome,
             c,
             holds(ok),
             format!(
-                "same computation and normalisation as Fig. 2, sigma in (0, 5): {}",
+                "same computation and normalisation as Fig. 2, sigma in ({}, {}), against the printed {:.0}%: {}",
+                sig[0],
+                sig[1],
+                100.0 * bound,
                 worst.join("; ")
             ),
         )

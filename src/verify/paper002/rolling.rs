@@ -44,6 +44,21 @@ pub(super) fn rolling_rates(phi: f64, xi: f64, mu: f64, mu_star: f64) -> [f64; 4
     ]
 }
 
+/// The angle phi of (4.7)'s conserved direction for `mu`: the claim's `printed` is cos phi as
+/// printed, a formula of mu; a value outside [-1, 1] is an error naming it.
+fn special_angle(c: &NamedCheck, mu: f64) -> Result<f64, VerifyError> {
+    let cos = c.printed_value("cos phi of (4.7), a formula of mu", &|s| {
+        (s == "mu").then_some(mu)
+    })?;
+    if !(-1.0..=1.0).contains(&cos) {
+        return Err(VerifyError::BadClaim {
+            id: c.id.clone(),
+            message: format!("printed: cos phi = {cos} at mu = {mu}, outside [-1, 1]"),
+        });
+    }
+    Ok(cos.acos())
+}
+
 /// The claim's `printed_equations`: the right-hand sides of (4.6), in m = 1 units, parsed once.
 pub(super) fn rolling_equations(
     c: &NamedCheck,
@@ -211,7 +226,7 @@ pub(super) fn rolling_integrated(
     // the special case of (4.7) in the model: phi stays put
     let mut special: f64 = 0.0;
     for mu in [0.3f64, 0.5, 1.0] {
-        let phi = (-2.0 / (7.0 * mu)).acos();
+        let phi = special_angle(c, mu)?;
         let r = model(phi, phi, mu, mu).map_err(|e| bad(format!("the model: {e}")))?;
         for p in r.path.iter().filter(|p| p.1[1].hypot(p.1[2]) > 1e-3) {
             special = special.max((p.1[1].atan2(p.1[2]) - phi).abs());
@@ -281,7 +296,7 @@ pub(super) fn rolling_ball(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcom
             let mut worst: f64 = 0.0;
             let mut curves = Vec::new();
             for mu in [0.3f64, 0.5, 1.0, 2.0] {
-                let phi = (-2.0 / (7.0 * mu)).acos();
+                let phi = special_angle(c, mu)?;
                 let d = rolling_rates(phi, phi, mu, mu);
                 worst = worst.max(d[1].abs()).max(d[3].abs());
             }
@@ -302,7 +317,7 @@ pub(super) fn rolling_ball(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcom
                 }
             }
             let mu: f64 = 0.5;
-            let phi_star = (-2.0 / (7.0 * mu)).acos();
+            let phi_star = special_angle(c, mu)?;
             for dphi in [-0.4, -0.2, 0.0, 0.2, 0.4] {
                 let y0 = [1.0, phi_star + dphi, 1.0, phi_star + dphi];
                 let stop = |_c: f64, y: &[f64]| y[0].min(y[2]) - 1e-2;

@@ -184,6 +184,22 @@ impl Plane {
         };
         (body, s)
     }
+
+    /// The values of the paper's symbols (m2, rho2, a2, b2, a3, b3, mu_star) in this plane.
+    fn values(&self) -> impl Fn(&str) -> Option<f64> + '_ {
+        move |s| {
+            Some(match s {
+                "m2" => self.m2,
+                "rho2" => self.rho2,
+                "a2" => self.a2,
+                "b2" => self.b2,
+                "a3" => self.a3,
+                "b3" => self.b3,
+                "mu_star" => self.mu_star,
+                _ => return None,
+            })
+        }
+    }
 }
 
 /// Whether the kernel of a singular `b` (the impulses that leave the body at rest) meets the
@@ -532,9 +548,12 @@ pub(super) fn plane_support(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
                 let (body, s) = p.parts();
                 let sm = matrices(&body, &s).ok_or_else(|| bad("singular body".into()))?;
                 let cl = classify_sliding(&Vector3::x(), &sm, &s, &Vector3::x());
-                let r2 = p.rho2 * p.rho2;
-                let beta_printed = (p.a3 * p.a3 + r2 + p.mu_star * p.a3 * p.b3) / (p.m2 * r2);
-                let alpha_printed = p.a3 * p.b2 / (p.m2 * r2);
+                let printed = c.printed_values(
+                    2,
+                    "beta of (4.8) and alpha with gamma = 1, formulas of m2, rho2, a2, b2, a3, b3, mu_star",
+                    &p.values(),
+                )?;
+                let (beta_printed, alpha_printed) = (printed[0], printed[1]);
                 worst = worst
                     .max((cl.beta - beta_printed).abs() / beta_printed.abs().max(1e-12))
                     .max((cl.alpha - alpha_printed).abs() / alpha_printed.abs().max(1e-12));
@@ -544,7 +563,8 @@ pub(super) fn plane_support(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
                 c,
                 holds(worst <= 1e-10),
                 format!(
-                    "beta of (4.4) and alpha of (3.6) from the matrices of (3.4), body sliding to the right, F = n (horizontal), 200 seeded plane configurations: max relative difference from (4.8) and alpha = gamma a3 b2/(m2 rho2^2): {worst:.2e}"
+                    "beta of (4.4) and alpha of (3.6) from the matrices of (3.4), body sliding to the right, F = n (horizontal), 200 seeded plane configurations: max relative difference from (4.8) and alpha = gamma a3 b2/(m2 rho2^2) as printed ({}, {}): {worst:.2e}",
+                    c.printed_equations[0], c.printed_equations[1]
                 ),
             )
         }
@@ -564,10 +584,11 @@ pub(super) fn plane_support(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
                 [sm.b_tilde[(0, 0)], sm.b_tilde[(0, 1)]],
                 [sm.b_tilde[(1, 0)], sm.b_tilde[(1, 1)]],
             ];
-            let printed = [
-                [1.0 + p.b2 * p.b3, -p.a3 * p.b2],
-                [-p.a2 * p.b3, 1.0 + p.a2 * p.a3],
-            ];
+            let rows = c.printed_rows(2, "a row of B~ of (4.8)", &p.values())?;
+            if rows.len() != 2 {
+                return Err(bad("printed_matrix must give the 2 rows of B~".into()));
+            }
+            let printed = [[rows[0][0], rows[0][1]], [rows[1][0], rows[1][1]]];
             let same =
                 (0..2).all(|i| (0..2).all(|j| (derived[i][j] - printed[i][j]).abs() < 1e-12));
             let transposed =
