@@ -67,10 +67,21 @@ impl NamedCheck {
             .printed
             .as_deref()
             .ok_or_else(|| self.bad(format!("needs `printed`: {what}")))?;
-        let e = crate::algebra::expr::parse(text).map_err(|e| self.bad(format!("printed: {e}")))?;
-        e.eval(values)
+        self.eval_printed("printed", text, values)
+    }
+
+    /// One printed formula of the key `field`, parsed and evaluated with `values`: a finite number.
+    fn eval_printed(
+        &self,
+        field: &str,
+        text: &str,
+        values: &dyn Fn(&str) -> Option<f64>,
+    ) -> Result<f64, VerifyError> {
+        crate::algebra::expr::parse(text)
+            .map_err(|e| e.to_string())
+            .and_then(|e| e.eval(values))
             .and_then(finite)
-            .map_err(|e| self.bad(format!("printed: {e}")))
+            .map_err(|e| self.bad(format!("{field}: {e}")))
     }
 
     /// The claim's `printed_equations`, exactly `n` of them, each evaluated with `values`;
@@ -87,13 +98,7 @@ impl NamedCheck {
         self.printed_equations
             .iter()
             .enumerate()
-            .map(|(k, text)| {
-                crate::algebra::expr::parse(text)
-                    .map_err(|e| e.to_string())
-                    .and_then(|e| e.eval(values))
-                    .and_then(finite)
-                    .map_err(|e| self.bad(format!("printed_equations[{k}]: {e}")))
-            })
+            .map(|(k, text)| self.eval_printed(&format!("printed_equations[{k}]"), text, values))
             .collect()
     }
 
@@ -117,11 +122,7 @@ impl NamedCheck {
                 row.iter()
                     .enumerate()
                     .map(|(j, text)| {
-                        crate::algebra::expr::parse(text)
-                            .map_err(|e| e.to_string())
-                            .and_then(|e| e.eval(values))
-                            .and_then(finite)
-                            .map_err(|e| self.bad(format!("printed_matrix[{i}][{j}]: {e}")))
+                        self.eval_printed(&format!("printed_matrix[{i}][{j}]"), text, values)
                     })
                     .collect()
             })

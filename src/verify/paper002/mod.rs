@@ -120,27 +120,19 @@ pub(super) fn billiard_values_at(m: f64, r: f64) -> impl Fn(&str) -> Option<f64>
     }
 }
 
-/// The claim's `printed_matrix`, each formula evaluated with `values`.
+/// The claim's `printed_matrix`, a 3 x 3 matrix, each formula evaluated with `values`.
 pub(super) fn printed_matrix(
     c: &NamedCheck,
     values: &dyn Fn(&str) -> Option<f64>,
 ) -> Result<Matrix3<f64>, VerifyError> {
-    let bad = |m: String| VerifyError::BadClaim {
-        id: c.id.clone(),
-        message: m,
-    };
-    if c.printed_matrix.len() != 3 || c.printed_matrix.iter().any(|r| r.len() != 3) {
-        return Err(bad("printed_matrix must be 3 rows of 3 formulas".into()));
+    let rows = c.printed_rows(3, "a row of a 3 x 3 matrix", values)?;
+    if rows.len() != 3 {
+        return Err(VerifyError::BadClaim {
+            id: c.id.clone(),
+            message: "printed_matrix must be 3 rows of 3 formulas".into(),
+        });
     }
-    let mut m = Matrix3::zeros();
-    for (i, row) in c.printed_matrix.iter().enumerate() {
-        for (j, text) in row.iter().enumerate() {
-            let e = crate::algebra::expr::parse(text)
-                .map_err(|e| bad(format!("printed_matrix[{i}][{j}]: {e}")))?;
-            m[(i, j)] = e.eval(values).map_err(bad)?;
-        }
-    }
-    Ok(m)
+    Ok(Matrix3::from_fn(|i, j| rows[i][j]))
 }
 
 /// (3.13): $V_1' = 2/m$, $r' = -(\mu/m)(6 + \sin^2\varphi)$, $r\varphi' = -(\mu/2m)\sin 2\varphi$.
