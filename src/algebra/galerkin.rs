@@ -196,8 +196,7 @@ pub fn derive(m: u32, n: u32) -> Result<Galerkin, AlgebraError> {
     };
     // operator constants
     let (e, eta, zeta) = (s("E"), s("eta"), s("zeta"));
-    let op = operator::check();
-    let c_corr = op.derived_constant.clone();
+    let c_corr = operator::derived_constant();
     let c_corr_visc = c_corr.div(&s("lambda")).expect("nz");
     let derived = [
         ("A1", &bend * &(&e * &zeta), &bend * &c_corr),

@@ -6,14 +6,13 @@
 use super::kinds::NamedCheck;
 use super::{NamedFn, Outcome, PaperClaims, VerifyError, holds, outcome};
 use crate::algebra::identity21;
-use crate::algebra::operator::{self, OperatorCheck};
-use crate::algebra::poly::{Poly, Sym, q};
+use crate::algebra::operator;
+use crate::algebra::poly::{Sym, q};
 use crate::algebra::ratfunc::RatFunc;
 
 /// Expensive exact results shared between claims.
 pub struct Context {
     root: std::path::PathBuf,
-    operator: Option<OperatorCheck>,
 }
 
 impl Context {
@@ -21,22 +20,15 @@ impl Context {
     pub fn new(root: &std::path::Path) -> Self {
         Context {
             root: root.to_path_buf(),
-            operator: None,
         }
-    }
-
-    fn operator(&mut self) -> &OperatorCheck {
-        self.operator.get_or_insert_with(operator::check)
     }
 }
 
 /// The named checks of paper 000, by the name a claim's `check` gives.
 pub const CHECKS: &[(&str, NamedFn)] = &[
-    ("operator-poles", |n, p, c| {
-        operator_poles(&mut n.paper000, p, c)
-    }),
-    ("operator-growing-mode", |n, p, c| {
-        operator_growing_mode(&mut n.paper000, p, c)
+    ("operator-poles", |_, p, c| operator_poles(p, c)),
+    ("operator-growing-mode", |_, p, c| {
+        operator_growing_mode(p, c)
     }),
     ("identity21", |_, p, c| identity_21(p, c)),
     ("series-vs-numerics", |n, p, c| {
@@ -52,70 +44,71 @@ fn bad(c: &NamedCheck, message: &str) -> VerifyError {
     }
 }
 
-/// The derived operator's poles are at D = -alpha and D = -gamma.
-fn operator_poles(
-    ctx: &mut Context,
-    paper: &PaperClaims,
-    c: &NamedCheck,
-) -> Result<Outcome, VerifyError> {
-    Ok({
-        let op = ctx.operator();
-        let mut o = outcome(
-            paper,
-            c,
-            holds(op.poles_agree),
-            format!(
-                "the derived operator's denominator {} vanishes at D = -alpha and D = -gamma: {}",
-                op.derived.denom(),
-                op.poles_agree
-            ),
-        );
-        o.derived_latex = Some(format!(
-            "\\frac{{\\tilde E}}{{1-\\tilde\\nu^2}} = {}",
-            op.derived.to_latex()
-        ));
-        o
-    })
+/// The derived operator's poles are at D = -alpha and D = -gamma, alpha and gamma as printed
+/// (`printed_equations`, exact rational functions of nu and lambda).
+fn operator_poles(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
+    let rates = c.printed_exacts(2, "alpha and gamma as printed, in nu and lambda")?;
+    let (alpha, gamma) = (&rates[0], &rates[1]);
+    let derived = operator::derived_operator();
+    let agree = operator::poles_at(alpha, gamma);
+    let (d_alpha, d_gamma) = operator::derived_rates();
+    let mut o = outcome(
+        paper,
+        c,
+        holds(agree),
+        format!(
+            "the derived operator's denominator {} vanishes at D = -alpha and D = -gamma with the printed alpha = {alpha}, gamma = {gamma}: {agree} (derived: alpha = {d_alpha}, gamma = {d_gamma}, from the zeros D = -alpha of 1 + nu~ and D = -gamma of 1 - nu~)",
+            derived.denom(),
+        ),
+    );
+    o.derived_latex = Some(format!(
+        "\\frac{{\\tilde E}}{{1-\\tilde\\nu^2}} = {}",
+        derived.to_latex()
+    ));
+    Ok(o)
 }
 
-/// alpha as printed has one sign on nu in (-1, 1/2): L(alpha) grows.
-fn operator_growing_mode(
-    ctx: &mut Context,
-    paper: &PaperClaims,
-    c: &NamedCheck,
-) -> Result<Outcome, VerifyError> {
-    Ok({
-        // alpha as printed, as a function of nu at lambda = 1: its sign over nu in (-1, 1/2)
-        let op = ctx.operator();
-        let at = |nu: Poly| {
-            op.alpha
-                .subst(Sym::new("nu"), &RatFunc::from_poly(nu))
-                .and_then(|r| r.subst(Sym::new("lambda"), &RatFunc::one()))
-                .and_then(|r| r.as_constant())
-        };
-        // alpha(nu) = -2(1+nu)/(1-2nu) * lambda has no zero or pole inside (-1, 1/2): its
-        // numerator vanishes only at nu = -1 and its denominator only at nu = 1/2, so the
-        // sign at one interior point is the sign everywhere.
-        let num_roots_outside = op
-            .alpha
-            .subst(Sym::new("nu"), &RatFunc::from_q(q(-1, 1)))
-            .is_some_and(|r| r.is_zero());
-        let sample = at(Poly::constant(q(3, 10)));
-        let negative = sample.as_ref().is_some_and(|v| *v < q(0, 1));
-        outcome(
-            paper,
-            c,
-            holds(!negative),
+/// The sign of alpha as printed (`printed`, in nu and lambda) over nu in (-1, 1/2), lambda > 0:
+/// where it is negative, L(alpha) grows as exp(|alpha| t).
+fn operator_growing_mode(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
+    let alpha = c.printed_exact("alpha as printed, in nu and lambda")?;
+    let (nu, lam) = (Sym::new("nu"), Sym::new("lambda"));
+    // a grid of exact points: nu = -1 + 3k/80 (k = 1..39) inside (-1, 1/2), lambda in {1/10, 1, 10}
+    let mut negative = Vec::new();
+    let (mut points, mut neg_points) = (0, 0);
+    for k in 1..40 {
+        let nu_k = q(-80 + 3 * k, 80);
+        for l in [q(1, 10), q(1, 1), q(10, 1)] {
+            points += 1;
+            let v = alpha
+                .subst(nu, &RatFunc::from_q(nu_k.clone()))
+                .and_then(|r| r.subst(lam, &RatFunc::from_q(l)))
+                .and_then(|r| r.as_constant());
+            if v.is_some_and(|v| v < q(0, 1)) {
+                neg_points += 1;
+                negative.push(nu_k.clone());
+            }
+        }
+    }
+    negative.dedup();
+    let grows = !negative.is_empty();
+    let nu_text = |v: &crate::algebra::poly::Q| crate::algebra::poly::q_text(v);
+    Ok(outcome(
+        paper,
+        c,
+        holds(!grows),
+        if grows {
             format!(
-                "alpha = {} is {} for every nu in (-1, 1/2) (zero only at nu = -1: {num_roots_outside}; alpha = {} at nu = 3/10, lambda = 1), so L(alpha) contains exp(|alpha| t): the constant-bulk-modulus law as printed has a growing mode of rate |alpha| = 2(1+nu)lambda/(1-2nu)",
-                op.alpha,
-                if negative { "negative" } else { "not negative" },
-                sample
-                    .map(|v| crate::algebra::poly::q_text(&v))
-                    .unwrap_or_default()
-            ),
-        )
-    })
+                "alpha = {alpha} is negative at {neg_points} of the {points} exact points (nu = -1 + 3k/80, k = 1..39, lambda = 1/10, 1, 10), nu from {} to {}: there L(alpha) contains exp(|alpha| t), a growing mode, and the law as printed is not dissipative",
+                negative.first().map(nu_text).unwrap_or_default(),
+                negative.last().map(nu_text).unwrap_or_default(),
+            )
+        } else {
+            format!(
+                "alpha = {alpha} is not negative at any of the {points} exact points (nu = -1 + 3k/80, k = 1..39, lambda = 1/10, 1, 10): no growing mode found"
+            )
+        },
+    ))
 }
 
 /// (21) for k = 0..k_max, both sides built independently.

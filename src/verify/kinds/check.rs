@@ -84,6 +84,48 @@ impl NamedCheck {
             .map_err(|e| self.bad(format!("{field}: {e}")))
     }
 
+    /// One printed formula of the key `field` as an exact rational function of its symbols.
+    fn exact_printed(
+        &self,
+        field: &str,
+        text: &str,
+    ) -> Result<crate::algebra::ratfunc::RatFunc, VerifyError> {
+        let e = crate::algebra::expr::parse(text).map_err(|e| self.bad(format!("{field}: {e}")))?;
+        e.to_ratfunc().ok_or_else(|| {
+            self.bad(format!(
+                "{field}: `{text}` is not a rational function of its symbols (exact algebra needs one)"
+            ))
+        })
+    }
+
+    /// The claim's `printed` as an exact rational function; `what` says what the check expects.
+    pub fn printed_exact(
+        &self,
+        what: &str,
+    ) -> Result<crate::algebra::ratfunc::RatFunc, VerifyError> {
+        let text = self
+            .printed
+            .as_deref()
+            .ok_or_else(|| self.bad(format!("needs `printed`: {what}")))?;
+        self.exact_printed("printed", text)
+    }
+
+    /// The claim's `printed_equations`, exactly `n` of them, as exact rational functions.
+    pub fn printed_exacts(
+        &self,
+        n: usize,
+        what: &str,
+    ) -> Result<Vec<crate::algebra::ratfunc::RatFunc>, VerifyError> {
+        if self.printed_equations.len() != n {
+            return Err(self.bad(format!("printed_equations must give {n} formulas: {what}")));
+        }
+        self.printed_equations
+            .iter()
+            .enumerate()
+            .map(|(k, text)| self.exact_printed(&format!("printed_equations[{k}]"), text))
+            .collect()
+    }
+
     /// The claim's `printed_equations`, exactly `n` of them, each evaluated with `values`;
     /// `what` says what the check expects there.
     pub fn printed_values(

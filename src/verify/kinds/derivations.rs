@@ -132,7 +132,6 @@ pub(super) fn split_refs(text: &str) -> Result<(String, Vec<DerivationRef>), Str
 #[derive(Default)]
 pub struct Derivations {
     galerkin: BTreeMap<(u32, u32), crate::algebra::galerkin::Galerkin>,
-    operator: Option<crate::algebra::operator::OperatorCheck>,
 }
 
 impl Derivations {
@@ -186,12 +185,9 @@ impl Derivations {
                 _ => p.cubic.clone(),
             });
         }
-        let op = self
-            .operator
-            .get_or_insert_with(crate::algebra::operator::check);
         Ok(match r.name.as_str() {
             "operator" => crate::algebra::operator::derived_operator(),
-            _ => op.derived_constant.clone(),
+            _ => crate::algebra::operator::derived_constant(),
         })
     }
 }

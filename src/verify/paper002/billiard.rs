@@ -402,10 +402,17 @@ pub(super) fn billiard_general(
                     continue;
                 }
                 let phi = vv[1].atan2(vv[2]);
-                let closed =
-                    r0 * (phi.sin() / phi0.sin()).powi(6) * (phi.cos() / phi0.cos()).powi(-7);
+                let values = |name: &str| match name {
+                    "r0" => Some(r0),
+                    "phi" => Some(phi),
+                    "phi0" => Some(phi0),
+                    "m" => Some(m),
+                    _ => None,
+                };
+                let closed = c.printed_value("r of (3.14) in r0, phi, phi0", &values)?;
+                let dv1 = c.printed_values(1, "V1' of (3.13), in m", &values)?[0];
                 worst = worst.max((rr - closed).abs() / rr);
-                worst_v1 = worst_v1.max((vv[0] - (v1 + 2.0 * chi / m)).abs());
+                worst_v1 = worst_v1.max((vv[0] - (v1 + dv1 * chi)).abs());
                 points += 1;
             }
         }
@@ -414,7 +421,7 @@ pub(super) fn billiard_general(
             c,
             holds(worst <= 1e-7 && worst_v1 <= 1e-9),
             format!(
-                "two homogeneous balls (m = R = 1), the second on a smooth table, integrated by the general model (B of (1.7), the support reaction (3.7) switched on while alpha < 0) in the normal impulse, 4 impacts, {points} steps: max relative difference of r(phi) from (3.14) {worst:.2e}; V1 against V1- + 2 I_n/m: {worst_v1:.2e}"
+                "two homogeneous balls (m = R = 1), the second on a smooth table, integrated by the general model (B of (1.7), the support reaction (3.7) switched on while alpha < 0) in the normal impulse, 4 impacts, {points} steps: max relative difference of r(phi) from (3.14) as printed {worst:.2e}; V1 against V1- + V1' I_n with V1' of (3.13) as printed: {worst_v1:.2e}"
             ),
         )
     })

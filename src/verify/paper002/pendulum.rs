@@ -160,100 +160,164 @@ fn fig2_loss(c: &NamedCheck, rho: f64, sigma: f64) -> Result<f64, VerifyError> {
         .map_err(|e| claim_error(c, e.to_string()))
 }
 
-/// Fig. 2 and (2.15), part `condition`.
-fn pendulum_wall_condition(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
+/// The largest |eps_On| of (2.15) (sigma = 1) while the contact at C is loaded.
+fn peak_deformation_at_o(c: &NamedCheck, rho: f64) -> Result<f64, VerifyError> {
+    use crate::integrate::{Direction, Event};
     use crate::models::pendulum_wall::PendulumWall;
-    let bad = |m: String| claim_error(c, m);
-    let loss = |rho: f64, sigma: f64| fig2_loss(c, rho, sigma);
-    Ok({
-        // the special geometry has F_C perpendicular to GO and (GO, GC) = -1: (2.10) is rho = 1
-        let peak = |rho: f64| -> Result<f64, VerifyError> {
-            use crate::integrate::{Direction, Event};
-            let sys = PendulumWall { rho, sigma: 1.0 };
-            let unloads = |_t: f64, y: &[f64]| y[1];
-            let o = crate::integrate::Options {
-                rtol: 1e-12,
-                atol: 1e-15,
-                trajectory: true,
-                events: vec![Event::new(
-                    "contact unloads",
-                    &unloads,
-                    Direction::Falling,
-                    true,
-                )],
-                ..Default::default()
-            };
-            let sol = crate::integrate::solve(&sys, 0.0, &[0.0, 0.0, 0.0, 1.0], 100.0, &o)
-                .map_err(|e| bad(e.to_string()))?;
-            Ok(sol
-                .trajectory
-                .iter()
-                .map(|(_, y)| y[0].abs())
-                .fold(0.0, f64::max))
-        };
-        let at_one = peak(1.0)?;
-        let rows: Vec<(f64, f64)> = [0.5, 0.9, 0.99, 1.01, 1.1, 2.0]
-            .iter()
-            .map(|&r| peak(r).map(|p| (r, p)))
-            .collect::<Result<_, _>>()?;
-        let off = rows.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);
-        let loss_one = loss(1.0, 1.0)?;
-        outcome(
-            paper,
-            c,
-            holds(at_one <= 1e-12 && off > 1e-6 && loss_one.abs() <= 1e-12),
-            format!(
-                "In the special case of (2.14)-(2.15) F_C is perpendicular to GO and (GO, GC) = -1, so (2.10) is rho = 1. (2.15) integrated (rtol 1e-12, sigma = 1) while the contact is loaded: max |eps_On| = {at_one:.1e} at rho = 1 (no deformation at O; the energy loss (2.13) is {loss_one:.1e}); away from it: {}",
-                rows.iter()
-                    .map(|(r, p)| format!("rho = {r}: {p:.2e}"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-        )
-    })
+    let sys = PendulumWall { rho, sigma: 1.0 };
+    let unloads = |_t: f64, y: &[f64]| y[1];
+    let o = crate::integrate::Options {
+        rtol: 1e-12,
+        atol: 1e-15,
+        trajectory: true,
+        events: vec![Event::new(
+            "contact unloads",
+            &unloads,
+            Direction::Falling,
+            true,
+        )],
+        ..Default::default()
+    };
+    let sol = crate::integrate::solve(&sys, 0.0, &[0.0, 0.0, 0.0, 1.0], 100.0, &o)
+        .map_err(|e| claim_error(c, e.to_string()))?;
+    Ok(sol
+        .trajectory
+        .iter()
+        .map(|(_, y)| y[0].abs())
+        .fold(0.0, f64::max))
 }
 
-/// Fig. 2 and (2.15), part `derivation`.
+/// Fig. 2 and (2.15), part `condition`: the claim's `printed` is the second condition of (2.10)
+/// (its left side, = 0), in `rho` and `GO_GC`; the special geometry has F_C perpendicular to GO
+/// and (GO, GC) = -1 (|GO| = 1 m). The condition must hold exactly where O is not deformed: at
+/// its root in rho (bisection) and at fixed radii on both sides of it.
+fn pendulum_wall_condition(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
+    let cond = |rho: f64| {
+        c.printed_value("the second condition of (2.10), = 0", &|name| match name {
+            "rho" => Some(rho),
+            "GO_GC" => Some(-1.0),
+            _ => None,
+        })
+    };
+    // the root of the printed condition in rho over (0, 10], by a scan and bisection
+    let grid: Vec<f64> = (1..=400).map(|k| 0.025 * f64::from(k)).collect();
+    let mut root = None;
+    for w in grid.windows(2) {
+        let (fa, fb) = (cond(w[0])?, cond(w[1])?);
+        if fa == 0.0 || fa.signum() != fb.signum() {
+            let (mut lo, mut hi, mut flo) = (w[0], w[1], fa);
+            for _ in 0..80 {
+                let mid = 0.5 * (lo + hi);
+                let fm = cond(mid)?;
+                if fm == 0.0 || fm.signum() == flo.signum() {
+                    (lo, flo) = (mid, fm);
+                } else {
+                    hi = mid;
+                }
+            }
+            root = Some(0.5 * (lo + hi));
+            break;
+        }
+    }
+    let mut radii = vec![0.5, 0.9, 0.99, 1.0, 1.01, 1.1, 2.0];
+    if let Some(r) = root.filter(|r| radii.iter().all(|x| (x - r).abs() > 1e-9 * r)) {
+        radii.push(r);
+    }
+    let mut rows = Vec::new();
+    let mut agree = root.is_some();
+    for &rho in &radii {
+        let holds_here = root.is_some_and(|r| (rho - r).abs() <= 1e-9 * r);
+        let peak = peak_deformation_at_o(c, rho)?;
+        let undeformed = peak <= 1e-10;
+        agree &= holds_here == undeformed;
+        rows.push(format!(
+            "rho = {rho:.6}: condition {}, max |eps_On| = {peak:.1e}",
+            if holds_here { "holds" } else { "fails" }
+        ));
+    }
+    let loss_root = match root {
+        // + 0.0 prints a loss of -0 as 0
+        Some(r) => format!("{:.1e}", fig2_loss(c, r, 1.0)? + 0.0),
+        None => "-".into(),
+    };
+    Ok(outcome(
+        paper,
+        c,
+        holds(agree),
+        format!(
+            "In the special case of (2.14)-(2.15) F_C is perpendicular to GO and (GO, GC) = -1 (|GO| = 1 m). The printed condition {} = 0 {}; (2.15) integrated (rtol 1e-12, sigma = 1) while the contact is loaded, O counted undeformed below 1e-10: {}; the energy loss (2.13) at the root: {loss_root}",
+            c.printed.as_deref().unwrap_or_default(),
+            match root {
+                Some(r) => format!("has its root at rho = {r:.9} m"),
+                None => "has no root in rho over (0, 10] m".into(),
+            },
+            rows.join("; ")
+        ),
+    ))
+}
+
+/// Fig. 2 and (2.15), part `derivation`: the claim's `printed_equations` give (2.15)'s right sides
+/// (eps_On'' and eps_Cn'', in `eOn`, `eCn`, `rho_s`, `sigma`, lengths in units of |GO|), compared
+/// with (2.8) in the special geometry; the model [`PendulumWall`] must agree with (2.8) too.
 fn pendulum_wall_derivation(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
     use crate::models::pendulum_wall::PendulumWall;
-    Ok({
-        // (2.8) with the special geometry: GO = t, GC = -t - d n, F_C = c1 eps_Cn n, F_O = c2 eps_O
-        let mut rng = Rng(0x5EED_0215);
-        let mut worst: f64 = 0.0;
-        for _ in 0..200 {
-            let (rho, sigma, d) = (
-                rng.range(0.1, 5.0),
-                rng.range(0.01, 5.0),
-                rng.range(0.1, 2.0),
-            );
-            let (eo, ec) = (rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
-            let (c1, c2) = (sigma, 1.0);
-            let go = nalgebra::Vector2::new(1.0, 0.0);
-            let gc = nalgebra::Vector2::new(-1.0, -d);
-            let fc = nalgebra::Vector2::new(0.0, c1 * ec);
-            let fo = nalgebra::Vector2::new(0.0, c2 * eo);
-            let r2 = 1.0 / (rho * rho);
-            let acc_c = -(fc + fo)
-                + (gc * gc.dot(&fc) - fc * gc.dot(&gc) + go * gc.dot(&fo) - fo * go.dot(&gc)) * r2;
-            let acc_o = -(fc + fo)
-                + (gc * go.dot(&fc) - fc * go.dot(&gc) + go * go.dot(&fo) - fo * go.dot(&go)) * r2;
-            let sys = PendulumWall { rho, sigma };
-            let mut dy = [0.0; 4];
-            sys.rhs(0.0, &[eo, ec, 0.0, 0.0], &mut dy);
-            worst = worst
-                .max((acc_o.y - dy[2]).abs())
-                .max((acc_c.y - dy[3]).abs())
-                .max(acc_o.x.abs());
-        }
-        outcome(
-            paper,
+    // (2.8) with the special geometry: GO = t, GC = -t - d n, F_C = c1 eps_Cn n, F_O = c2 eps_O
+    let mut rng = Rng(0x5EED_0215);
+    let (mut worst, mut worst_model, mut worst_t): (f64, f64, f64) = (0.0, 0.0, 0.0);
+    for _ in 0..200 {
+        let (rho, sigma, d) = (
+            rng.range(0.1, 5.0),
+            rng.range(0.01, 5.0),
+            rng.range(0.1, 2.0),
+        );
+        let (eo, ec) = (rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
+        let (c1, c2) = (sigma, 1.0);
+        let go = nalgebra::Vector2::new(1.0, 0.0);
+        let gc = nalgebra::Vector2::new(-1.0, -d);
+        let fc = nalgebra::Vector2::new(0.0, c1 * ec);
+        let fo = nalgebra::Vector2::new(0.0, c2 * eo);
+        let r2 = 1.0 / (rho * rho);
+        let acc_c = -(fc + fo)
+            + (gc * gc.dot(&fc) - fc * gc.dot(&gc) + go * gc.dot(&fo) - fo * go.dot(&gc)) * r2;
+        let acc_o = -(fc + fo)
+            + (gc * go.dot(&fc) - fc * go.dot(&gc) + go * go.dot(&fo) - fo * go.dot(&go)) * r2;
+        let printed = c.printed_values(
+            2,
+            "the right sides of (2.15), eps_On'' and eps_Cn''",
+            &|name| match name {
+                "eOn" => Some(eo),
+                "eCn" => Some(ec),
+                "rho_s" => Some(rho),
+                "sigma" => Some(sigma),
+                _ => None,
+            },
+        )?;
+        worst = worst
+            .max((acc_o.y - printed[0]).abs())
+            .max((acc_c.y - printed[1]).abs());
+        worst_t = worst_t.max(acc_o.x.abs());
+        let mut dy = [0.0; 4];
+        PendulumWall { rho, sigma }.rhs(0.0, &[eo, ec, 0.0, 0.0], &mut dy);
+        worst_model = worst_model
+            .max((acc_o.y - dy[2]).abs())
+            .max((acc_c.y - dy[3]).abs());
+    }
+    if worst_model > 1e-12 {
+        return Err(claim_error(
             c,
-            holds(worst <= 1e-12),
             format!(
-                "the normal components of (2.8) in the special geometry (m = 1, GO along the wall, (GO, GC) = -1, any distance d of G from the wall) against (2.15) at 200 seeded states: max difference {worst:.2e}; the tangential equation of O vanishes (eps_Ot = 0)"
+                "the pendulum-wall model differs from (2.8) in the special geometry by {worst_model:.2e}: a model error"
             ),
-        )
-    })
+        ));
+    }
+    Ok(outcome(
+        paper,
+        c,
+        holds(worst <= 1e-12 && worst_t <= 1e-12),
+        format!(
+            "the normal components of (2.8) in the special geometry (m = 1, GO along the wall, (GO, GC) = -1, any distance d of G from the wall) against (2.15) as printed at 200 seeded states: max difference {worst:.2e}; the tangential equation of O vanishes (eps_Ot = 0; largest {worst_t:.1e}); the model integrated for Fig. 2 agrees with (2.8) to {worst_model:.1e}"
+        ),
+    ))
 }
 
 /// Fig. 2 and (2.15), part `figure`: the claim's `printed_matrix` gives, per curve, rho, the
