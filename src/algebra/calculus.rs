@@ -115,6 +115,27 @@ impl Expr {
             Expr::Bin(op, a, b) => Expr::Bin(*op, Box::new(a.lower()?), Box::new(b.lower()?)),
             Expr::Calc(Calc::Diff, body, x, _) => derivative(&body.lower()?, x)?,
             Expr::Calc(Calc::At, body, x, v) => at(&body.lower()?, x, &v[0].lower()?),
+            Expr::Calc(Calc::Sum, body, i, b) => {
+                let bound = |e: &Expr| -> Result<i64, String> {
+                    let v = e.lower()?.exact_constant().ok_or_else(|| {
+                        format!("`{self}`: the bounds of `sum` must be integers once the formula's values are in (`{e}` is not)")
+                    })?;
+                    if !v.is_integer() {
+                        return Err(format!(
+                            "`{self}`: the bound {v} of `sum` is not an integer"
+                        ));
+                    }
+                    use num_traits::ToPrimitive;
+                    sum_bound(v.to_integer().to_f64().unwrap_or(f64::NAN))
+                };
+                let (lo, hi) = (bound(&b[0])?, bound(&b[1])?);
+                let body = body.lower()?;
+                let mut acc = num(0);
+                for k in lo..=hi {
+                    acc = add(acc, at(&body, i, &num(k)));
+                }
+                acc
+            }
             Expr::Calc(Calc::Int, body, x, b) => Expr::Calc(
                 Calc::Int,
                 Box::new(body.lower()?),
@@ -123,6 +144,17 @@ impl Expr {
             ),
         })
     }
+}
+
+/// A bound of `sum` as an integer: at most 100,000 terms either side of 0, so that a formula
+/// from anyone cannot ask for an endless loop.
+pub fn sum_bound(v: f64) -> Result<i64, String> {
+    if v.fract() != 0.0 || v.abs() > 1e5 {
+        return Err(format!(
+            "a bound of `sum` must be an integer in [-100000, 100000], not {v}"
+        ));
+    }
+    Ok(v as i64)
 }
 
 /// $\partial e/\partial x$ of a lowered formula (no `diff` or `at` inside).
@@ -154,6 +186,12 @@ pub fn derivative(e: &Expr, x: &str) -> Result<Expr, String> {
             let da = derivative(a, x)?;
             let a = (**a).clone();
             let outer = match f {
+                // d/dx x! = x! psi(x + 1): no digamma here
+                Func::Factorial => {
+                    return Err(format!(
+                        "`diff` of `factorial({a})` in `{x}`: no rule (its argument must not depend on `{x}`)"
+                    ));
+                }
                 Func::Sqrt => div(num(1), mul(num(2), call(Func::Sqrt, a))),
                 Func::Exp => call(Func::Exp, a),
                 Func::Ln => div(num(1), a),
@@ -355,5 +393,34 @@ mod tests {
         assert!(parse("diff(x)").is_err());
         assert!(parse("int(x, x, 0)").is_err());
         assert!(parse("at(x, 2, 0)").is_err());
+    }
+
+    #[test]
+    fn sums_and_factorials_are_exact_and_bounded() {
+        // by hand: sum_{i=0}^{3} x^i/i! = 1 + x + x^2/2 + x^3/6; 5! = 120
+        assert_eq!(
+            rat("sum(x^i/factorial(i), i, 0, 3)"),
+            rat("1 + x + x^2/2 + x^3/6")
+        );
+        assert_eq!(rat("factorial(5)"), rat("120"));
+        assert_eq!(rat("sum(i, i, 1, 100)"), rat("5050"));
+        // an empty range is 0; bounds given later through a substitution
+        assert_eq!(rat("sum(x, i, 1, 0)"), rat("0"));
+        let e = parse("sum(y^i, i, 0, n)").unwrap();
+        assert!(e.lower().is_err(), "a symbolic bound cannot be expanded");
+        let v = e.eval(&|s| match s {
+            "y" => Some(2.0),
+            "n" => Some(4.0),
+            _ => None,
+        });
+        assert_eq!(v, Ok(31.0));
+        // the index is bound and needs no unit; factorial off the integers is Gamma(x + 1)
+        assert_eq!(e.symbols(), vec!["n".to_string(), "y".to_string()]);
+        let half = parse("factorial(x)").unwrap().eval(&|_| Some(0.5)).unwrap();
+        assert!((half - std::f64::consts::PI.sqrt() / 2.0).abs() < 1e-12);
+        // too many terms, a fractional bound, diff of a factorial: errors, not loops or panics
+        assert!(parse("sum(x, i, 0, 1000000)").unwrap().lower().is_err());
+        assert!(parse("sum(x, i, 0, 1/2)").unwrap().lower().is_err());
+        assert!(parse("diff(factorial(x), x)").unwrap().lower().is_err());
     }
 }

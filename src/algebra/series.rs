@@ -12,8 +12,8 @@
 //! on $z^2$ gives, so $B_k = \dot A_k$) and $B = z\dot z$ as printed in (18)
 //! ($B_k = \sum_{i+j=k} a_i \dot a_j$).
 //!
-//! [`printed_a1`] transcribes (22) literally; [`compare_parts`] sets it beside the derived term,
-//! part by part. [`taylor_reference`] is an independent check: the same equation as the ODE
+//! (22) as printed is read from `verify/000_cone_plate.toml` (`a1_22`); [`compare_parts`] sets a
+//! printed term beside the derived one, part by part. [`taylor_reference`] is an independent check: the same equation as the ODE
 //! $(D+\alpha)(D+\gamma)\ddot z = -(\gamma-\alpha)[A_8 z^2 + A_9 B(z)]$ solved by a power-series
 //! recursion that shares no code with the Adomian construction.
 
@@ -128,48 +128,6 @@ pub fn adomian_terms(p: &SeriesParams, order: usize, visc: Viscous) -> Vec<Expo>
 /// The sum $a_0 + \dots + a_N$.
 pub fn partial_sum(terms: &[Expo]) -> Expo {
     terms.iter().fold(Expo::zero(), |acc, t| &acc + t)
-}
-
-/// $a_1$ exactly as printed in (22) of 000_92d54b11128ea1ec.txt.
-pub fn printed_a1(p: &SeriesParams) -> Result<Expo, AlgebraError> {
-    let al = SeriesParams::rf(&p.alpha);
-    let ga = SeriesParams::rf(&p.gamma);
-    let v2 = &SeriesParams::rf(&p.v0) * &SeriesParams::rf(&p.v0);
-    let a8 = SeriesParams::rf(&p.a8);
-    let a9 = SeriesParams::rf(&p.a9);
-    let inv = |x: &RatFunc, e: i32, what: &str| {
-        x.powi(-e).ok_or(AlgebraError::DivisionByZero {
-            what: format!("{what} in (22)"),
-        })
-    };
-    // d(j) = 1/alpha^j - 1/gamma^j
-    let d = |j: i32| -> Result<RatFunc, AlgebraError> {
-        Ok(&inv(&al, j, "alpha")? - &inv(&ga, j, "gamma")?)
-    };
-    let c = |x: i64, y: i64| RatFunc::from_q(Q::new(x.into(), y.into()));
-    let mut out = Expo::zero();
-    // -V0^2 A8/12 (1/a - 1/g) t^4
-    out = &out + &Expo::monomial(&(&(&v2 * &a8) * &d(1)?) * &c(-1, 12), 4);
-    // + V0^2 (A8/3 (1/a^2 - 1/g^2) - A9/3 (1/a - 1/g)) t^3
-    let t3 = &(&(&a8 * &d(2)?) * &c(1, 3)) - &(&(&a9 * &d(1)?) * &c(1, 3));
-    out = &out + &Expo::monomial(&v2 * &t3, 3);
-    // - V0^2 (A8 (1/a^3 - 1/g^3) + A9 (1/a^2 - 1/g^2)) t^2
-    let t2 = &(&a8 * &d(3)?) + &(&a9 * &d(2)?);
-    out = &out + &Expo::monomial(-&(&v2 * &t2), 2);
-    // + 6 A8 V0^2 (1/a^4 - 1/g^4) t - 4 A9 V0^2 (1/a^3 - 1/g^3) t
-    let t1 = &(&(&a8 * &d(4)?) * &c(6, 1)) - &(&(&a9 * &d(3)?) * &c(4, 1));
-    out = &out + &Expo::monomial(&v2 * &t1, 1);
-    // + 6 A8 V0^2 (e^{-a t}/a^5 - e^{-g t}/g^5) - 4 A9 V0^2 (e^{-a t}/a^4 - e^{-g t}/g^4)
-    let ea = &(&(&a8 * &inv(&al, 5, "alpha")?) * &c(6, 1))
-        - &(&(&a9 * &inv(&al, 4, "alpha")?) * &c(4, 1));
-    let eg = &(&(&a8 * &inv(&ga, 5, "gamma")?) * &c(-6, 1))
-        + &(&(&a9 * &inv(&ga, 4, "gamma")?) * &c(4, 1));
-    out = &out + &Expo::part(&v2 * &ea, 0, p.alpha.clone());
-    out = &out + &Expo::part(&v2 * &eg, 0, p.gamma.clone());
-    // - 6 A8 V0^2 (1/a^5 - 1/g^5) + 4 A9 V0^2 (1/a^4 - 1/g^4)
-    let t0 = &(&(&a8 * &d(5)?) * &c(-6, 1)) + &(&(&a9 * &d(4)?) * &c(4, 1));
-    out = &out + &Expo::monomial(&v2 * &t0, 0);
-    Ok(out)
 }
 
 /// One part of a term-by-term comparison.

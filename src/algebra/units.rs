@@ -153,7 +153,11 @@ pub fn dimension(e: &Expr, unit: &dyn Fn(&str) -> Option<Unit>) -> Result<Unit, 
             }
         },
         Expr::Calc(c, body, x, extra) => {
-            let ux = unit(x).ok_or_else(|| DimError::Unknown(x.clone()))?;
+            // the index of a sum is a pure number
+            let ux = match c {
+                Calc::Sum => Unit::one(),
+                _ => unit(x).ok_or_else(|| DimError::Unknown(x.clone()))?,
+            };
             for v in extra {
                 let uv = dimension(v, unit)?;
                 if uv != ux {
@@ -170,7 +174,7 @@ pub fn dimension(e: &Expr, unit: &dyn Fn(&str) -> Option<Unit>) -> Result<Unit, 
             Ok(match c {
                 Calc::Diff => ub.times(ux, (-1).into()),
                 Calc::Int => ub.times(ux, 1.into()),
-                Calc::At => ub,
+                Calc::At | Calc::Sum => ub,
             })
         }
         Expr::Bin(op, a, b) => match op {

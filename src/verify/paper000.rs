@@ -111,30 +111,45 @@ fn operator_growing_mode(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome,
     ))
 }
 
-/// (21) for k = 0..k_max, both sides built independently.
+/// (21) for k = 0..k_max: the left side built by the operator, the right side the claim's
+/// `printed` (in `t`, `alpha`, `k`) with `k` put in; both exactly.
 fn identity_21(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
-    Ok({
-        let kmax = c.k_max.unwrap_or(12);
-        let results: Vec<_> = (0..=kmax).map(identity21::check).collect();
-        let ok = results.iter().all(|r| r.holds && r.solves_ode);
-        let failed: Vec<String> = results
-            .iter()
-            .filter(|r| !r.holds)
-            .map(|r| r.k.to_string())
-            .collect();
-        outcome(
-            paper,
-            c,
-            holds(ok),
-            if ok {
-                format!(
-                    "both sides built independently agree exactly for k = 0..{kmax}, and the left side solves y' + alpha y = t^k, y(0) = 0"
-                )
-            } else {
-                format!("differs for k in {}", failed.join(", "))
-            },
-        )
-    })
+    let kmax = c.k_max.unwrap_or(12);
+    let rhs = c
+        .printed
+        .as_deref()
+        .ok_or_else(|| bad(c, "needs `printed`: the right side of (21), in t, alpha, k"))
+        .and_then(|t| {
+            crate::algebra::expr::parse(t).map_err(|e| bad(c, &format!("printed: {e}")))
+        })?;
+    let results = (0..=kmax)
+        .map(|k| {
+            identity21::printed_at(&rhs, k)
+                .map(|p| identity21::check(k, &p))
+                .map_err(|e| bad(c, &format!("printed: {e}")))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let ok = results.iter().all(|r| r.holds && r.solves_ode);
+    let failed: Vec<String> = results
+        .iter()
+        .filter(|r| !r.holds)
+        .map(|r| r.k.to_string())
+        .collect();
+    Ok(outcome(
+        paper,
+        c,
+        holds(ok),
+        if ok {
+            format!(
+                "the left side built by the operator L(alpha) and the printed right side agree exactly for k = 0..{kmax}, and the left side solves y' + alpha y = t^k, y(0) = 0"
+            )
+        } else {
+            format!(
+                "the printed right side differs from the left side built by the operator for k in {}",
+                failed.join(", ")
+            )
+        },
+    ))
 }
 
 /// The Adomian series against the integrated model of the claim's scene.

@@ -436,7 +436,7 @@ fn measured_keys(
                 .filter(|k| spec.keys.contains_key(*k))
                 .collect();
             if keys.is_empty() {
-                Err("no printed side in the claims file (the printed values are in the Rust check)".into())
+                Err("no printed formula or value in the claims file: a statement its Rust check tests (a decay, a separation, an equivalence, a diagnosis), with nothing printed to misprint".into())
             } else {
                 Ok(keys)
             }

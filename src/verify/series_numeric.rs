@@ -94,6 +94,37 @@ pub fn series_params(p: &cone_plate::Params) -> Result<(SeriesParams, SeriesPara
     Ok((sp, printed))
 }
 
+/// $a_1$ as printed in (22): the claim's `printed` (a formula of `t`, `alpha`, `gamma`, `v0`,
+/// `a8`, `a9`, file definitions expanded), with the printed model's parameters put in exactly.
+fn printed_a1(
+    paper: &PaperClaims,
+    c: &NamedCheck,
+    printed: &SeriesParams,
+) -> Result<crate::algebra::expo::Expo, VerifyError> {
+    let e = c.printed_expanded(
+        paper,
+        "a1 of (22) as printed, in t, alpha, gamma, v0, a8, a9",
+    )?;
+    let value = |s: &str| {
+        let p = match s {
+            "alpha" => &printed.alpha,
+            "gamma" => &printed.gamma,
+            "v0" => &printed.v0,
+            "a8" => &printed.a8,
+            "a9" => &printed.a9,
+            _ => return None,
+        };
+        p.as_constant().map(crate::algebra::expr::Expr::Num)
+    };
+    let e = e.substitute(&value);
+    e.to_expo("t").ok_or_else(|| VerifyError::BadClaim {
+        id: c.id.clone(),
+        message: format!(
+            "printed: `{e}` is not an exponential polynomial in t with the scene's alpha, gamma, v0, a8, a9"
+        ),
+    })
+}
+
 /// The cone-plate scene a claim names.
 fn load_cone(c: &NamedCheck, path: &Path, what: &str) -> Result<Box<ConePlateScene>, VerifyError> {
     let err = |m: String| VerifyError::Scene {
@@ -219,7 +250,7 @@ pub fn check(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Outcome
             errors,
         });
     }
-    let pa1 = series::printed_a1(&printed).map_err(|e| scene_err(e.to_string()))?;
+    let pa1 = printed_a1(paper, c, &printed)?;
     let psum = &series::adomian_terms(&printed, 0, Viscous::ZZ)[0] + &pa1;
     let ev = Evaluator::new(&psum).map_err(|e| scene_err(e.to_string()))?;
     let errors = times

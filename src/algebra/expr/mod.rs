@@ -46,7 +46,19 @@ pub use parse::{ParseError, parse, parse_inequality};
 
 /// The functions a formula may call.
 pub const FUNCTIONS: &[&str] = &[
-    "sqrt", "exp", "ln", "sin", "cos", "tan", "asin", "acos", "atan", "abs", "ellipk", "ellipe",
+    "sqrt",
+    "exp",
+    "ln",
+    "sin",
+    "cos",
+    "tan",
+    "asin",
+    "acos",
+    "atan",
+    "abs",
+    "ellipk",
+    "ellipe",
+    "factorial",
 ];
 
 /// A function of one argument.
@@ -76,6 +88,8 @@ pub enum Func {
     EllipK,
     /// The complete elliptic integral of the second kind $E(k)$, modulus $k$ in [0, 1].
     EllipE,
+    /// $n!$; $\Gamma(x + 1)$ off the integers. Exact for an integer in 0..=1000.
+    Factorial,
 }
 
 impl Func {
@@ -93,6 +107,7 @@ impl Func {
             "abs" => Func::Abs,
             "ellipk" => Func::EllipK,
             "ellipe" => Func::EllipE,
+            "factorial" => Func::Factorial,
             _ => return None,
         })
     }
@@ -112,6 +127,7 @@ impl Func {
             Func::Abs => "abs",
             Func::EllipK => "ellipk",
             Func::EllipE => "ellipe",
+            Func::Factorial => "factorial",
         }
     }
 
@@ -129,6 +145,13 @@ impl Func {
             Func::Abs => x.abs(),
             Func::EllipK => complete_elliptic(x).0,
             Func::EllipE => complete_elliptic(x).1,
+            Func::Factorial => {
+                if (0.0..=170.0).contains(&x) && x.fract() == 0.0 {
+                    (1..=x as u32).map(f64::from).product()
+                } else {
+                    statrs::function::gamma::gamma(x + 1.0)
+                }
+            }
         }
     }
 }
@@ -241,6 +264,8 @@ pub enum Calc {
     Int,
     /// `at(e, x, v)`: `e` with `x` replaced by `v`.
     At,
+    /// `sum(e, i, lo, hi)`: the finite sum of `e` over the integers `i` from `lo` to `hi`.
+    Sum,
 }
 
 impl Calc {
@@ -249,6 +274,7 @@ impl Calc {
             "diff" => Calc::Diff,
             "int" => Calc::Int,
             "at" => Calc::At,
+            "sum" => Calc::Sum,
             _ => return None,
         })
     }
@@ -259,6 +285,7 @@ impl Calc {
             Calc::Diff => "diff",
             Calc::Int => "int",
             Calc::At => "at",
+            Calc::Sum => "sum",
         }
     }
 
@@ -268,6 +295,7 @@ impl Calc {
             Calc::Diff => 0,
             Calc::Int => 2,
             Calc::At => 1,
+            Calc::Sum => 2,
         }
     }
 }
@@ -471,7 +499,8 @@ impl Expr {
     }
 
     /// Every symbol the formula uses (dotted names included, `pi` excluded), sorted, once each;
-    /// the variable of a `diff`, `int` or `at` too (it needs a unit like any symbol).
+    /// the variable of a `diff`, `int` or `at` too (it needs a unit like any symbol), not the index
+    /// of a `sum` (a pure number).
     pub fn symbols(&self) -> Vec<String> {
         self.walk_symbols(false)
     }
@@ -495,7 +524,10 @@ impl Expr {
                 Expr::Calc(c, body, var, extra) => {
                     let mut inner = Vec::new();
                     go(body, free, &mut inner);
-                    if free && *c != Calc::Diff {
+                    if *c == Calc::Sum {
+                        // the index of a sum is bound and a pure number: it needs no unit
+                        inner.retain(|s| s != var);
+                    } else if free && *c != Calc::Diff {
                         inner.retain(|s| s != var);
                     } else if !free {
                         inner.push(var.clone());
@@ -552,6 +584,16 @@ impl Expr {
             Expr::Call(f @ (Func::Sin | Func::Cos), a) => {
                 return RatFunc::from_q(sin_cos_of_pi_multiple(*f == Func::Cos, &a.to_ratfunc()?)?)
                     .into();
+            }
+            Expr::Call(Func::Factorial, a) => {
+                let n = a.exact_constant()?;
+                let n = n.is_integer().then(|| n.to_integer().to_u32())??;
+                if n > 1000 {
+                    return None;
+                }
+                RatFunc::from_q(Q::from_integer(
+                    (1..=n).fold(BigInt::from(1), |acc, k| acc * k),
+                ))
             }
             Expr::Call(..) => return None,
             Expr::Calc(Calc::Int, body, var, extra) => {
@@ -680,6 +722,19 @@ impl Expr {
                     lo,
                     hi,
                 )?
+            }
+            Expr::Calc(Calc::Sum, body, var, extra) => {
+                let (lo, hi) = (extra[0].eval(value)?, extra[1].eval(value)?);
+                let (lo, hi) = (
+                    super::calculus::sum_bound(lo)?,
+                    super::calculus::sum_bound(hi)?,
+                );
+                let mut acc = 0.0;
+                for i in lo..=hi {
+                    let x = i as f64;
+                    acc += body.eval(&|s: &str| if s == var { Some(x) } else { value(s) })?;
+                }
+                acc
             }
             Expr::Calc(..) => self.lower()?.eval(value)?,
             Expr::Bin(op, a, b) => {

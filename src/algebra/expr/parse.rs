@@ -284,6 +284,7 @@ impl Parser {
             if *self.peek() != Tok::Comma {
                 let what = match calc {
                     Calc::Int => "`,` and the bounds of `int(e, x, lo, hi)`",
+                    Calc::Sum => "`,` and the bounds of `sum(e, i, lo, hi)`",
                     _ => "`,` and the value of `at(e, x, v)`",
                 };
                 return Err(self.err(what));

@@ -126,6 +126,37 @@ impl NamedCheck {
             .collect()
     }
 
+    /// The claim's `printed`, parsed, with the file's definitions (`[definitions]`) expanded in
+    /// it until none is left; `what` says what the check expects there.
+    pub fn printed_expanded(
+        &self,
+        paper: &crate::verify::PaperClaims,
+        what: &str,
+    ) -> Result<crate::algebra::expr::Expr, VerifyError> {
+        let parse = |field: &str, text: &str| {
+            crate::algebra::expr::parse(text).map_err(|e| self.bad(format!("{field}: {e}")))
+        };
+        let text = self
+            .printed
+            .as_deref()
+            .ok_or_else(|| self.bad(format!("needs `printed`: {what}")))?;
+        let defs = paper
+            .definitions
+            .iter()
+            .map(|(k, v)| Ok((k.as_str(), parse(&format!("definitions.{k}"), v)?)))
+            .collect::<Result<std::collections::BTreeMap<_, _>, VerifyError>>()?;
+        let mut e = parse("printed", text)?;
+        // a definition may use another; a cycle is refused when the file is read, so the depth
+        // of nesting is at most the number of definitions
+        for _ in 0..=defs.len() {
+            if !e.symbols().iter().any(|s| defs.contains_key(s.as_str())) {
+                return Ok(e);
+            }
+            e = e.substitute(&|s: &str| defs.get(s).cloned());
+        }
+        Err(self.bad("printed: the definitions it uses refer to each other in a cycle".into()))
+    }
+
     /// The claim's `printed_equations`, exactly `n` of them, each evaluated with `values`;
     /// `what` says what the check expects there.
     pub fn printed_values(

@@ -108,7 +108,7 @@ pub(super) fn rolling_eval(
 /// (1.7), B~ and B_A of (3.4), F* = F_N* (N - mu* e_T)) from the same start: both balls slide at
 /// C in direction phi, the second slides on the table in direction xi. Compared: r and phi of
 /// V_C at the model's accepted steps while both slips exceed 5 % of their start; and, at the
-/// special case (4.7) (mu = mu*, xi = phi, cos phi = -2/(7 mu)), phi along the model's path.
+/// special case (4.7) (mu = mu*, xi = phi, cos phi as the claim's `printed`), phi along the model's path.
 pub(super) fn rolling_integrated(
     paper: &PaperClaims,
     c: &NamedCheck,
@@ -245,7 +245,8 @@ pub(super) fn rolling_integrated(
         c,
         verdict,
         format!(
-            "the general impact model with the rough table (B of (1.7), B~ and B_A of (3.4), F* = F_N* (N - mu* e_T) with (4.4); Poisson's law, rtol 1e-11) from 12 seeded starts (phi, xi, mu, mu*), both balls sliding: r and phi of V_C at {points} of its steps against (4.6) integrated in the normal impulse while both slips exceed 5 %: as printed, max difference {worst_p:.2e}{example}; with the third equation as derived (corrected), {worst_c:.2e}; the special case (4.7) (mu = mu* = 0.3, 0.5, 1, xi = phi, cos phi = -2/(7 mu)) keeps phi within {special:.2e} along the model's path (tolerance {tol:.0e})"
+            "the general impact model with the rough table (B of (1.7), B~ and B_A of (3.4), F* = F_N* (N - mu* e_T) with (4.4); Poisson's law, rtol 1e-11) from 12 seeded starts (phi, xi, mu, mu*), both balls sliding: r and phi of V_C at {points} of its steps against (4.6) integrated in the normal impulse while both slips exceed 5 %: as printed, max difference {worst_p:.2e}{example}; with the third equation as derived (corrected), {worst_c:.2e}; the special case (4.7) (mu = mu* = 0.3, 0.5, 1, xi = phi, cos phi = {}) keeps phi within {special:.2e} along the model's path (tolerance {tol:.0e})",
+            c.printed.as_deref().unwrap_or_default()
         ),
     ))
 }
@@ -292,7 +293,7 @@ pub(super) fn rolling_ball(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcom
             )
         }
         "special-case" => {
-            // mu = mu*, xi = phi, cos phi = -2/(7 mu): phi' and xi' vanish (derived rates)
+            // mu = mu*, xi = phi, cos phi as printed: phi' and xi' vanish (derived rates)
             let mut worst: f64 = 0.0;
             let mut curves = Vec::new();
             for mu in [0.3f64, 0.5, 1.0, 2.0] {
@@ -362,7 +363,8 @@ pub(super) fn rolling_ball(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcom
                 c,
                 holds(worst <= 1e-9),
                 format!(
-                    "with mu = mu*, xi = phi and cos phi = -2/(7 mu) (mu = 0.3, 0.5, 1, 2) the derived phi' and xi' vanish (max {worst:.2e}, including phi along an integrated trajectory from phi* for mu = 0.5); this uses only the second and fourth equations of (4.6), which the derivation confirms"
+                    "with mu = mu*, xi = phi and cos phi = {} as printed (mu = 0.3, 0.5, 1, 2) the derived phi' and xi' vanish (max {worst:.2e}, including phi along an integrated trajectory from phi* for mu = 0.5); this uses only the second and fourth equations of (4.6), which the derivation confirms",
+                    c.printed.as_deref().unwrap_or_default()
                 ),
             )
             .with_plot(

@@ -563,7 +563,7 @@ pub(super) fn plane_support(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
                 c,
                 holds(worst <= 1e-10),
                 format!(
-                    "beta of (4.4) and alpha of (3.6) from the matrices of (3.4), body sliding to the right, F = n (horizontal), 200 seeded plane configurations: max relative difference from (4.8) and alpha = gamma a3 b2/(m2 rho2^2) as printed ({}, {}): {worst:.2e}",
+                    "beta of (4.4) and alpha of (3.6) from the matrices of (3.4), body sliding to the right, F = n (horizontal), 200 seeded plane configurations: max relative difference from beta of (4.8) and alpha as printed ({}, {}): {worst:.2e}",
                     c.printed_equations[0], c.printed_equations[1]
                 ),
             )
@@ -616,7 +616,15 @@ pub(super) fn plane_support(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
             )
         }
         "classification" => {
-            // map over (mu*, a3) for b2 > 0 and b2 < 0: the paper's two/none statement
+            // map over (mu*, a3) for b2 > 0 and b2 < 0: the claim's `printed_equations` give the
+            // number of solutions of (3.6) the paper states where beta < 0, for b2 > 0 and b2 < 0
+            let counts = c.printed_values(
+                2,
+                "the number of solutions of (3.6) where beta < 0, for b2 > 0 and for b2 < 0",
+                &|_| None,
+            )?;
+            let stated = |b2: f64| if b2 > 0.0 { counts[0] } else { counts[1] };
+            let names = ["none", "unique", "two"];
             let mut disagreements = 0;
             let mut total = 0;
             let mut cls: std::collections::BTreeMap<String, Vec<(f64, f64)>> = Default::default();
@@ -647,8 +655,9 @@ pub(super) fn plane_support(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
                         }
                         if slope < 0.0 {
                             total += 1;
-                            let expect = if b2 > 0.0 { "two" } else { "none" };
-                            if kind != expect {
+                            let count = names.iter().position(|n| *n == kind);
+                            let expect = stated(b2);
+                            if count.map(|k| k as f64) != Some(expect) {
                                 disagreements += 1;
                             }
                         }
@@ -674,7 +683,8 @@ pub(super) fn plane_support(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
                 c,
                 holds(disagreements == 0 && total > 0),
                 format!(
-                    "plane configurations on a 41 x 41 grid of (mu*, a3) with b3 = -0.6, rho2 = 0.5, b2 = +-0.5, the solutions of the complementarity problem at A counted from the matrices of (3.4): {total} have beta < 0; the count disagrees with 'two solutions if b2 > 0, none if b2 < 0' in {disagreements}"
+                    "plane configurations on a 41 x 41 grid of (mu*, a3) with b3 = -0.6, rho2 = 0.5, b2 = +-0.5, the solutions of the complementarity problem at A counted from the matrices of (3.4): {total} have beta < 0; the count disagrees with the one stated ({} solutions if b2 > 0, {} if b2 < 0) in {disagreements}",
+                    counts[0], counts[1]
                 ),
             )
             .with_plot(
