@@ -18,6 +18,7 @@ pub mod operator;
 pub mod poly;
 pub mod ratfunc;
 pub mod series;
+pub mod tex;
 pub mod trig;
 pub mod units;
 
