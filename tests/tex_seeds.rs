@@ -1,5 +1,5 @@
 //! The LaTeX reader (`src/algebra/tex.rs`) on every display equation of the three seeds
-//! (`tests/fixtures/seed_displays/`): how many relations it reads, and each one it does not,
+//! (`verify/tex/`): how many relations it reads, and each one it does not,
 //! named with the construct it lacks (`cargo test --test tex_seeds -- --nocapture` prints them).
 
 use impactcheck::algebra::expr::{Expr, parse};
@@ -12,7 +12,7 @@ const PAPERS: [&str; 3] = ["000", "001", "002"];
 /// The blocks of one paper's fixture: (number, tag printed after the block, LaTeX).
 fn blocks(paper: &str) -> Vec<(usize, Option<String>, String)> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/fixtures/seed_displays")
+        .join("verify/tex")
         .join(format!("{paper}.tex"));
     let text = std::fs::read_to_string(&path).expect("the fixture is in the repository");
     let mut out: Vec<(usize, Option<String>, String)> = Vec::new();
@@ -109,7 +109,7 @@ fn the_fixtures_are_the_papers_blocks() {
             .collect();
         assert_eq!(
             fixture, from_paper,
-            "tests/fixtures/seed_displays/{paper}.tex differs from {name}"
+            "verify/tex/{paper}.tex differs from {name}"
         );
     }
 }

@@ -14,6 +14,7 @@ pub mod paper001;
 pub mod paper002;
 pub mod power;
 pub mod series_numeric;
+pub mod tex_claims;
 
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -39,6 +40,10 @@ pub struct PaperClaims {
     /// name in the claims; their units follow from their formulas.
     #[serde(default)]
     pub definitions: BTreeMap<String, String>,
+    /// LaTeX spellings mapped to symbols for `printed_tex` and `printed_from`
+    /// (`"\\tilde{E}" = "Et"`, `"z(t)" = "z"`; [`tex_claims`]).
+    #[serde(default)]
+    pub tex_symbols: BTreeMap<String, String>,
     /// The claims.
     pub claim: Vec<ClaimSpec>,
     /// Where the file was read from (scenes of generic claims are relative to it).
@@ -77,6 +82,9 @@ pub struct Head {
     /// and a fail of it is no finding.
     #[serde(default)]
     pub extends: Option<String>,
+    /// The LaTeX the printed side was read from (`printed_tex`, `printed_from`), for the report.
+    #[serde(skip)]
+    pub tex: Option<String>,
 }
 
 impl Head {
@@ -290,6 +298,7 @@ pub fn load_claims(path: &Path) -> Result<Vec<PaperClaims>, VerifyError> {
                     message: e.to_string().trim().replace('\n', " "),
                 })?;
             claims.source = p.clone();
+            tex_claims::resolve(&mut claims)?;
             Ok(claims)
         })
         .collect()

@@ -351,6 +351,9 @@ impl<'a> Checked<'a> {
                 }
                 o.finding = c.head.finding.clone();
                 o.extends = c.head.extends.clone();
+                if let Some(tex) = &c.head.tex {
+                    o.printed_latex = Some(tex.clone());
+                }
                 if let Some(x) = &c.head.extends {
                     o.detail = format!("extends the paper ({x}): {}", o.detail);
                 }
