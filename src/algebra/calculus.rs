@@ -116,7 +116,7 @@ impl Expr {
             Expr::Calc(Calc::Diff, body, x, _) => derivative(&body.lower()?, x)?,
             Expr::Calc(Calc::At, body, x, v) => at(&body.lower()?, x, &v[0].lower()?),
             Expr::Calc(Calc::Sum, body, i, b) => {
-                let bound = |e: &Expr| -> Result<i64, String> {
+                let bound = |e: &Expr| -> Result<f64, String> {
                     let v = e.lower()?.exact_constant().ok_or_else(|| {
                         format!("`{self}`: the bounds of `sum` must be integers once the formula's values are in (`{e}` is not)")
                     })?;
@@ -126,9 +126,9 @@ impl Expr {
                         ));
                     }
                     use num_traits::ToPrimitive;
-                    sum_bound(v.to_integer().to_f64().unwrap_or(f64::NAN))
+                    Ok(v.to_integer().to_f64().unwrap_or(f64::NAN))
                 };
-                let (lo, hi) = (bound(&b[0])?, bound(&b[1])?);
+                let (lo, hi) = sum_range(bound(&b[0])?, bound(&b[1])?, body)?;
                 let body = body.lower()?;
                 let mut acc = num(0);
                 for k in lo..=hi {
@@ -146,15 +146,34 @@ impl Expr {
     }
 }
 
-/// A bound of `sum` as an integer: at most 100,000 terms either side of 0, so that a formula
-/// from anyone cannot ask for an endless loop.
-pub fn sum_bound(v: f64) -> Result<i64, String> {
-    if v.fract() != 0.0 || v.abs() > 1e5 {
-        return Err(format!(
-            "a bound of `sum` must be an integer in [-100000, 100000], not {v}"
-        ));
+/// The integer range of a `sum` over `body`: at most 10,000 terms, bounds in [-1e6, 1e6], and
+/// no `sum` inside its body, so that a formula from anyone cannot ask for an endless loop.
+pub fn sum_range(lo: f64, hi: f64, body: &Expr) -> Result<(i64, i64), String> {
+    for v in [lo, hi] {
+        if v.fract() != 0.0 || v.abs() > 1e6 {
+            return Err(format!(
+                "a bound of `sum` must be an integer in [-1000000, 1000000], not {v}"
+            ));
+        }
     }
-    Ok(v as i64)
+    if hi - lo >= 1e4 {
+        return Err(format!("`sum` from {lo} to {hi}: at most 10000 terms"));
+    }
+    if contains_sum(body) {
+        return Err("a `sum` inside a `sum` is not supported".into());
+    }
+    Ok((lo as i64, hi as i64))
+}
+
+fn contains_sum(e: &Expr) -> bool {
+    match e {
+        Expr::Num(_) | Expr::Sym(_) | Expr::Pi => false,
+        Expr::Neg(a) | Expr::Call(_, a) => contains_sum(a),
+        Expr::Bin(_, a, b) => contains_sum(a) || contains_sum(b),
+        Expr::Calc(c, body, _, extra) => {
+            *c == Calc::Sum || contains_sum(body) || extra.iter().any(contains_sum)
+        }
+    }
 }
 
 /// $\partial e/\partial x$ of a lowered formula (no `diff` or `at` inside).
@@ -420,6 +439,9 @@ mod tests {
         assert!((half - std::f64::consts::PI.sqrt() / 2.0).abs() < 1e-12);
         // too many terms, a fractional bound, diff of a factorial: errors, not loops or panics
         assert!(parse("sum(x, i, 0, 1000000)").unwrap().lower().is_err());
+        let nested = parse("sum(sum(x, j, 0, 9999), i, 0, 9999)").unwrap();
+        assert!(nested.lower().is_err());
+        assert!(nested.eval(&|_| Some(1.0)).is_err());
         assert!(parse("sum(x, i, 0, 1/2)").unwrap().lower().is_err());
         assert!(parse("diff(factorial(x), x)").unwrap().lower().is_err());
     }

@@ -215,7 +215,12 @@ struct Reader<'a> {
     in_integral: usize,
     /// Inside `| ... |`: a `|` closes, it does not open.
     in_abs: usize,
+    /// How deep the formulas nest (a file from anyone must not overflow the stack).
+    depth: usize,
 }
+
+/// The deepest nesting read (as the text parser's limit).
+const MAX_DEPTH: usize = 200;
 
 type R<T> = Result<T, TexError>;
 
@@ -407,7 +412,23 @@ impl Reader<'_> {
             && matches!(self.toks.get(self.pos + 2), Some((Tok::Cmd(c), _)) if c == "prime")
     }
 
+    /// Runs `f` one level deeper, refusing to go past [`MAX_DEPTH`].
+    fn nest(&mut self, f: impl FnOnce(&mut Self) -> R<Expr>) -> R<Expr> {
+        self.depth += 1;
+        let e = if self.depth > MAX_DEPTH {
+            self.err(format!("a formula nested at most {MAX_DEPTH} deep"))
+        } else {
+            f(self)
+        };
+        self.depth -= 1;
+        e
+    }
+
     fn expr(&mut self) -> R<Expr> {
+        self.nest(Self::expr_inner)
+    }
+
+    fn expr_inner(&mut self) -> R<Expr> {
         self.skip_space();
         let mut e = self.term()?;
         loop {
@@ -508,6 +529,10 @@ impl Reader<'_> {
     }
 
     fn unary(&mut self) -> R<Expr> {
+        self.nest(Self::unary_inner)
+    }
+
+    fn unary_inner(&mut self) -> R<Expr> {
         self.skip_space();
         match self.peek() {
             Tok::Ch('-') => {
@@ -542,6 +567,10 @@ impl Reader<'_> {
     }
 
     fn atom(&mut self) -> R<Expr> {
+        self.nest(Self::atom_inner)
+    }
+
+    fn atom_inner(&mut self) -> R<Expr> {
         self.skip_space();
         let col = self.col();
         match self.bump() {
@@ -950,6 +979,7 @@ pub fn read_relation(tex: &str, syms: &TexSymbols) -> Result<TexRelation, TexErr
         pos: 0,
         in_integral: 0,
         in_abs: 0,
+        depth: 0,
     };
     r.relation()
 }
@@ -1203,6 +1233,14 @@ mod tests {
         assert_eq!(e.column, 17, "{e}");
         let e = read_formula(r"\frac{a}{b", &s).unwrap_err();
         assert!(e.construct.contains('}'), "{e}");
+        // nesting from a file from anyone: an error, not a stack overflow
+        let deep = format!("{}x{}", "{".repeat(5000), "}".repeat(5000));
+        let e = read_formula(&deep, &s).unwrap_err();
+        assert!(e.construct.contains("nested"), "{e}");
+        let deep = format!("{}x", r"\sqrt".repeat(5000));
+        assert!(read_formula(&deep, &s).is_err());
+        let deep = format!("{}x", "-".repeat(5000));
+        assert!(read_formula(&deep, &s).is_err());
         let e = read_formula(r"a \star b", &s).unwrap_err();
         assert!(e.construct.contains("\\star"), "{e}");
     }

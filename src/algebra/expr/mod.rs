@@ -725,10 +725,7 @@ impl Expr {
             }
             Expr::Calc(Calc::Sum, body, var, extra) => {
                 let (lo, hi) = (extra[0].eval(value)?, extra[1].eval(value)?);
-                let (lo, hi) = (
-                    super::calculus::sum_bound(lo)?,
-                    super::calculus::sum_bound(hi)?,
-                );
+                let (lo, hi) = super::calculus::sum_range(lo, hi, body)?;
                 let mut acc = 0.0;
                 for i in lo..=hi {
                     let x = i as f64;
