@@ -74,6 +74,11 @@ struct Args {
     /// The seed that picks the claims of --power-sample (CI gives the commit).
     #[arg(long, value_name = "TEXT", default_value = "0")]
     power_seed: String,
+    /// Where the papers' texts are (each claims file's `file`): its `equations` list is checked
+    /// against their \tag labels (default: beside the claims file, then ../shared/seeds/). The
+    /// reports never depend on it: coverage is counted from the lists.
+    #[arg(long, value_name = "DIR")]
+    papers: Option<PathBuf>,
 }
 
 fn default_dir(name: &str) -> PathBuf {
@@ -131,6 +136,9 @@ fn run(args: Args) -> Result<bool> {
     let progress = std::io::stderr().is_terminal();
     // every file checked before any claim runs: a bad claim exits 2 with nothing run or written
     verify::validate_all(&papers)?;
+    for p in &papers {
+        verify::coverage::check_equations(p, args.papers.as_deref())?;
+    }
     let bar = if progress {
         let b = indicatif::ProgressBar::new(papers.iter().map(|p| p.claim.len() as u64).sum());
         b.set_style(
@@ -233,7 +241,10 @@ fn run(args: Args) -> Result<bool> {
     }
     let mut files = report::render(&verify::paper_infos(&papers), &outcomes);
     // the coverage table opens the index, after its first paragraphs
-    let coverage = verify::coverage::table(&verify::coverage::compute(&papers), &outcomes);
+    let coverage = verify::coverage::table(
+        &verify::coverage::compute(&papers, args.papers.as_deref()),
+        &outcomes,
+    );
     if let Some((_, readme)) = files.iter_mut().find(|(n, _)| n == "README.md") {
         let at = readme
             .find("## Power of the checks")

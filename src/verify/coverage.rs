@@ -1,7 +1,10 @@
-//! Coverage: which numbered equations of a paper have a claim. The equations are the `\tag{...}`
-//! labels of the paper's text (its `file`); a claim covers the labels written in parentheses in
-//! its `equation` field (`"(2.3)"`, `"(2.6)-(2.10)"` covers 2.6 and 2.10). Computed on every run,
-//! so the table in `reports/README.md` stays true when a claim is added or removed.
+//! Coverage: which numbered equations of a paper have a claim. The equations are the claims
+//! file's `equations` list (facts taken from the paper once: its `\tag{...}` labels), so that the
+//! reports do not depend on where the papers lie; when the paper's text is found (`--papers DIR`,
+//! beside the claims file, or `../shared/seeds/`), the list is checked against its labels and a
+//! mismatch is an error. A claim covers the labels written in parentheses in its `equation` field
+//! (`"(2.3)"`, `"(2.6)-(2.10)"` covers 2.6 and 2.10). Computed on every run, so the table in
+//! `reports/README.md` stays true when a claim is added or removed.
 
 use super::{Outcome, PaperClaims};
 use serde::{Deserialize, Serialize};
@@ -62,14 +65,15 @@ pub fn labels(equation: &str) -> Vec<String> {
     out
 }
 
-/// Where the paper's text is: beside the claims file, or among the seeds (`../shared/seeds/`
-/// beside the repository).
-pub fn text_path(p: &PaperClaims) -> Option<PathBuf> {
+/// Where the paper's text is: in `papers` (`--papers DIR`), beside the claims file, or among the
+/// seeds (`../shared/seeds/` beside the repository).
+pub fn text_path(p: &PaperClaims, papers: Option<&Path>) -> Option<PathBuf> {
     if p.file.is_empty() {
         return None;
     }
     let dir = p.source.parent().unwrap_or(Path::new("."));
-    let mut candidates = vec![dir.join(&p.file)];
+    let mut candidates: Vec<PathBuf> = papers.map(|d| d.join(&p.file)).into_iter().collect();
+    candidates.push(dir.join(&p.file));
     if let Some(root) = dir.parent() {
         candidates.push(root.join("../shared/seeds").join(&p.file));
     }
@@ -81,9 +85,42 @@ pub fn text_path(p: &PaperClaims) -> Option<PathBuf> {
     candidates.into_iter().find(|c| c.is_file())
 }
 
-/// The coverage of `p` given its text (`None`: not found).
+/// Checks the claims file's `equations` against the `\tag{...}` labels of the paper's text, when
+/// the text is found; `Ok(Some(path))` names the text checked.
+pub fn check_equations(
+    p: &PaperClaims,
+    papers: Option<&Path>,
+) -> Result<Option<PathBuf>, super::VerifyError> {
+    let Some(path) = text_path(p, papers) else {
+        return Ok(None);
+    };
+    let Ok(text) = std::fs::read_to_string(&path) else {
+        return Ok(None);
+    };
+    let tagged = tags(&text);
+    if p.equations == tagged {
+        return Ok(Some(path));
+    }
+    let missing: Vec<&String> = tagged.iter().filter(|t| !p.equations.contains(t)).collect();
+    let extra: Vec<&String> = p.equations.iter().filter(|t| !tagged.contains(t)).collect();
+    Err(super::VerifyError::BadClaims {
+        path: p.source.clone(),
+        message: format!(
+            "equations: the list differs from the \\tag labels of {} (in their order: {:?}); not listed: {missing:?}; not in the text: {extra:?}",
+            path.display(),
+            tagged
+        ),
+    })
+}
+
+/// The coverage of `p`: its equations are its `equations` list, or, without one, the labels of
+/// its text (`None`: not found).
 pub fn of_text(p: &PaperClaims, text: Option<&str>, where_: Option<String>) -> Coverage {
-    let equations = text.map(tags).unwrap_or_default();
+    let equations = if p.equations.is_empty() {
+        text.map(tags).unwrap_or_default()
+    } else {
+        p.equations.clone()
+    };
     let claimed: BTreeSet<String> = p.claim.iter().flat_map(|c| labels(&c.equation)).collect();
     let missing = equations
         .iter()
@@ -105,13 +142,18 @@ pub fn of_text(p: &PaperClaims, text: Option<&str>, where_: Option<String>) -> C
     }
 }
 
-/// The coverage of every paper that names its text.
-pub fn compute(papers: &[PaperClaims]) -> Vec<Coverage> {
+/// The coverage of every paper that names its text. A paper with an `equations` list is
+/// counted from the list alone, whether its text is found or not (the text is only read for
+/// [`check_equations`]), so the table is the same on a machine without the papers.
+pub fn compute(papers: &[PaperClaims], dir: Option<&Path>) -> Vec<Coverage> {
     papers
         .iter()
         .filter(|p| !p.file.is_empty() && p.paper != "hard")
         .map(|p| {
-            let path = text_path(p);
+            if !p.equations.is_empty() {
+                return of_text(p, None, Some(p.file.clone()));
+            }
+            let path = text_path(p, dir);
             let text = path.as_ref().and_then(|x| std::fs::read_to_string(x).ok());
             of_text(
                 p,
@@ -125,7 +167,7 @@ pub fn compute(papers: &[PaperClaims]) -> Vec<Coverage> {
 /// The Markdown table of `reports/README.md`, with verdict counts per paper.
 pub fn table(cov: &[Coverage], outcomes: &[Outcome]) -> String {
     let mut md = String::from(
-        "## Coverage of the papers\n\nNumbered equations are the `\\tag{...}` labels of each paper's text; a claim covers the \
+        "## Coverage of the papers\n\nNumbered equations are the `\\tag{...}` labels of each paper's text, listed once in its claims file (`equations`, checked against the text when it is found); a claim covers the \
          labels in parentheses in its `equation` field. Computed by `verify` on every run. The solver robustness \
          cases (`hard.*`) are not counted here.\n\n\
          | paper | numbered equations | with a claim | claims | holds | fails | holds-with-correction | holds-with-assumption | definition | not-checkable | equations without a claim |\n\
@@ -210,6 +252,29 @@ mod tests {
             Some("p.txt".into()),
         );
         assert!(all.missing.is_empty());
+    }
+
+    #[test]
+    fn the_equations_list_counts_without_the_text_and_is_checked_against_it() {
+        let dir = std::env::temp_dir().join(format!("impactcheck-cov-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temp dir");
+        std::fs::write(dir.join("p.txt"), "a $$x \\tag{1}$$ b $$y \\tag{2}$$").expect("write");
+        let mut p = paper(&["(1)"]);
+        p.source = dir.join("claims.toml");
+        p.equations = vec!["1".into(), "2".into()];
+        // counted from the list: the same with and without the text
+        let with = compute(std::slice::from_ref(&p), Some(&dir));
+        let mut no_text = p.clone();
+        no_text.source = dir.join("elsewhere/claims.toml");
+        let without = compute(std::slice::from_ref(&no_text), Some(&dir.join("none")));
+        assert_eq!(with[0].equations, without[0].equations);
+        assert_eq!(with[0].missing, vec!["2"]);
+        assert_eq!(table(&with, &[]), table(&without, &[]));
+        // the list is checked against the text: a missing label is an error naming it
+        assert!(check_equations(&p, Some(&dir)).expect("agrees").is_some());
+        p.equations = vec!["1".into()];
+        let err = check_equations(&p, Some(&dir)).unwrap_err().to_string();
+        assert!(err.contains("not listed: [\"2\"]"), "{err}");
     }
 
     #[test]

@@ -40,6 +40,10 @@ pub struct PaperClaims {
     /// name in the claims; their units follow from their formulas.
     #[serde(default)]
     pub definitions: BTreeMap<String, String>,
+    /// The paper's numbered equations (its `\\tag{...}` labels, in order), taken from the text
+    /// once: coverage is counted from this list, and checked against the text when it is found.
+    #[serde(default)]
+    pub equations: Vec<String>,
     /// LaTeX spellings mapped to symbols for `printed_tex` and `printed_from`
     /// (`"\\tilde{E}" = "Et"`, `"z(t)" = "z"`; [`tex_claims`]).
     #[serde(default)]
