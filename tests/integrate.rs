@@ -405,3 +405,29 @@ fn bad_options_are_rejected() {
     .unwrap_err();
     assert!(matches!(e, IntegrateError::BadOption { field: "y0", .. }));
 }
+
+#[test]
+fn the_limits_of_the_options_are_exact() {
+    // the boundaries themselves (found by mutation testing: `atol > 0` read as `>= 0` passed):
+    // rtol = 0, rtol = 1, atol = 0 and t_end = t0 are refused; values inside the limits run
+    let run = |rtol: f64, atol: f64, t_end: f64| {
+        let mut o = opts(Method::Dop853, 1e-6);
+        o.rtol = rtol;
+        o.atol = atol;
+        solve(&Oscillator, 0.0, &[1.0, 0.0], t_end, &o)
+    };
+    for (rtol, atol, t_end, field) in [
+        (0.0, 1e-9, 1.0, "rtol"),
+        (1.0, 1e-9, 1.0, "rtol"),
+        (1e-6, 0.0, 1.0, "atol"),
+        (1e-6, 1e-9, 0.0, "t_end"),
+    ] {
+        let e = run(rtol, atol, t_end).unwrap_err();
+        assert!(
+            matches!(e, IntegrateError::BadOption { field: f, .. } if f == field),
+            "rtol {rtol}, atol {atol}, t_end {t_end}: {e}"
+        );
+    }
+    assert!(run(1e-3, 1e-12, 1.0).is_ok());
+    assert!(run(0.5, 1e-6, 1.0).is_ok());
+}
