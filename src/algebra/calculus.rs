@@ -211,13 +211,25 @@ pub fn derivative(e: &Expr, x: &str) -> Result<Expr, String> {
                         "`diff` of `factorial({a})` in `{x}`: no rule (its argument must not depend on `{x}`)"
                     ));
                 }
+                Func::Gamma => {
+                    return Err(format!(
+                        "`diff` of `gamma({a})` in `{x}`: no rule (its argument must not depend on `{x}`)"
+                    ));
+                }
+                // 2/sqrt(pi) exp(-a^2)
+                Func::Erf => div(
+                    mul(num(2), call(Func::Exp, neg(pow(a, num(2))))),
+                    call(Func::Sqrt, Expr::Pi),
+                ),
+                // piecewise constant: 0 away from the jump
+                Func::Sign | Func::Heaviside => num(0),
                 Func::Sqrt => div(num(1), mul(num(2), call(Func::Sqrt, a))),
                 Func::Exp => call(Func::Exp, a),
                 Func::Ln => div(num(1), a),
                 Func::Sin => call(Func::Cos, a),
                 Func::Cos => neg(call(Func::Sin, a)),
                 Func::Tan => div(num(1), pow(call(Func::Cos, a), num(2))),
-                Func::Abs => div(a.clone(), call(Func::Abs, a)),
+                Func::Abs => call(Func::Sign, a),
                 Func::Asin => div(num(1), call(Func::Sqrt, sub(num(1), pow(a, num(2))))),
                 Func::Acos => neg(div(num(1), call(Func::Sqrt, sub(num(1), pow(a, num(2)))))),
                 Func::Atan => div(num(1), add(num(1), pow(a, num(2)))),

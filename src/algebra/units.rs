@@ -33,6 +33,11 @@ impl Unit {
         Unit(r)
     }
 
+    /// `self / o`.
+    pub fn per(self, o: Unit) -> Unit {
+        self.times(o, (-1).into())
+    }
+
     /// Whether the unit is 1.
     pub fn is_one(&self) -> bool {
         self.0.iter().all(Zero::is_zero)
@@ -147,6 +152,10 @@ pub fn dimension(e: &Expr, unit: &dyn Fn(&str) -> Option<Unit>) -> Result<Unit, 
         Expr::Call(f, a) => match f {
             Func::Sqrt => Ok(Unit::one().times(dimension(a, unit)?, Rational64::new(1, 2))),
             Func::Abs => dimension(a, unit),
+            Func::Sign | Func::Heaviside => {
+                dimension(a, unit)?;
+                Ok(Unit::one())
+            }
             _ => {
                 pure(a, &format!("the argument of {}", f.name()), e)?;
                 Ok(Unit::one())
@@ -180,7 +189,14 @@ pub fn dimension(e: &Expr, unit: &dyn Fn(&str) -> Option<Unit>) -> Result<Unit, 
         Expr::Bin(op, a, b) => match op {
             Op::Add | Op::Sub => {
                 let (ua, ub) = (dimension(a, unit)?, dimension(b, unit)?);
-                if ua == ub {
+                // a literal 0 has every unit (`max(z, 0)`, `x + 0`); only the number as
+                // written, not a term that happens to vanish (`diff(F, x)` of a constant F
+                // keeps the unit of F/x)
+                let zero = |x: &Expr| matches!(x, Expr::Num(c) if c.is_zero());
+                if zero(a) {
+                    return Ok(ub);
+                }
+                if zero(b) || ua == ub {
                     Ok(ua)
                 } else {
                     Err(DimError::Mismatch {
@@ -233,6 +249,21 @@ mod tests {
                 .unwrap_err()
                 .contains("unknown unit `furlong`")
         );
+    }
+
+    #[test]
+    fn only_a_written_zero_has_every_unit() {
+        let units = |s: &str| match s {
+            "z" => Unit::parse("m").ok(),
+            "x" => Unit::parse("m").ok(),
+            "F" => Unit::parse("N").ok(),
+            _ => None,
+        };
+        // max(z, 0) is (z + 0 + abs(z - 0))/2: metres
+        let u = dimension(&parse("max(z, 0)").unwrap(), &units).unwrap();
+        assert_eq!(u, Unit::named("m").unwrap());
+        // diff(F, x) vanishes for a constant F but is N/m, not any unit
+        assert!(dimension(&parse("diff(F, x) + z").unwrap(), &units).is_err());
     }
 
     #[test]

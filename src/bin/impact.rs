@@ -29,6 +29,12 @@ enum Fmt {
 }
 
 #[derive(Clone, Copy, ValueEnum)]
+enum DocFmt {
+    Markdown,
+    Json,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
 enum Visc {
     /// B = d(z^2)/dt = 2 z z' (what the operator (eta/E) d/dt gives)
     #[value(name = "2zz")]
@@ -91,6 +97,17 @@ enum Command {
     },
     /// Merge the JSON outputs of a sharded sweep (`sweep --shard K/N --format json`) into one,
     /// checking that every point is there exactly once.
+    /// Every scene key of a model (unit, allowed range, default, meaning) and every outcome
+    /// of its run (unit, meaning, sign convention), from the model's own documentation; without
+    /// MODEL, every model (verify/MODELS.md is this output). E.g. `impact describe ode`.
+    Describe {
+        /// The model (`hertz`, `cone-plate`, `rigid-impact`, `pendulum-wall`, `balls-wall`,
+        /// `disk-friction`, `ode`); all when absent
+        model: Option<String>,
+        /// Output format
+        #[arg(long, value_enum, default_value = "markdown")]
+        format: DocFmt,
+    },
     Merge {
         /// The shards' JSON files.
         #[arg(required = true)]
@@ -182,6 +199,20 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
                 p => impactcheck::perf::bench_problem(p, &cli::parse_times(&tols)?, repeats)?,
             };
             Ok(serde_json::to_string_pretty(&v)?)
+        }
+        Command::Describe { model, format } => {
+            let docs = match &model {
+                Some(m) => vec![impactcheck::scene::describe(m)?],
+                None => impactcheck::scene::DOCS.to_vec(),
+            };
+            Ok(match format {
+                DocFmt::Json if model.is_some() => serde_json::to_string_pretty(docs[0])? + "\n",
+                DocFmt::Json => serde_json::to_string_pretty(&docs)? + "\n",
+                DocFmt::Markdown if model.is_some() => {
+                    impactcheck::models::doc::model_markdown(docs[0])
+                }
+                DocFmt::Markdown => impactcheck::models::doc::markdown(&docs),
+            })
         }
         Command::Merge { files, format } => Ok(cli::merge(&files, fmt(format))?),
         Command::Run {

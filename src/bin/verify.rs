@@ -138,6 +138,7 @@ fn run(args: Args) -> Result<bool> {
     verify::validate_all(&papers)?;
     for p in &papers {
         verify::coverage::check_equations(p, args.papers.as_deref())?;
+        verify::coverage::check_quotes(p, args.papers.as_deref())?;
     }
     let bar = if progress {
         let b = indicatif::ProgressBar::new(papers.iter().map(|p| p.claim.len() as u64).sum());

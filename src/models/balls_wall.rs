@@ -4,6 +4,7 @@
 //! the wall, $p = 3/2$ (Hertz) or $p = 1$ (linear), m = 1, V = 1, k = 1. The run continues until the
 //! balls have separated for good (both contacts open, ball 1 no faster towards the wall than
 //! ball 2, both moving away).
+use crate::models::doc as d;
 
 use super::params::{Fields, SceneError};
 use super::{Curves, Model, RunError};
@@ -113,6 +114,7 @@ pub struct BallsWallOutcome {
 
 impl Model for BallsWallScene {
     const NAME: &'static str = "balls-wall";
+    const DOC: &'static d::ModelDoc = &DOC;
     type Outcome = BallsWallOutcome;
 
     fn from_table(root: &toml::Table, path: &str) -> Result<Self, SceneError> {
@@ -172,3 +174,112 @@ impl Model for BallsWallScene {
         Ok((out, vec![]))
     }
 }
+
+/// The `balls-wall` model's reference (`impact describe balls-wall`).
+pub const DOC: d::ModelDoc = d::ModelDoc {
+    name: "balls-wall",
+    summary: "Two identical balls in a line against a wall (002, sec. 3, the closing numerical result): the striking ball meets a ball at rest touching the wall; contacts are Hertz (or linear) springs, the wall's stiffer by wall_stiffness_ratio. The velocities after are scale-free: in units of v0 they depend only on the law and the ratio.",
+    conventions: &[
+        "velocities in units of v0, positive toward the wall",
+        "v_striker_after < 0 is the striking ball rebounding; v_wall_ball_after < 0 the ball at the wall recoiling from it",
+    ],
+    example: "scenes/balls_wall.toml",
+    keys: &[&[
+        d::Key {
+            key: "model",
+            unit: "-",
+            range: "\"balls-wall\"",
+            default: "required",
+            meaning: "the model",
+        },
+        d::Key {
+            key: "radius",
+            unit: "m",
+            range: "radius > 0",
+            default: "required",
+            meaning: "ball radius",
+        },
+        d::Key {
+            key: "mass",
+            unit: "kg",
+            range: "mass > 0",
+            default: "required",
+            meaning: "ball mass",
+        },
+        d::Key {
+            key: "v0",
+            unit: "m/s",
+            range: "v0 > 0",
+            default: "required",
+            meaning: "speed of the striking ball, toward the wall",
+        },
+        d::Key {
+            key: "wall_stiffness_ratio",
+            unit: "1",
+            range: "1e-6 <= ratio <= 1e8",
+            default: "2 sqrt(2)",
+            meaning: "wall stiffness over ball-ball stiffness (2 sqrt(2): identical elastic balls, a rigid wall, Hertz)",
+        },
+        d::Key {
+            key: "contact_law",
+            unit: "-",
+            range: "\"hertz\", \"linear\"",
+            default: "\"hertz\"",
+            meaning: "force exponent 3/2 or 1",
+        },
+        d::Key {
+            key: "stiffness",
+            unit: "N/m^1.5 (hertz), N/m (linear)",
+            range: "stiffness > 0",
+            default: "none",
+            meaning: "the ball-ball stiffness, only for the time unit",
+        },
+        d::Key {
+            key: "rtol",
+            unit: "1",
+            range: "1e-14 <= rtol <= 1e-2",
+            default: "1e-10",
+            meaning: "relative tolerance",
+        },
+    ]],
+    outcomes: &[
+        d::COMMON,
+        &[
+            d::Out {
+                path: "v_striker_after",
+                unit: "1 (v0)",
+                meaning: "velocity of the striking ball after, in units of v0, positive toward the wall",
+            },
+            d::Out {
+                path: "v_wall_ball_after",
+                unit: "1 (v0)",
+                meaning: "velocity of the ball at the wall after, in units of v0",
+            },
+            d::Out {
+                path: "wall_stiffness_ratio",
+                unit: "1",
+                meaning: "as given",
+            },
+            d::Out {
+                path: "contact_law",
+                unit: "-",
+                meaning: "\"hertz\" or \"linear\"",
+            },
+            d::Out {
+                path: "radius",
+                unit: "m",
+                meaning: "as given",
+            },
+            d::Out {
+                path: "time_unit_s",
+                unit: "s",
+                meaning: "(m v0^(1-p)/k)^(1/(p+1)), with the stiffness given; else null",
+            },
+            d::Out {
+                path: "units",
+                unit: "-",
+                meaning: "what the velocities are in",
+            },
+        ],
+    ],
+};

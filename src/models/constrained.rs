@@ -5,6 +5,7 @@
 //! rough support is classified at the start (section 4) and integrated with its switches between
 //! rolling (4.2), sliding (4.3)-(4.4) and letting go ([`impact_rough`]); a Painleve-type start
 //! with no consistent motion is reported as such, one with two is integrated along both.
+use crate::models::doc as d;
 
 use super::fixed_points::{Hold, b_star};
 use super::planar_impact::{PlanarError, impact_planar};
@@ -736,6 +737,7 @@ fn read_holds(
 
 impl super::Model for RigidImpactScene {
     const NAME: &'static str = "rigid-impact";
+    const DOC: &'static d::ModelDoc = &DOC;
     type Outcome = RigidImpactOutcome;
 
     fn from_table(root: &toml::Table, path: &str) -> Result<Self, super::SceneError> {
@@ -927,3 +929,301 @@ impl super::Model for RigidImpactScene {
         Ok((out, vec![]))
     }
 }
+
+/// The `rigid-impact` model's reference (`impact describe rigid-impact`).
+pub const DOC: d::ModelDoc = d::ModelDoc {
+    name: "rigid-impact",
+    summary: "Two rigid bodies colliding at a point C with Coulomb friction (002, (1.1)-(1.13), sec. 3-4): Darboux-Keller's equations in the normal impulse with stick and slip, Newton's, Poisson's or Stronge's energetic restitution; a fixed point or axis on one body (cut-off impacts, 002 sec. 2) or a support under the second body (sec. 3-4: smooth, rough, the Painleve-type cases classified). A planar impact is solved exactly by events in closed form.",
+    conventions: &[
+        "the impulse I is the one on the first body (002 (1.2)-(1.3)); N s",
+        "the contact normal points into the first body",
+        "v_rel is the velocity at C of the first body minus that of the second; the bodies approach: (v_rel, normal) < 0",
+        "contact_offset is the vector from the body's centre of mass G to C (m)",
+        "mass = \"inf\" makes a body an immovable obstacle",
+    ],
+    example: "scenes/rigid_impact.toml",
+    keys: &[&[
+        d::Key {
+            key: "model",
+            unit: "-",
+            range: "\"rigid-impact\"",
+            default: "required",
+            meaning: "the model",
+        },
+        d::Key {
+            key: "body[].mass",
+            unit: "kg",
+            range: "mass > 0, or \"inf\"",
+            default: "required",
+            meaning: "mass of each of the two [[body]] tables",
+        },
+        d::Key {
+            key: "body[].inertia[]",
+            unit: "kg m^2",
+            range: "a symmetric positive definite 3x3 matrix (rows), or 3 principal values",
+            default: "identity for \"inf\"",
+            meaning: "central inertia tensor in the contact frame",
+        },
+        d::Key {
+            key: "body[].contact_offset",
+            unit: "m",
+            range: "a 3-vector",
+            default: "required",
+            meaning: "from G to C",
+        },
+        d::Key {
+            key: "contact.normal",
+            unit: "1",
+            range: "a non-zero 3-vector",
+            default: "required",
+            meaning: "contact normal, into the first body (normalised)",
+        },
+        d::Key {
+            key: "contact.mu",
+            unit: "1",
+            range: "mu >= 0",
+            default: "0",
+            meaning: "Coulomb friction at C",
+        },
+        d::Key {
+            key: "contact.e",
+            unit: "1",
+            range: "0 <= e <= 1",
+            default: "required",
+            meaning: "coefficient of restitution (of the law)",
+        },
+        d::Key {
+            key: "contact.law",
+            unit: "-",
+            range: "\"newton\", \"poisson\", \"energetic\"",
+            default: "\"poisson\"",
+            meaning: "restitution law",
+        },
+        d::Key {
+            key: "initial.v_rel",
+            unit: "m/s",
+            range: "a 3-vector with (v_rel, normal) < 0",
+            default: "required",
+            meaning: "relative velocity at C before impact",
+        },
+        d::Key {
+            key: "initial.v_support",
+            unit: "m/s",
+            range: "a 3-vector",
+            default: "zero",
+            meaning: "velocity of the second body at the support point A before impact",
+        },
+        d::Key {
+            key: "support.offset",
+            unit: "m",
+            range: "a 3-vector",
+            default: "no support",
+            meaning: "from the second body's G to the support point A",
+        },
+        d::Key {
+            key: "support.normal",
+            unit: "1",
+            range: "a non-zero vector from the support into the second body",
+            default: "required with [support]",
+            meaning: "the support's normal",
+        },
+        d::Key {
+            key: "support.mu",
+            unit: "1",
+            range: "mu >= 0",
+            default: "0",
+            meaning: "friction at A (0: a smooth support)",
+        },
+        d::Key {
+            key: "fixed.body",
+            unit: "-",
+            range: "1 or 2, a body of finite mass",
+            default: "required with [fixed]",
+            meaning: "the body with a fixed point or axis",
+        },
+        d::Key {
+            key: "fixed.offset",
+            unit: "m",
+            range: "a 3-vector",
+            default: "required with [fixed]",
+            meaning: "from that body's G to the fixed point",
+        },
+        d::Key {
+            key: "fixed.axis",
+            unit: "1",
+            range: "a non-zero direction",
+            default: "none (a fixed point)",
+            meaning: "a fixed axis through the point",
+        },
+        d::Key {
+            key: "solve.method",
+            unit: "-",
+            range: "\"auto\", \"planar-exact\", \"integrate\"",
+            default: "\"auto\"",
+            meaning: "the exact planar solution where the impact is planar, else integrated",
+        },
+        d::Key {
+            key: "solve.rtol",
+            unit: "1",
+            range: "1e-14 <= rtol <= 1e-2",
+            default: "1e-10",
+            meaning: "relative tolerance",
+        },
+    ]],
+    outcomes: &[
+        d::COMMON,
+        &[
+            d::Out {
+                path: "impulse",
+                unit: "N s",
+                meaning: "the impulse on the first body; null when only classified",
+            },
+            d::Out {
+                path: "v_rel_after",
+                unit: "m/s",
+                meaning: "relative velocity at C after",
+            },
+            d::Out {
+                path: "compression_impulse",
+                unit: "N s",
+                meaning: "normal impulse at the end of compression",
+            },
+            d::Out {
+                path: "energy_change",
+                unit: "J",
+                meaning: "kinetic energy change (never > 0 under a dissipative law)",
+            },
+            d::Out {
+                path: "kelvin_energy_change",
+                unit: "J",
+                meaning: "the same by Kelvin's theorem (1.10)",
+            },
+            d::Out {
+                path: "lambda_min",
+                unit: "1/kg",
+                meaning: "smallest eigenvalue of B (or B*)",
+            },
+            d::Out {
+                path: "lambda_max",
+                unit: "1/kg",
+                meaning: "largest eigenvalue of B",
+            },
+            d::Out {
+                path: "bound_upper",
+                unit: "N s",
+                meaning: "the upper bound (1.9) on |I|",
+            },
+            d::Out {
+                path: "bound_lower",
+                unit: "N s",
+                meaning: "the lower bound (1.13) on |I|",
+            },
+            d::Out {
+                path: "phases[].kind",
+                unit: "-",
+                meaning: "\"stick\" or \"slip\" (and a support's \"roll\", \"slide\", \"detached\")",
+            },
+            d::Out {
+                path: "phases[].normal_impulse",
+                unit: "N s",
+                meaning: "normal impulse where the phase starts",
+            },
+            d::Out {
+                path: "cut_off",
+                unit: "-",
+                meaning: "whether the impact was cut off (002 sec. 2)",
+            },
+            d::Out {
+                path: "classification",
+                unit: "-",
+                meaning: "the support's classification, if any",
+            },
+            d::Out {
+                path: "support_analysis.kind",
+                unit: "-",
+                meaning: "\"unique\", \"none\" or \"two\" admissible motions at the support",
+            },
+            d::Out {
+                path: "support_analysis.admissible",
+                unit: "-",
+                meaning: "the admissible motions: \"detach\", \"roll\", \"slide\"",
+            },
+            d::Out {
+                path: "support_analysis.alpha",
+                unit: "1",
+                meaning: "alpha of (3.6)",
+            },
+            d::Out {
+                path: "support_analysis.beta",
+                unit: "1",
+                meaning: "beta: (4.4) when sliding, else (B_A N, N)",
+            },
+            d::Out {
+                path: "support_analysis",
+                unit: "-",
+                meaning: "null without a support",
+            },
+            d::Out {
+                path: "support_impulse",
+                unit: "N s",
+                meaning: "the support's impulse on the second body",
+            },
+            d::Out {
+                path: "support_phases[].kind",
+                unit: "-",
+                meaning: "a rough support's phases: \"roll\", \"slide\", \"detached\"",
+            },
+            d::Out {
+                path: "support_phases[].normal_impulse",
+                unit: "N s",
+                meaning: "normal impulse at C where it starts",
+            },
+            d::Out {
+                path: "v_support_after",
+                unit: "m/s",
+                meaning: "tangential velocity of A after, with a rough support",
+            },
+            d::Out {
+                path: "alternatives[].start",
+                unit: "-",
+                meaning: "a Painleve-type case's branch: the support's motion at the start",
+            },
+            d::Out {
+                path: "alternatives[].impulse",
+                unit: "N s",
+                meaning: "that branch's impulse on the first body",
+            },
+            d::Out {
+                path: "alternatives[].support_impulse",
+                unit: "N s",
+                meaning: "that branch's support impulse",
+            },
+            d::Out {
+                path: "alternatives[].energy_change",
+                unit: "J",
+                meaning: "that branch's energy change",
+            },
+            d::Out {
+                path: "alternatives[].error",
+                unit: "-",
+                meaning: "why that branch could not be integrated",
+            },
+            d::Out {
+                path: "method",
+                unit: "-",
+                meaning: "\"planar-exact\" or \"integrate\"",
+            },
+            d::Out {
+                path: "law",
+                unit: "-",
+                meaning: "the restitution law",
+            },
+            d::Out {
+                path: "warnings",
+                unit: "-",
+                meaning: "what the user should know (an energy gain under Newton's law, a Painleve-type case)",
+            },
+        ],
+        d::STATS,
+    ],
+};

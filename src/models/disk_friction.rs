@@ -7,6 +7,7 @@
 //! i.e. the force-to-moment ratio $F/M = (3/a)\,k f_1(k)/f_3(k)$. $K$ and $E$ come from the `ellip`
 //! crate (Carlson's symmetric forms); near $k = 1$ they are evaluated from the complementary
 //! parameter $m_c = (1-k)(1+k)$, since forming $m = k^2$ loses the digits that matter.
+use crate::models::doc as d;
 
 /// $K(k)$ and $E(k)$ for modulus `k` in [0, 1].
 pub fn k_e(k: f64) -> (f64, f64) {
@@ -478,6 +479,7 @@ pub struct DiskFrictionOutcome {
 
 impl super::Model for DiskFrictionScene {
     const NAME: &'static str = "disk-friction";
+    const DOC: &'static d::ModelDoc = &DOC;
     type Outcome = DiskFrictionOutcome;
 
     fn from_table(root: &toml::Table, path: &str) -> Result<Self, super::SceneError> {
@@ -572,6 +574,111 @@ impl super::Model for DiskFrictionScene {
         Ok((out, vec![]))
     }
 }
+
+/// The `disk-friction` model's reference (`impact describe disk-friction`).
+pub const DOC: d::ModelDoc = d::ModelDoc {
+    name: "disk-friction",
+    summary: "The friction force and moment on a disk of radius a sliding and spinning on a rough plane under uniform pressure (001, (2.3): the functions f1, f2, f3 in complete elliptic integrals), by quadrature over the base and, for a centred pressure, by the elliptic closed forms; c moves the centre of pressure off the centre (001 (1.8)).",
+    conventions: &[
+        "force in units of f N (friction coefficient times the normal load), moment in units of f N a",
+        "force_vector is opposite to the centre's velocity (along x) when the pressure is centred",
+    ],
+    example: "scenes/disk_friction.toml",
+    keys: &[&[
+        d::Key {
+            key: "model",
+            unit: "-",
+            range: "\"disk-friction\"",
+            default: "required",
+            meaning: "the model",
+        },
+        d::Key {
+            key: "a",
+            unit: "m",
+            range: "a > 0",
+            default: "required",
+            meaning: "disk radius",
+        },
+        d::Key {
+            key: "k",
+            unit: "1",
+            range: "k = V/(a omega) >= 0",
+            default: "either k, or v and omega",
+            meaning: "the slip ratio",
+        },
+        d::Key {
+            key: "v",
+            unit: "m/s",
+            range: "v >= 0",
+            default: "with omega",
+            meaning: "sliding speed of the centre",
+        },
+        d::Key {
+            key: "omega",
+            unit: "rad/s",
+            range: "omega >= 0 (v or omega > 0)",
+            default: "with v",
+            meaning: "spin",
+        },
+        d::Key {
+            key: "c",
+            unit: "m",
+            range: "0 <= c <= a/4",
+            default: "0",
+            meaning: "offset of the centre of pressure (beyond a/4 part of the disk lifts off)",
+        },
+    ]],
+    outcomes: &[
+        d::COMMON,
+        &[
+            d::Out {
+                path: "k",
+                unit: "1",
+                meaning: "V/(a omega); null when omega = 0",
+            },
+            d::Out {
+                path: "force",
+                unit: "1 (f N)",
+                meaning: "|F|/(f N)",
+            },
+            d::Out {
+                path: "moment",
+                unit: "1 (f N a)",
+                meaning: "|M|/(f N a)",
+            },
+            d::Out {
+                path: "force_elliptic",
+                unit: "1 (f N)",
+                meaning: "(2.3) with elliptic integrals, for c = 0",
+            },
+            d::Out {
+                path: "moment_elliptic",
+                unit: "1 (f N a)",
+                meaning: "(2.3) with elliptic integrals, for c = 0",
+            },
+            d::Out {
+                path: "force_vector",
+                unit: "1 (f N)",
+                meaning: "F/(f N), [x, y]",
+            },
+            d::Out {
+                path: "moment_signed",
+                unit: "1 (f N a)",
+                meaning: "M/(f N a), signed",
+            },
+            d::Out {
+                path: "quadrature_error",
+                unit: "1",
+                meaning: "estimated quadrature error",
+            },
+            d::Out {
+                path: "units",
+                unit: "-",
+                meaning: "what the numbers are in",
+            },
+        ],
+    ],
+};
 
 #[cfg(test)]
 mod tests {

@@ -11,6 +11,7 @@
 //! $e = \exp(-\zeta\pi/\sqrt{1-\zeta^2})$, $\zeta = c/(2\sqrt{km})$, that it is checked against. For $c = 0$ the contact duration is
 //! $t_c = \tau\,(m/k)^{2/5} v_0^{-1/5}$ with $\tau = 3.2180654597\ldots$ and the rebound
 //! velocity is $-v_0$ (energy is conserved), which the tests use as closed forms.
+use crate::models::doc as d;
 
 use super::params::{Fields, SceneError, SolveSpec};
 use super::{Curves, Model, RunError};
@@ -277,6 +278,7 @@ const HERTZ_NUMBERS: [NumberField; 4] = [
 
 impl Model for HertzScene {
     const NAME: &'static str = "hertz";
+    const DOC: &'static d::ModelDoc = &DOC;
     type Outcome = HertzOutcome;
 
     fn from_table(root: &toml::Table, path: &str) -> Result<Self, SceneError> {
@@ -381,6 +383,113 @@ impl Model for HertzScene {
         Ok((out, vec![]))
     }
 }
+
+/// The `hertz` model's reference (`impact describe hertz`).
+pub const DOC: d::ModelDoc = d::ModelDoc {
+    name: "hertz",
+    summary: "A sphere striking a rigid-backed half-space: m z'' = -F, F = k z^(3/2) (1 + c z') clamped at zero (Hertz with Hunt-Crossley damping), or F = k z + c z' for contact.law = \"linear\" (a spring and dashpot). The textbook case of every contact model; checked against t_c = 3.2181 (m/k)^(2/5) v0^(-1/5) and the spring-dashpot restitution exp(-zeta pi/sqrt(1 - zeta^2)).",
+    conventions: &[
+        "z is the indentation (m), positive into the half-space; z(0) = 0, z'(0) = v0 > 0",
+        "v_out is the velocity at the end of contact in the same axis: negative when the sphere rebounds",
+        "the Hertz force is clamped at zero (no adhesion); the linear law is not (its dashpot may pull at the end of contact, as in the closed form)",
+        "atol is tightened to rtol times the indentation scale when larger (a warning says so)",
+    ],
+    example: "scenes/hertz.toml",
+    keys: &[
+        &[
+            d::Key {
+                key: "model",
+                unit: "-",
+                range: "\"hertz\"",
+                default: "required",
+                meaning: "the model",
+            },
+            d::Key {
+                key: "impactor.mass",
+                unit: "kg",
+                range: "mass > 0",
+                default: "required",
+                meaning: "impactor mass m",
+            },
+            d::Key {
+                key: "impactor.v0",
+                unit: "m/s",
+                range: "v0 > 0",
+                default: "required",
+                meaning: "impact speed, toward the surface",
+            },
+            d::Key {
+                key: "contact.k",
+                unit: "N/m^1.5 (hertz), N/m (linear)",
+                range: "k > 0",
+                default: "required",
+                meaning: "contact stiffness",
+            },
+            d::Key {
+                key: "contact.damping",
+                unit: "s/m (hertz), N s/m (linear)",
+                range: "damping >= 0",
+                default: "0",
+                meaning: "Hunt-Crossley coefficient c, or the dashpot of the linear law",
+            },
+            d::Key {
+                key: "contact.law",
+                unit: "-",
+                range: "\"hertz\", \"linear\"",
+                default: "\"hertz\"",
+                meaning: "the force law",
+            },
+        ],
+        d::SOLVE,
+    ],
+    outcomes: &[
+        d::COMMON,
+        d::CONTACT,
+        &[
+            d::Out {
+                path: "v_out",
+                unit: "m/s",
+                meaning: "velocity at the end, along z: negative when rebounding",
+            },
+            d::Out {
+                path: "restitution",
+                unit: "1",
+                meaning: "-v_out/v0",
+            },
+            d::Out {
+                path: "energy_lost",
+                unit: "J",
+                meaning: "kinetic energy lost, m (v0^2 - v_out^2)/2",
+            },
+            d::Out {
+                path: "contact_law",
+                unit: "-",
+                meaning: "\"hertz\" or \"linear\"",
+            },
+            d::Out {
+                path: "atol_used",
+                unit: "m",
+                meaning: "the absolute tolerance used (tightened to the indentation scale when needed)",
+            },
+            d::Out {
+                path: "method",
+                unit: "-",
+                meaning: "the integrator",
+            },
+            d::Out {
+                path: "state_size",
+                unit: "-",
+                meaning: "states integrated (2)",
+            },
+            d::Out {
+                path: "warnings",
+                unit: "-",
+                meaning: "what the user should know",
+            },
+        ],
+        d::STATS,
+    ],
+};
 
 #[cfg(test)]
 mod tests {

@@ -11,8 +11,10 @@ pub mod cone_plate;
 pub mod constrained;
 pub mod deformable;
 pub mod disk_friction;
+pub mod doc;
 pub mod fixed_points;
 pub mod hertz;
+pub mod ode;
 pub mod params;
 pub mod pendulum_wall;
 pub mod planar_impact;
@@ -71,6 +73,8 @@ pub struct ContactOutcome {
 pub trait Model: Sized + Clone + Send + Sync + 'static {
     /// The name scenes give it (`model = "hertz"`).
     const NAME: &'static str;
+    /// Its reference: every scene key and every outcome ([`doc`], `impact describe`).
+    const DOC: &'static doc::ModelDoc;
     /// What one run gives; serialized once, by `impact run`, sweeps and claims.
     type Outcome: serde::Serialize;
     /// Reads and validates a scene table; `path` names the file in errors.

@@ -51,6 +51,18 @@ pub enum SceneError {
         /// What it should be.
         allowed: String,
     },
+    /// A formula of a text model that cannot be used (its units, its names, its syntax).
+    #[error("{path}: {field} = \"{formula}\": {message}")]
+    Formula {
+        /// File.
+        path: String,
+        /// Dotted field name.
+        field: String,
+        /// The formula as written.
+        formula: String,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
     /// A key that no model knows.
     #[error("{path}: unknown key {key}{suggestion}; allowed here: {allowed}")]
     UnknownKey {

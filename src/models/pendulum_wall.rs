@@ -8,6 +8,7 @@
 //! with $V_{Ot} = 0$, $(\mathbf{GO}, \mathbf n) = 0$, $|(\mathbf{GO}, \mathbf t)| = 1$,
 //! $\rho_O^2 = \rho^2 + 1$, relative to the pendulum's energy before impact $T_0 = (1+\rho^2)/8$
 //! ($|V_{Cn}^-| = 1$ with $|\mathbf{OC}\cdot\mathbf t| = 2$).
+use crate::models::doc as d;
 
 use super::params::{Fields, SceneError};
 use super::{Curves, Model, RunError};
@@ -240,6 +241,7 @@ pub struct PendulumWallOutcome {
 
 impl Model for PendulumWallScene {
     const NAME: &'static str = "pendulum-wall";
+    const DOC: &'static d::ModelDoc = &DOC;
     type Outcome = PendulumWallOutcome;
 
     fn from_table(root: &toml::Table, path: &str) -> Result<Self, SceneError> {
@@ -326,3 +328,125 @@ impl Model for PendulumWallScene {
         Ok((out, vec![]))
     }
 }
+
+/// The `pendulum-wall` model's reference (`impact describe pendulum-wall`).
+pub const DOC: d::ModelDoc = d::ModelDoc {
+    name: "pendulum-wall",
+    summary: "A pendulum suspended at O striking a wall at C with deformable elements at both (002, (2.8)-(2.15), Fig. 2): |GO| = length, |G'C| = length, the central radius of inertia rho, the contact over suspension stiffness sigma = c1/c2. Gives the energy lost while O is braked, the velocities when the contact unloads, and whether (2.10) holds (no reaction at O).",
+    conventions: &[
+        "normal velocities along the wall's normal, positive away from the wall",
+        "energy_loss_ratio is the energy lost while O is braked over the kinetic energy before impact",
+    ],
+    example: "scenes/pendulum_on_wall.toml",
+    keys: &[&[
+        d::Key {
+            key: "model",
+            unit: "-",
+            range: "\"pendulum-wall\"",
+            default: "required",
+            meaning: "the model",
+        },
+        d::Key {
+            key: "length",
+            unit: "m",
+            range: "length > 0",
+            default: "1",
+            meaning: "|GO| (= |G'C|, 002's special case)",
+        },
+        d::Key {
+            key: "rho",
+            unit: "m",
+            range: "rho > 0, 1e-3 <= rho/length <= 1e3",
+            default: "required",
+            meaning: "central radius of inertia",
+        },
+        d::Key {
+            key: "sigma",
+            unit: "1",
+            range: "1e-8 <= sigma <= 1e8",
+            default: "required",
+            meaning: "stiffness ratio c1/c2, contact over suspension",
+        },
+        d::Key {
+            key: "v0",
+            unit: "m/s",
+            range: "v0 > 0",
+            default: "1",
+            meaning: "approach speed of C",
+        },
+        d::Key {
+            key: "mass",
+            unit: "kg",
+            range: "mass > 0",
+            default: "1",
+            meaning: "pendulum mass",
+        },
+        d::Key {
+            key: "stiffness_o",
+            unit: "N/m",
+            range: "stiffness_o > 0",
+            default: "1",
+            meaning: "the suspension element c2",
+        },
+    ]],
+    outcomes: &[
+        d::COMMON,
+        &[
+            d::Out {
+                path: "energy_loss_ratio",
+                unit: "1",
+                meaning: "energy lost while O is braked, over the energy before impact",
+            },
+            d::Out {
+                path: "energy_counted",
+                unit: "-",
+                meaning: "how the loss is counted",
+            },
+            d::Out {
+                path: "v_after.omega",
+                unit: "rad/s",
+                meaning: "angular velocity when the contact element unloads",
+            },
+            d::Out {
+                path: "v_after.v_gn",
+                unit: "m/s",
+                meaning: "normal velocity of G then",
+            },
+            d::Out {
+                path: "v_after.v_gt",
+                unit: "m/s",
+                meaning: "tangential velocity of G then",
+            },
+            d::Out {
+                path: "v_after_note",
+                unit: "-",
+                meaning: "what v_after means",
+            },
+            d::Out {
+                path: "v_on_after",
+                unit: "m/s",
+                meaning: "normal velocity of O after",
+            },
+            d::Out {
+                path: "v_cn_after",
+                unit: "m/s",
+                meaning: "normal velocity of C after",
+            },
+            d::Out {
+                path: "contact_time",
+                unit: "s",
+                meaning: "contact duration",
+            },
+            d::Out {
+                path: "suspension_reaction_free",
+                unit: "-",
+                meaning: "whether (2.10) holds: rho = |GO|",
+            },
+            d::Out {
+                path: "warnings",
+                unit: "-",
+                meaning: "what the user should know",
+            },
+        ],
+    ],
+};

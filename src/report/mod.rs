@@ -252,11 +252,17 @@ pub fn render(papers: &[PaperInfo], outcomes: &[Outcome]) -> Vec<(String, String
                     o.kind
                 )
             };
+            let mut said = String::new();
+            if !o.quote.is_empty() {
+                said.push_str(&format!(" The paper: \"{}\"", o.quote));
+            }
+            if let Some(r) = &o.reading {
+                said.push_str(&format!(" Read as (the claims file's words): `{r}`"));
+            }
             md.push_str(&format!(
-                "## {}\n\nEquation {}. The paper: `{}`\n\nVerdict: **{}** (checked by {by})\n\n{}\n\n",
+                "## {}\n\nEquation {}.{said}\n\nVerdict: **{}** (checked by {by})\n\n{}\n\n",
                 o.id,
                 o.equation,
-                o.quote,
                 o.verdict.as_str(),
                 o.detail
             ));
@@ -607,6 +613,7 @@ mod tests {
             paper: "p".into(),
             equation: "(1)".into(),
             quote: String::new(),
+            reading: None,
             verdict,
             detail: String::new(),
             printed_latex: None,

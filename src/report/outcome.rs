@@ -47,8 +47,10 @@ pub struct Outcome {
     pub paper: String,
     /// Equation as printed.
     pub equation: String,
-    /// The paper's statement.
+    /// The paper's words (checked against its text when found; empty without a quote).
     pub quote: String,
+    /// The claims file's reading of what is checked (not the paper's words).
+    pub reading: Option<String>,
     /// The verdict.
     pub verdict: Verdict,
     /// One-paragraph detail: derived vs printed, by how much.

@@ -13,6 +13,7 @@ use crate::models::cone_plate::ConePlateScene;
 use crate::models::constrained::RigidImpactScene;
 use crate::models::disk_friction::DiskFrictionScene;
 use crate::models::hertz::HertzScene;
+use crate::models::ode::OdeScene;
 use crate::models::pendulum_wall::PendulumWallScene;
 use crate::models::{Curves, Model, RunError};
 use std::any::Any;
@@ -36,7 +37,27 @@ pub const REGISTRY: &[(&str, Loader)] = &[
     (PendulumWallScene::NAME, loader::<PendulumWallScene>),
     (BallsWallScene::NAME, loader::<BallsWallScene>),
     (DiskFrictionScene::NAME, loader::<DiskFrictionScene>),
+    (OdeScene::NAME, loader::<OdeScene>),
 ];
+
+/// Every model's reference, in the order of [`REGISTRY`] (`impact describe`, `verify/MODELS.md`).
+pub const DOCS: &[&crate::models::doc::ModelDoc] = &[
+    HertzScene::DOC,
+    ConePlateScene::DOC,
+    RigidImpactScene::DOC,
+    PendulumWallScene::DOC,
+    BallsWallScene::DOC,
+    DiskFrictionScene::DOC,
+    OdeScene::DOC,
+];
+
+/// The reference of the model named `name` (an error lists the models).
+pub fn describe(name: &str) -> Result<&'static crate::models::doc::ModelDoc, String> {
+    DOCS.iter()
+        .copied()
+        .find(|d| d.name == name)
+        .ok_or_else(|| format!("unknown model \"{name}\"; the models: {}", model_names()))
+}
 
 /// The model names, as listed in messages.
 pub fn model_names() -> String {
@@ -307,6 +328,16 @@ mod tests {
         assert_eq!(field_value(&t, "body.0.mass"), Some(1.0));
         assert_eq!(field_value(&t, "initial.v_rel.2"), Some(-3.0));
         assert!(set_field(&mut t, "initial.v_rel.3", 1.0, "s").is_err());
+    }
+
+    #[test]
+    fn every_registered_model_documents_itself_in_the_same_order() {
+        let names: Vec<&str> = REGISTRY.iter().map(|(n, _)| *n).collect();
+        let documented: Vec<&str> = DOCS.iter().map(|d| d.name).collect();
+        assert_eq!(names, documented);
+        assert!(describe("hertz").is_ok());
+        let e = describe("hetz").unwrap_err();
+        assert!(e.contains("hertz") && e.contains("ode"), "{e}");
     }
 
     #[test]

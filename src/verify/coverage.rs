@@ -113,6 +113,79 @@ pub fn check_equations(
     })
 }
 
+/// The text a quote is compared in: `$`, LaTeX spacing (`\,` `\;` `\:` `\!` `\quad`
+/// `\qquad` `~`) and braces dropped, whitespace runs made one space, letters lower-cased.
+pub fn normalise_quote(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    let mut rest = s;
+    while let Some(c) = rest.chars().next() {
+        let skip = ["\\qquad", "\\quad", "\\,", "\\;", "\\:", "\\!", "\\ "]
+            .iter()
+            .find(|p| rest.starts_with(**p))
+            .map(|p| p.len());
+        if let Some(n) = skip {
+            out.push(' ');
+            rest = &rest[n..];
+            continue;
+        }
+        match c {
+            '$' | '~' => out.push(' '),
+            '{' | '}' => {}
+            c if c.is_whitespace() => out.push(' '),
+            c => out.extend(c.to_lowercase()),
+        }
+        rest = &rest[c.len_utf8()..];
+    }
+    let mut squeezed = String::with_capacity(out.len());
+    for w in out.split_whitespace() {
+        if !squeezed.is_empty() {
+            squeezed.push(' ');
+        }
+        squeezed.push_str(w);
+    }
+    squeezed
+}
+
+/// Whether `quote` stands in `text` (both [`normalise_quote`]d): its pieces between `...`, in
+/// their order.
+pub fn quote_found(quote: &str, text: &str) -> bool {
+    let text = normalise_quote(text);
+    let mut from = 0;
+    for piece in quote.split("...").map(normalise_quote) {
+        if piece.is_empty() {
+            continue;
+        }
+        match text[from..].find(&piece) {
+            Some(i) => from += i + piece.len(),
+            None => return false,
+        }
+    }
+    true
+}
+
+/// Checks every claim's `quote` against the paper's text, when the text is found: a quote that
+/// is not the paper's words is an error naming the claim (the claims file's own words belong in
+/// `reading`).
+pub fn check_quotes(p: &PaperClaims, papers: Option<&Path>) -> Result<(), super::VerifyError> {
+    let Some(text) = text_path(p, papers).and_then(|t| std::fs::read_to_string(t).ok()) else {
+        return Ok(());
+    };
+    for c in &p.claim {
+        if !c.quote.trim().is_empty() && !quote_found(&c.quote, &text) {
+            return Err(super::VerifyError::Claim {
+                file: p.source.display().to_string(),
+                id: c.id.clone(),
+                field: "quote".into(),
+                message: format!(
+                    "{:?} is not in the paper's text ({}); a quote is the paper's words (whitespace, $ and LaTeX spacing aside, `...` for words left out); the claims file's own words go in `reading`",
+                    c.quote, p.file
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
 /// The coverage of `p`: its equations are its `equations` list, or, without one, the labels of
 /// its text (`None`: not found).
 pub fn of_text(p: &PaperClaims, text: Option<&str>, where_: Option<String>) -> Coverage {

@@ -63,8 +63,16 @@ pub struct Head {
     pub id: String,
     /// Equation number as printed, "(22)", or "Fig. 2".
     pub equation: String,
-    /// One-line quote of what the paper states.
+    /// The paper's own words for what the claim checks (checked against the paper's text
+    /// when it is found: whitespace, `$` and LaTeX spacing aside; `...` stands for words left
+    /// out). Empty when the claim has only a `reading`.
+    #[serde(default)]
     pub quote: String,
+    /// What the claim checks, in the claims file's words (a formula the paper prints is read
+    /// with `printed_from`, a statement it makes in prose is its `quote`): the report shows it
+    /// as a reading, never as the paper's words.
+    #[serde(default)]
+    pub reading: Option<String>,
     /// How it is checked: a kind of [`kinds::BUILTIN`] (`identity`, `model`, ..., or `check`,
     /// a named Rust check).
     pub kind: String,
@@ -93,10 +101,11 @@ pub struct Head {
 
 impl Head {
     /// The keys of a head; every other key of a claim belongs to its kind.
-    const KEYS: [&str; 8] = [
+    const KEYS: [&str; 9] = [
         "id",
         "equation",
         "quote",
+        "reading",
         "kind",
         "assumption",
         "blind",
@@ -238,6 +247,7 @@ pub(crate) fn outcome(paper: &PaperClaims, c: &Head, verdict: Verdict, detail: S
         paper: paper.paper.clone(),
         equation: c.equation.clone(),
         quote: c.quote.clone(),
+        reading: c.reading.clone(),
         verdict,
         detail,
         printed_latex: None,
@@ -360,6 +370,14 @@ pub(crate) fn check_names(file: &PaperClaims) -> Result<(), VerifyError> {
                 message: format!(
                     "{f:?}: allowed: a short name of letters, digits, '.', '-' and '_' (e.g. \"000-missing-h\")"
                 ),
+            });
+        }
+        if c.quote.trim().is_empty() && c.reading.as_deref().is_none_or(|r| r.trim().is_empty()) {
+            return Err(VerifyError::Claim {
+                file: file.source.display().to_string(),
+                id: c.id.clone(),
+                field: "quote".into(),
+                message: "a claim says what it checks: `quote` (the paper's words, checked against its text) or `reading` (the claims file's words)".into(),
             });
         }
         if !safe_name(&c.id) {

@@ -337,6 +337,7 @@ pub fn check(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Outcome
         paper: paper.paper.clone(),
         equation: c.equation.clone(),
         quote: c.quote.clone(),
+        reading: c.reading.clone(),
         verdict,
         detail,
         printed_latex: None,
@@ -443,6 +444,7 @@ pub fn passivity(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Out
         paper: paper.paper.clone(),
         equation: c.equation.clone(),
         quote: c.quote.clone(),
+        reading: c.reading.clone(),
         verdict: if bulk_passive {
             Verdict::Holds
         } else {

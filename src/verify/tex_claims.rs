@@ -181,16 +181,38 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
                 ("printed_from", latex, lhs)
             }
         };
-        if c.keys.contains_key("printed") {
-            return Err(bad(
-                &snapshot,
-                &c.head.id,
-                field,
-                "give printed or printed_tex/printed_from, not both".into(),
-            ));
-        }
         let e = read_side(&latex, lhs.as_deref(), &syms)
             .map_err(|e| bad(&snapshot, &c.head.id, field, format!("`{latex}`: {e}")))?;
+        // with `printed` beside `printed_from` and its `lhs`, the side read stands for the
+        // left side's symbol in `printed` (A2 of (16) in `A2*Lop*fd`, a term of (15))
+        let e = match (c.keys.get("printed"), &lhs) {
+            (None, _) => e,
+            (Some(p), Some(name)) if field == "printed_from" => {
+                let text = p.as_str().unwrap_or_default();
+                let outer = crate::algebra::expr::parse(text).map_err(|err| {
+                    bad(&snapshot, &c.head.id, "printed", format!("`{text}`: {err}"))
+                })?;
+                if !outer.symbols().contains(name) {
+                    return Err(bad(
+                        &snapshot,
+                        &c.head.id,
+                        "printed",
+                        format!(
+                            "`{text}` does not use `{name}`, the left side printed_from reads: with printed_from, printed is a formula of that symbol"
+                        ),
+                    ));
+                }
+                outer.substitute(&|s| (s == name.as_str()).then(|| e.clone()))
+            }
+            (Some(_), _) => {
+                return Err(bad(
+                    &snapshot,
+                    &c.head.id,
+                    field,
+                    "give printed or printed_tex/printed_from, not both (printed beside printed_from needs its lhs: the symbol printed uses)".into(),
+                ));
+            }
+        };
         if let Some(s) = e.symbols().into_iter().find(|s| s.starts_with('{')) {
             return Err(bad(
                 &snapshot,

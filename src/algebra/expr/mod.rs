@@ -20,8 +20,10 @@
 //! ```
 //! Numbers (`3`, `3.2181`, `1e-3`) are read as exact rationals; names are
 //! `[A-Za-z_][A-Za-z0-9_]*` with dotted parts (`contact.duration`, an outcome quantity); `pi` is
-//! the constant; the functions are `sqrt exp ln sin cos tan asin acos atan abs ellipk ellipe`; and
-//! `diff(e, x)`, `int(e, x, lo, hi)`, `at(e, x, v)` (see [`super::calculus`]).
+//! the constant; the functions are `sqrt exp ln sin cos tan asin acos atan abs ellipk ellipe
+//! factorial gamma erf sign heaviside`, and `max(a, b)`, `min(a, b)`, `beta(a, b)` (read as
+//! $(a + b \pm |a - b|)/2$ and $\Gamma(a)\Gamma(b)/\Gamma(a + b)$, so every other part of the tool
+//! knows them); and `diff(e, x)`, `int(e, x, lo, hi)`, `at(e, x, v)` (see [`super::calculus`]).
 //!
 //! A parsed [`Expr`] is a tree. It becomes an exact [`RatFunc`] when it is rational (integer
 //! powers, no functions; `pi` stays a symbol, which is sound for identities because $\pi$ is
@@ -59,7 +61,18 @@ pub const FUNCTIONS: &[&str] = &[
     "ellipk",
     "ellipe",
     "factorial",
+    "gamma",
+    "erf",
+    "sign",
+    "heaviside",
+    "max",
+    "min",
+    "beta",
 ];
+
+/// Names that are functions when followed by `(` and symbols otherwise (`gamma` is also a rate
+/// of paper 000, `beta` an angle of 001).
+pub const SYMBOL_OR_FUNCTION: &[&str] = &["gamma", "beta"];
 
 /// A function of one argument.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -90,6 +103,14 @@ pub enum Func {
     EllipE,
     /// $n!$; $\Gamma(x + 1)$ off the integers. Exact for an integer in 0..=1000.
     Factorial,
+    /// Euler's $\Gamma(x)$.
+    Gamma,
+    /// The error function.
+    Erf,
+    /// The sign: -1, 0 or 1 (dimensionless whatever its argument's unit).
+    Sign,
+    /// Heaviside's step: 0 for x < 0, 1 for x >= 0 (dimensionless whatever its argument's unit).
+    Heaviside,
 }
 
 impl Func {
@@ -108,6 +129,10 @@ impl Func {
             "ellipk" => Func::EllipK,
             "ellipe" => Func::EllipE,
             "factorial" => Func::Factorial,
+            "gamma" => Func::Gamma,
+            "erf" => Func::Erf,
+            "sign" => Func::Sign,
+            "heaviside" => Func::Heaviside,
             _ => return None,
         })
     }
@@ -128,6 +153,10 @@ impl Func {
             Func::EllipK => "ellipk",
             Func::EllipE => "ellipe",
             Func::Factorial => "factorial",
+            Func::Gamma => "gamma",
+            Func::Erf => "erf",
+            Func::Sign => "sign",
+            Func::Heaviside => "heaviside",
         }
     }
 
@@ -150,6 +179,26 @@ impl Func {
                     (1..=x as u32).map(f64::from).product()
                 } else {
                     statrs::function::gamma::gamma(x + 1.0)
+                }
+            }
+            Func::Gamma => statrs::function::gamma::gamma(x),
+            Func::Erf => statrs::function::erf::erf(x),
+            Func::Sign => {
+                if x > 0.0 {
+                    1.0
+                } else if x < 0.0 {
+                    -1.0
+                } else {
+                    x * 0.0 // 0, or NaN for NaN
+                }
+            }
+            Func::Heaviside => {
+                if x >= 0.0 {
+                    1.0
+                } else if x < 0.0 {
+                    0.0
+                } else {
+                    f64::NAN
                 }
             }
         }

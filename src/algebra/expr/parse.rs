@@ -224,7 +224,12 @@ impl Parser {
             }
             Tok::Name(n) => {
                 self.bump();
-                if let Some(f) = Func::from_name(&n) {
+                if matches!(n.as_str(), "max" | "min" | "beta") {
+                    return self.two(&n);
+                }
+                let symbol_here =
+                    super::SYMBOL_OR_FUNCTION.contains(&n.as_str()) && *self.peek() != Tok::LParen;
+                if let Some(f) = Func::from_name(&n).filter(|_| !symbol_here) {
                     if *self.peek() != Tok::LParen {
                         return Err(self.err(&format!("`(` after the function `{n}`")));
                     }
@@ -262,6 +267,49 @@ impl Parser {
             }
             _ => Err(self.err(WHAT)),
         }
+    }
+
+    /// `max(a, b)`, `min(a, b)` as $(a + b \pm |a - b|)/2$ (exact in floating point when one
+    /// side is 0), `beta(a, b)` as $\Gamma(a)\Gamma(b)/\Gamma(a + b)$, after the name.
+    fn two(&mut self, n: &str) -> Result<Expr, ParseError> {
+        if *self.peek() != Tok::LParen {
+            if n == "beta" {
+                return Ok(Expr::Sym(n.into()));
+            }
+            return Err(self.err(&format!("`(` after the function `{n}`")));
+        }
+        self.bump();
+        let a = self.expr()?;
+        if *self.peek() != Tok::Comma {
+            return Err(self.err(&format!("`,` and the second argument of `{n}(a, b)`")));
+        }
+        self.bump();
+        let b = self.expr()?;
+        if *self.peek() != Tok::RParen {
+            return Err(self.err(&format!("`)` closing `{n}(`")));
+        }
+        self.bump();
+        let bx = |e: Expr| Box::new(e);
+        let bin = |op, x: Expr, y: Expr| Expr::Bin(op, bx(x), bx(y));
+        Ok(match n {
+            "beta" => {
+                let g = |x: Expr| Expr::Call(Func::Gamma, bx(x));
+                bin(
+                    Op::Div,
+                    bin(Op::Mul, g(a.clone()), g(b.clone())),
+                    g(bin(Op::Add, a, b)),
+                )
+            }
+            _ => {
+                let spread = Expr::Call(Func::Abs, bx(bin(Op::Sub, a.clone(), b.clone())));
+                let op = if n == "max" { Op::Add } else { Op::Sub };
+                bin(
+                    Op::Div,
+                    bin(op, bin(Op::Add, a, b), spread),
+                    Expr::Num(Q::from_integer(2.into())),
+                )
+            }
+        })
     }
 
     /// `diff(e, x)`, `int(e, x, lo, hi)`, `at(e, x, v)`, after the name.

@@ -2,6 +2,7 @@
 //! outcome `impact run` prints.
 
 use super::*;
+use crate::models::doc as d;
 
 /// The effects a cone-plate scene may name.
 pub const EFFECTS: &[&str] = &[
@@ -201,6 +202,7 @@ fn read_effects(
 
 impl crate::models::Model for ConePlateScene {
     const NAME: &'static str = "cone-plate";
+    const DOC: &'static d::ModelDoc = &DOC;
     type Outcome = ConePlateOutcome;
 
     fn from_table(root: &toml::Table, path: &str) -> Result<Self, crate::models::SceneError> {
@@ -495,3 +497,279 @@ impl crate::models::Model for ConePlateScene {
         Ok((out, curves))
     }
 }
+
+/// The `cone-plate` model's reference (`impact describe cone-plate`).
+pub const DOC: d::ModelDoc = d::ModelDoc {
+    name: "cone-plate",
+    summary: "A rigid cone striking a viscoelastic plate on a Winkler-Pasternak-Kelvin-Voigt foundation (000, (1)-(17)): the cone m_s z'' = -P, the contact force P of (10) with the viscoelastic operator of sec. 2, the plate's Galerkin modes (12)-(16). Only the effects a scene names become states: without \"plate\" the cone meets a half-space; without \"viscoelastic\" the material is elastic.",
+    conventions: &[
+        "z is the cone's displacement, positive into the plate; z(0) = 0, z'(0) = v0",
+        "the contact indentation is z - f (the plate's deflection under the cone) with \"relative-indentation\", else z as the paper writes it",
+        "variant = \"as-printed\" integrates (17) with the printed zeta, A4 and (16); \"corrected\" with the derived ones (reports/000_cone_plate.md)",
+    ],
+    example: "scenes/cone_plate.toml",
+    keys: &[
+        &[
+            d::Key {
+                key: "model",
+                unit: "-",
+                range: "\"cone-plate\"",
+                default: "required",
+                meaning: "the model",
+            },
+            d::Key {
+                key: "effects",
+                unit: "-",
+                range: "a list of: viscoelastic, plate, winkler, pasternak, damper, membrane, inplane, modes, relative-indentation (the plate's effects only with \"plate\")",
+                default: "[]",
+                meaning: "what is simulated",
+            },
+            d::Key {
+                key: "variant",
+                unit: "-",
+                range: "\"as-printed\", \"corrected\"",
+                default: "\"corrected\"",
+                meaning: "the paper's formulas as printed, or corrected",
+            },
+            d::Key {
+                key: "viscoelastic_law",
+                unit: "-",
+                range: "\"constant-bulk\", \"constant-poisson\"",
+                default: "\"constant-bulk\"",
+                meaning: "the paper's Kelvin-Voigt law with constant bulk modulus, or a constant Poisson ratio (passive)",
+            },
+            d::Key {
+                key: "impactor.mass",
+                unit: "kg",
+                range: "mass > 0",
+                default: "required",
+                meaning: "cone mass m_s",
+            },
+            d::Key {
+                key: "impactor.theta_deg",
+                unit: "degree",
+                range: "0 < theta_deg < 90",
+                default: "required",
+                meaning: "angle between the cone's surface and the plane",
+            },
+            d::Key {
+                key: "impactor.v0",
+                unit: "m/s",
+                range: "v0 > 0",
+                default: "required",
+                meaning: "impact speed, toward the plate",
+            },
+            d::Key {
+                key: "material.E",
+                unit: "Pa",
+                range: "E > 0",
+                default: "required",
+                meaning: "Young's modulus",
+            },
+            d::Key {
+                key: "material.nu",
+                unit: "1",
+                range: "-1 < nu < 0.5",
+                default: "required",
+                meaning: "Poisson's ratio",
+            },
+            d::Key {
+                key: "material.eta",
+                unit: "Pa s",
+                range: "eta > 0 with \"viscoelastic\"",
+                default: "0",
+                meaning: "viscosity",
+            },
+            d::Key {
+                key: "plate.a",
+                unit: "m",
+                range: "a > 0 with \"plate\"",
+                default: "0",
+                meaning: "plate length",
+            },
+            d::Key {
+                key: "plate.b",
+                unit: "m",
+                range: "b > 0 with \"plate\"",
+                default: "0",
+                meaning: "plate width",
+            },
+            d::Key {
+                key: "plate.h",
+                unit: "m",
+                range: "h > 0 with \"plate\"",
+                default: "0",
+                meaning: "plate thickness",
+            },
+            d::Key {
+                key: "plate.rho",
+                unit: "kg/m^3",
+                range: "rho > 0 with \"plate\"",
+                default: "0",
+                meaning: "plate density",
+            },
+            d::Key {
+                key: "plate.modes",
+                unit: "-",
+                range: "pairs [m, n] of odd integers 1..99",
+                default: "[[1, 1]]",
+                meaning: "the Galerkin modes (with \"modes\")",
+            },
+            d::Key {
+                key: "foundation.kw",
+                unit: "N/m^3",
+                range: "kw >= 0 with \"winkler\"",
+                default: "required with it",
+                meaning: "Winkler modulus",
+            },
+            d::Key {
+                key: "foundation.kg",
+                unit: "N/m",
+                range: "kg >= 0 with \"pasternak\"",
+                default: "required with it",
+                meaning: "Pasternak shear modulus",
+            },
+            d::Key {
+                key: "foundation.ct",
+                unit: "N s/m^3",
+                range: "ct >= 0 with \"damper\"",
+                default: "required with it",
+                meaning: "foundation damping",
+            },
+            d::Key {
+                key: "inplane.p1",
+                unit: "N/m",
+                range: "a number, with \"inplane\"",
+                default: "required with it",
+                meaning: "in-plane load along x",
+            },
+            d::Key {
+                key: "inplane.p2",
+                unit: "N/m",
+                range: "a number, with \"inplane\"",
+                default: "required with it",
+                meaning: "in-plane load along y",
+            },
+            d::Key {
+                key: "solve.samples",
+                unit: "s",
+                range: "times >= 0",
+                default: "[]",
+                meaning: "times at which to report the solution",
+            },
+        ],
+        d::SOLVE,
+    ],
+    outcomes: &[
+        d::COMMON,
+        d::CONTACT,
+        &[
+            d::Out {
+                path: "energy.initial",
+                unit: "J",
+                meaning: "kinetic energy at impact",
+            },
+            d::Out {
+                path: "energy.final",
+                unit: "J",
+                meaning: "kinetic plus stored energy at the end",
+            },
+            d::Out {
+                path: "energy.dissipated",
+                unit: "J",
+                meaning: "dissipated energy",
+            },
+            d::Out {
+                path: "energy.operator_work",
+                unit: "J",
+                meaning: "work of the memory operators",
+            },
+            d::Out {
+                path: "energy.operator_work_min",
+                unit: "J",
+                meaning: "smallest operator work seen (negative: the operator gave energy)",
+            },
+            d::Out {
+                path: "energy.injected",
+                unit: "J",
+                meaning: "work injected by the load with the paper's absolute indentation",
+            },
+            d::Out {
+                path: "energy.balance_error",
+                unit: "1",
+                meaning: "energy balance error, relative",
+            },
+            d::Out {
+                path: "samples[].t",
+                unit: "s",
+                meaning: "sample time",
+            },
+            d::Out {
+                path: "samples[].z",
+                unit: "m",
+                meaning: "cone displacement",
+            },
+            d::Out {
+                path: "samples[].zdot",
+                unit: "m/s",
+                meaning: "cone velocity",
+            },
+            d::Out {
+                path: "samples[].f",
+                unit: "m",
+                meaning: "plate deflection under the cone (null without the plate)",
+            },
+            d::Out {
+                path: "samples[].P",
+                unit: "N",
+                meaning: "contact force",
+            },
+            d::Out {
+                path: "samples",
+                unit: "-",
+                meaning: "the samples (empty without solve.samples)",
+            },
+            d::Out {
+                path: "effects",
+                unit: "-",
+                meaning: "the effects simulated",
+            },
+            d::Out {
+                path: "modes",
+                unit: "-",
+                meaning: "the plate modes [m, n]",
+            },
+            d::Out {
+                path: "modes[]",
+                unit: "-",
+                meaning: "one mode [m, n]",
+            },
+            d::Out {
+                path: "state_dim",
+                unit: "-",
+                meaning: "states integrated",
+            },
+            d::Out {
+                path: "variant",
+                unit: "-",
+                meaning: "as given",
+            },
+            d::Out {
+                path: "viscoelastic_law",
+                unit: "-",
+                meaning: "as given",
+            },
+            d::Out {
+                path: "method",
+                unit: "-",
+                meaning: "the integrator",
+            },
+            d::Out {
+                path: "warnings",
+                unit: "-",
+                meaning: "what the report must say",
+            },
+        ],
+        d::STATS,
+    ],
+};

@@ -60,11 +60,18 @@ impl Kind for Model {
         let printed = cx.formula(c, &s.where_, "printed", &s.printed)?;
         let outcome = scene.probe(cx, c, &probe, &[("printed", &printed)])?;
         scene::check_quantity(cx, c, &outcome, &s.quantity)?;
+        // the quantity's unit: the claims file's, or the model's own (a text model states the
+        // unit of each outcome, `outcome_units`)
+        let model_unit = s
+            .quantity
+            .strip_prefix("outcome.")
+            .and_then(|q| outcome.get("outcome_units")?.get(q)?.as_str())
+            .and_then(|u| units::Unit::parse(u).ok());
         let units_note = match (
-            cx.units.get(&s.quantity),
+            cx.units.get(&s.quantity).copied().or(model_unit),
             units::dimension(&printed, &cx.unit_fn()),
         ) {
-            (Some(u), Ok(pu)) if pu != *u => {
+            (Some(u), Ok(pu)) if pu != u => {
                 Some(format!("; units: the formula is {pu}, the quantity {u}"))
             }
             _ => None,

@@ -1,0 +1,289 @@
+//! A formula compiled once to a flat stack program: the right-hand sides, events, jumps and
+//! Jacobian entries of a text model ([`super`]) are evaluated millions of times, so they do not
+//! walk a tree or allocate. Constant subtrees are folded when compiling (`2/pi`, `0*x` from a
+//! symbolic derivative), powers with a constant exponent become `powi`, `sqrt` or `powi * sqrt`
+//! (the Hertz force `z^(3/2)` is `z * sqrt(z)`, as the built-in model computes it), and the
+//! stack lives on the Rust stack ([`MAX_DEPTH`] slots, checked when compiling).
+//!
+//! Written here: an expression-evaluator crate would bring its own parser and formula language;
+//! ours is the claims files' ([`crate::algebra::expr`]), which the units check and the symbolic
+//! Jacobian already read.
+
+use crate::algebra::expr::{Calc, Expr, Func, Op};
+use num_traits::ToPrimitive;
+
+/// The deepest stack a compiled formula may need.
+pub const MAX_DEPTH: usize = 48;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Ins {
+    Const(f64),
+    Var(u32),
+    Neg,
+    Add,
+    Sub,
+    Mul,
+    Div,
+    /// `x^n`, integer `n`.
+    Powi(i32),
+    /// `x^(n + 1/2)` as `powi(x, n) * sqrt(x)`.
+    PowHalf(i32),
+    /// `x^c`, constant `c`.
+    PowC(f64),
+    /// `x^y`.
+    Pow,
+    Call(Func),
+}
+
+/// A compiled formula of the variables a slot map names.
+#[derive(Clone, Debug)]
+pub struct Program {
+    code: Vec<Ins>,
+}
+
+/// What a compiled subtree is: a constant (folded) or code.
+enum Part {
+    Const(f64),
+    Code(Vec<Ins>, usize),
+}
+
+impl Part {
+    fn into_code(self) -> (Vec<Ins>, usize) {
+        match self {
+            Part::Const(c) => (vec![Ins::Const(c)], 1),
+            Part::Code(c, d) => (c, d),
+        }
+    }
+}
+
+/// The bits of 1.0 (a fold by an exact 1, not by a number near it).
+const ONE: u64 = 0x3ff0_0000_0000_0000;
+
+fn binary(op: Ins, a: Part, b: Part) -> Part {
+    if let (Part::Const(x), Part::Const(y)) = (&a, &b) {
+        return Part::Const(apply_bin(op, *x, *y));
+    }
+    // the folds a symbolic derivative needs (0*x, 1*x, x + 0); 0*x is 0 even where x is not
+    // finite, as the derivative of a term that does not depend on the variable is
+    match (op, &a, &b) {
+        (Ins::Mul, Part::Const(z), _) | (Ins::Mul, _, Part::Const(z)) if *z == 0.0 => {
+            return Part::Const(0.0);
+        }
+        (Ins::Mul, Part::Const(o), _) if o.to_bits() == ONE => return b,
+        (Ins::Mul | Ins::Div, _, Part::Const(o)) if o.to_bits() == ONE => return a,
+        (Ins::Add, Part::Const(z), _) if *z == 0.0 => return b,
+        (Ins::Add | Ins::Sub, _, Part::Const(z)) if *z == 0.0 => return a,
+        (Ins::Div, Part::Const(z), _) if *z == 0.0 => return Part::Const(0.0),
+        _ => {}
+    }
+    let (mut ca, da) = a.into_code();
+    let (cb, db) = b.into_code();
+    ca.extend(cb);
+    ca.push(op);
+    Part::Code(ca, da.max(db + 1))
+}
+
+fn unary(ins: Ins, a: Part) -> Part {
+    match a {
+        Part::Const(x) => Part::Const(apply_un(ins, x)),
+        Part::Code(mut c, d) => {
+            c.push(ins);
+            Part::Code(c, d)
+        }
+    }
+}
+
+fn apply_bin(op: Ins, x: f64, y: f64) -> f64 {
+    match op {
+        Ins::Add => x + y,
+        Ins::Sub => x - y,
+        Ins::Mul => x * y,
+        Ins::Div => x / y,
+        _ => x.powf(y),
+    }
+}
+
+fn apply_un(ins: Ins, x: f64) -> f64 {
+    match ins {
+        Ins::Neg => -x,
+        Ins::Powi(n) => x.powi(n),
+        Ins::PowHalf(n) => x.powi(n) * x.sqrt(),
+        Ins::PowC(c) => x.powf(c),
+        Ins::Call(f) => f.apply(x),
+        _ => x,
+    }
+}
+
+fn compile_part(e: &Expr, slot: &dyn Fn(&str) -> Option<usize>) -> Result<Part, String> {
+    Ok(match e {
+        Expr::Num(q) => Part::Const(q.to_f64().unwrap_or(f64::NAN)),
+        Expr::Pi => Part::Const(std::f64::consts::PI),
+        Expr::Sym(s) => {
+            let i = slot(s).ok_or_else(|| format!("`{s}` is not a parameter, state or `t`"))?;
+            Part::Code(vec![Ins::Var(i as u32)], 1)
+        }
+        Expr::Neg(a) => unary(Ins::Neg, compile_part(a, slot)?),
+        Expr::Call(f, a) => unary(Ins::Call(*f), compile_part(a, slot)?),
+        Expr::Bin(Op::Pow, a, b) => {
+            let base = compile_part(a, slot)?;
+            match b.exact_constant() {
+                Some(k) => {
+                    let two_k = &k * crate::algebra::poly::Q::from_integer(2.into());
+                    let small = |v: &crate::algebra::poly::Q| {
+                        v.is_integer() && v.to_integer().to_i32().is_some_and(|n| n.abs() <= 64)
+                    };
+                    if small(&k) {
+                        unary(Ins::Powi(k.to_integer().to_i32().unwrap_or(0)), base)
+                    } else if small(&two_k) {
+                        // k = n + 1/2 with n = (2k - 1)/2
+                        let n = (two_k.to_integer().to_i32().unwrap_or(0) - 1) / 2;
+                        unary(Ins::PowHalf(n), base)
+                    } else {
+                        unary(Ins::PowC(k.to_f64().unwrap_or(f64::NAN)), base)
+                    }
+                }
+                None => binary(Ins::Pow, base, compile_part(b, slot)?),
+            }
+        }
+        Expr::Bin(op, a, b) => {
+            let ins = match op {
+                Op::Add => Ins::Add,
+                Op::Sub => Ins::Sub,
+                Op::Mul => Ins::Mul,
+                _ => Ins::Div,
+            };
+            binary(ins, compile_part(a, slot)?, compile_part(b, slot)?)
+        }
+        Expr::Calc(Calc::Diff | Calc::At | Calc::Sum, ..) => compile_part(&e.lower()?, slot)?,
+        Expr::Calc(Calc::Int, ..) => {
+            return Err(format!(
+                "`{e}`: `int` is not allowed in a model's formulas (write the integral as a state)"
+            ));
+        }
+    })
+}
+
+impl Program {
+    /// Compiles `e`; `slot` gives each name's index in the variables [`Program::eval`] reads.
+    pub fn compile(e: &Expr, slot: &dyn Fn(&str) -> Option<usize>) -> Result<Program, String> {
+        let (code, depth) = compile_part(e, slot)?.into_code();
+        if depth > MAX_DEPTH {
+            return Err(format!(
+                "`{e}` nests too deeply for a compiled formula ({depth} > {MAX_DEPTH} stack slots): name a part of it in [definitions]"
+            ));
+        }
+        Ok(Program { code })
+    }
+
+    /// The constant value, if the formula folded to one.
+    pub fn constant(&self) -> Option<f64> {
+        match self.code.as_slice() {
+            [Ins::Const(c)] => Some(*c),
+            _ => None,
+        }
+    }
+
+    /// A program that is the constant `c`.
+    pub fn from_constant(c: f64) -> Program {
+        Program {
+            code: vec![Ins::Const(c)],
+        }
+    }
+
+    /// The value at `vars` (indexed as the slot map of [`Program::compile`] said).
+    #[inline]
+    pub fn eval(&self, vars: &[f64]) -> f64 {
+        let mut st = [0.0f64; MAX_DEPTH];
+        let mut sp = 0usize;
+        for ins in &self.code {
+            match *ins {
+                Ins::Const(c) => {
+                    st[sp] = c;
+                    sp += 1;
+                }
+                Ins::Var(i) => {
+                    st[sp] = vars[i as usize];
+                    sp += 1;
+                }
+                Ins::Add | Ins::Sub | Ins::Mul | Ins::Div | Ins::Pow => {
+                    sp -= 1;
+                    st[sp - 1] = apply_bin(*ins, st[sp - 1], st[sp]);
+                }
+                _ => st[sp - 1] = apply_un(*ins, st[sp - 1]),
+            }
+        }
+        st[0]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::expr::parse;
+
+    fn run(text: &str, vars: &[f64]) -> f64 {
+        let names = ["x", "y", "z"];
+        let e = parse(text).expect("parses");
+        let p = Program::compile(&e, &|s| names.iter().position(|n| *n == s)).expect("compiles");
+        p.eval(vars)
+    }
+
+    #[test]
+    fn a_program_gives_the_trees_value() {
+        // the reference is the tree walk of the same formula (Expr::eval)
+        let vars = [0.7, -1.3, 2.5];
+        for text in [
+            "x + y*z - x/z",
+            "-x^2 + z^(3/2) - z^(-1/2) + z^(5/2) + x^0.3",
+            "max(y, 0) + min(x, z) + abs(y) + sign(y) + heaviside(x - 1)",
+            "sin(x)*exp(-y) + sqrt(z)/(1 + x^2)^3 + z^x",
+            "2/pi*x + 0*y + 1*z - (y - 0)",
+            "gamma(z) + erf(x) + beta(x, z)",
+        ] {
+            let e = parse(text).expect("parses");
+            let names = ["x", "y", "z"];
+            let tree = e
+                .eval(&|s| names.iter().position(|n| *n == s).map(|i| vars[i]))
+                .expect("evaluates");
+            let flat = run(text, &vars);
+            assert!(
+                (flat - tree).abs() <= 1e-14 * tree.abs().max(1.0),
+                "{text}: {flat} vs {tree}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_hertz_power_is_exact_and_max_with_zero_is_exact() {
+        // z^(3/2) as z*sqrt(z), bit for bit as the built-in model computes it
+        let z = 1.234_567e-4_f64;
+        assert_eq!(
+            run("z^(3/2)", &[0.0, 0.0, z]).to_bits(),
+            (z * z.sqrt()).to_bits()
+        );
+        // max(-y, 0) is exactly -y for y < 0 and exactly 0 for y > 0
+        assert_eq!(
+            run("max(-y, 0)", &[0.0, -3.3e-17, 0.0]).to_bits(),
+            3.3e-17_f64.to_bits()
+        );
+        assert_eq!(
+            run("max(-y, 0)", &[0.0, 3.3e-17, 0.0]).to_bits(),
+            0.0_f64.to_bits()
+        );
+    }
+
+    #[test]
+    fn unknown_names_and_deep_formulas_are_refused() {
+        let e = parse("x + q").expect("parses");
+        let err = Program::compile(&e, &|s| (s == "x").then_some(0)).unwrap_err();
+        assert!(err.contains("`q`"), "{err}");
+        let deep = (0..60).fold("x".to_string(), |acc, _| format!("x + (x*{acc})"));
+        let e = parse(&deep).expect("parses");
+        let err = Program::compile(&e, &|s| (s == "x").then_some(0)).unwrap_err();
+        assert!(err.contains("nests too deeply"), "{err}");
+        // a constant formula folds to its value
+        let e = parse("2/pi*3").expect("parses");
+        let p = Program::compile(&e, &|_| None).expect("compiles");
+        assert_eq!(p.constant(), Some(6.0 / std::f64::consts::PI));
+    }
+}
