@@ -285,6 +285,12 @@ fn bad_claims_exit_2_naming_file_claim_and_key_and_write_nothing() {
             "claim t.bad: expected: kind `dimension` does not take this key; allowed: `printed`, `expect`, `where`",
         ),
         (
+            "where in the wrong unit",
+            // y is m in [symbols]; a `where` that gives it kilograms is refused
+            identity("x + y", "x + y").replace("derived = \"x + y\"\n", "derived = \"x + y\"\nwhere = { y = \"m*x/x\" }\n"),
+            "claim t.bad: where.y: `m*x/x` is kg, but `y` is m in [symbols]",
+        ),
+        (
             "a key of another kind",
             model("scene = \"hertz.toml\"\nquantity = \"contact.duration\"\ncorrected = \"x\""),
             "claim t.bad: corrected: kind `model` does not take this key",

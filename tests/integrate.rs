@@ -397,16 +397,21 @@ fn work_precision_reports_the_error_against_the_reference() {
             &Oscillator,
             (0.0, &[1.0, 0.0], 10.0),
             &reference,
-            &[Method::Dop853],
+            &[Method::Dop853, Method::Radau5],
             &[1e-10],
             1,
         )
         .expect("runs");
-        assert!(
-            p[0].error >= lo && p[0].error <= hi,
-            "error {} not in [{lo}, {hi}]",
-            p[0].error
-        );
+        for (w, method) in p.iter().zip([Method::Dop853, Method::Radau5]) {
+            assert_eq!(w.method, method, "the point says its method");
+            assert!(
+                w.error >= lo && w.error <= hi,
+                "{method:?}: error {} not in [{lo}, {hi}]",
+                w.error
+            );
+        }
+        // each method did its own work: Radau5 evaluates a Jacobian, DOP853 does not
+        assert!(p[0].stats.jac_evals == 0 && p[1].stats.jac_evals > 0);
     }
 }
 

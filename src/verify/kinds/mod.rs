@@ -123,6 +123,15 @@ fn validate_as<K: Kind>(cx: &Checked, c: &ClaimSpec) -> Result<Box<dyn Claim>, V
     let spec: K::Spec = toml::Value::Table(c.keys.clone())
         .try_into()
         .map_err(|e: toml::de::Error| key_error(cx.file, c, K::NAME, &e.to_string()))?;
+    // the claim's own `where`, as written (a kind may add entries of its own, which are not
+    // checked here: a definition's printed formula stands for the name it defines)
+    if let Some(w) = c
+        .keys
+        .get("where")
+        .and_then(|v| v.clone().try_into::<Where>().ok())
+    {
+        cx.check_where_units(&c.head, &w)?;
+    }
     Ok(Box::new(K::validate(cx, &c.head, spec)?))
 }
 
@@ -453,6 +462,52 @@ impl<'a> Checked<'a> {
             cur = next;
         }
         Ok(cur)
+    }
+
+    /// A `where` name that has a unit in [symbols] must be given a formula in that unit
+    /// (`where = { a = "P" }` with a in m and P in N is refused); a number is a value in the
+    /// name's own unit.
+    fn check_where_units(&self, c: &Head, w: &Where) -> Result<(), VerifyError> {
+        let local: BTreeMap<String, Expr> = w
+            .iter()
+            .map(|(k, v)| {
+                parse_formula(self.file, c, &format!("where.{k}"), v).map(|x| (k.clone(), x))
+            })
+            .collect::<Result<_, _>>()?;
+        for (k, v) in &local {
+            let Some(want) = self.units.get(k) else {
+                continue;
+            };
+            let mut full = v.clone();
+            for _ in 0..50 {
+                let next = self.expand(&full.substitute(&|s: &str| {
+                    (s != k)
+                        .then(|| local.get(s).filter(|x| !x.symbols().is_empty()).cloned())
+                        .flatten()
+                }));
+                if next == full {
+                    break;
+                }
+                full = next;
+            }
+            // a number is a value in the name's own unit (`where = { a = "1" }`: 1 m)
+            let zero = full.symbols().is_empty();
+            if let Ok(u) = crate::algebra::units::dimension(&full, &self.unit_fn())
+                && u != *want
+                && !zero
+            {
+                return Err(claim_err(
+                    self.file,
+                    c,
+                    &format!("where.{k}"),
+                    format!(
+                        "`{}` is {u}, but `{k}` is {want} in [symbols]",
+                        w.get(k).map(String::as_str).unwrap_or_default()
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The claim's own definitions (`where`) expanded in `e`, repeatedly (they may use each
