@@ -330,9 +330,17 @@ fn main() -> ExitCode {
         Ok(s) => {
             // a sweep has written its rows already
             if !s.is_empty() {
-                print!("{s}");
-                if !s.ends_with('\n') {
-                    println!();
+                // a closed pipe (`impact run ... | head`) ends the output quietly, not in a panic
+                use std::io::Write;
+                let mut out = std::io::stdout().lock();
+                let end = if s.ends_with('\n') { "" } else { "\n" };
+                if out
+                    .write_all(s.as_bytes())
+                    .and_then(|()| out.write_all(end.as_bytes()))
+                    .and_then(|()| out.flush())
+                    .is_err()
+                {
+                    return ExitCode::SUCCESS;
                 }
             }
             ExitCode::SUCCESS

@@ -102,16 +102,17 @@ struct OutcomeSpec {
     text: String,
     program: Program,
     at: Option<(usize, Firing)>,
-    unit: Unit,
+    /// Its unit, as the JSON writes it.
+    unit_text: String,
 }
 
-/// A validated text model.
-#[derive(Clone, Debug)]
-pub struct OdeScene {
+/// What a text model compiles to: fixed once read, shared by the points of a sweep.
+#[derive(Debug)]
+pub struct Compiled {
     /// States, in order.
     states: Vec<String>,
-    /// Parameters and their values.
-    params: Vec<(String, f64)>,
+    /// Parameter names, in the order of [`OdeScene`]'s values.
+    param_names: Vec<String>,
     /// Initial values, programs of the parameters.
     init: Vec<Program>,
     /// The right sides.
@@ -124,8 +125,25 @@ pub struct OdeScene {
     state_units: Vec<String>,
     /// The end of the interval (s).
     t_end: f64,
+}
+
+/// A validated text model: its compiled formulas (shared) and the values a sweep sets.
+#[derive(Clone, Debug)]
+pub struct OdeScene {
+    c: std::sync::Arc<Compiled>,
+    /// Parameter values (SI), in the order of the names.
+    params: Vec<f64>,
+    /// Initial values set by a sweep (`state.x`), over the compiled formulas.
+    init_set: Vec<Option<f64>>,
     /// Solver settings.
     pub solve: SolveSpec,
+}
+
+impl std::ops::Deref for OdeScene {
+    type Target = Compiled;
+    fn deref(&self) -> &Compiled {
+        &self.c
+    }
 }
 
 /// What `impact run` prints for an `ode` scene.
@@ -165,14 +183,25 @@ struct Vars<'a> {
 }
 
 impl Vars<'_> {
+    /// Calls `f` with `[t, y..., parameters...]` in a buffer on the stack sized to the model (a
+    /// short model does not clear a long buffer on every evaluation).
     #[inline]
     fn with<R>(&self, t: f64, y: &[f64], f: impl FnOnce(&[f64]) -> R) -> R {
+        match 1 + y.len() + self.m.params.len() {
+            0..=16 => self.fill::<16, R>(t, y, f),
+            17..=64 => self.fill::<64, R>(t, y, f),
+            _ => self.fill::<MAX_VARS, R>(t, y, f),
+        }
+    }
+
+    #[inline]
+    fn fill<const N: usize, R>(&self, t: f64, y: &[f64], f: impl FnOnce(&[f64]) -> R) -> R {
         let n = y.len();
         let total = 1 + n + self.m.params.len();
-        let mut buf = [0.0f64; MAX_VARS];
+        let mut buf = [0.0f64; N];
         buf[0] = t;
         buf[1..=n].copy_from_slice(y);
-        for (slot, (_, v)) in buf[1 + n..total].iter_mut().zip(&self.m.params) {
+        for (slot, v) in buf[1 + n..total].iter_mut().zip(&self.m.params) {
             *slot = *v;
         }
         f(&buf[..total])
@@ -704,20 +733,25 @@ impl Model for OdeScene {
                 text: text.to_string(),
                 program,
                 at,
-                unit,
+                unit_text: unit.to_string(),
             });
         }
         let state_units = states.iter().map(|s| r.units[s].to_string()).collect();
+        let n = states.len();
         Ok(OdeScene {
-            states,
-            params,
-            init,
-            rhs,
-            jac,
-            events,
-            outcomes,
-            state_units,
-            t_end,
+            c: std::sync::Arc::new(Compiled {
+                states,
+                param_names: params.iter().map(|(p, _)| p.clone()).collect(),
+                init,
+                rhs,
+                jac,
+                events,
+                outcomes,
+                state_units,
+                t_end,
+            }),
+            params: params.iter().map(|(_, v)| *v).collect(),
+            init_set: vec![None; n],
             solve,
         })
     }
@@ -730,11 +764,11 @@ impl Model for OdeScene {
             allowed: allowed.into(),
         };
         if let Some(name) = field.strip_prefix("parameters.") {
-            let slot = self.params.iter_mut().find(|(p, _)| p == name)?;
+            let i = self.param_names.iter().position(|p| p == name)?;
             if !v.is_finite() {
                 return Some(Err(bad("a finite number (SI)")));
             }
-            slot.1 = v;
+            self.params[i] = v;
             return Some(Ok(()));
         }
         if let Some(name) = field.strip_prefix("state.") {
@@ -742,7 +776,7 @@ impl Model for OdeScene {
             if !v.is_finite() {
                 return Some(Err(bad("a finite number (SI)")));
             }
-            self.init[i] = Program::from_constant(v);
+            self.init_set[i] = Some(v);
             return Some(Ok(()));
         }
         None
@@ -752,7 +786,11 @@ impl Model for OdeScene {
         let n = self.states.len();
         let vars = Vars { m: self };
         let mut y: Vec<f64> = vars.with(0.0, &vec![0.0; n], |v| {
-            self.init.iter().map(|p| p.eval(v)).collect()
+            self.init
+                .iter()
+                .zip(&self.init_set)
+                .map(|(p, set)| set.unwrap_or_else(|| p.eval(v)))
+                .collect()
         });
         if let Some(i) = y.iter().position(|x| !x.is_finite()) {
             return Err(RunError::BadArgument {
@@ -866,7 +904,7 @@ impl Model for OdeScene {
                 }
             };
             outcome.insert(o.name.clone(), value);
-            outcome_units.insert(o.name.clone(), o.unit.to_string());
+            outcome_units.insert(o.name.clone(), o.unit_text.clone());
         }
         let out = OdeOutcome {
             model: Self::NAME,

@@ -24,6 +24,19 @@ enum Ins {
     Sub,
     Mul,
     Div,
+    /// The top of the stack with a variable or a constant as the other operand (`x*k`: one
+    /// instruction, not three); `R` when the operand is on the left (`k - x`, `k/x`).
+    AddV(u32),
+    SubV(u32),
+    MulV(u32),
+    DivV(u32),
+    RSubV(u32),
+    RDivV(u32),
+    AddC(f64),
+    MulC(f64),
+    DivC(f64),
+    RSubC(f64),
+    RDivC(f64),
     /// `x^n`, integer `n`.
     Powi(i32),
     /// `x^(n + 1/2)` as `powi(x, n) * sqrt(x)`.
@@ -32,6 +45,8 @@ enum Ins {
     PowC(f64),
     /// `x^y`.
     Pow,
+    Sqrt,
+    Abs,
     Call(Func),
 }
 
@@ -39,6 +54,8 @@ enum Ins {
 #[derive(Clone, Debug)]
 pub struct Program {
     code: Vec<Ins>,
+    /// The deepest stack it needs.
+    depth: usize,
 }
 
 /// What a compiled subtree is: a constant (folded) or code.
@@ -76,6 +93,49 @@ fn binary(op: Ins, a: Part, b: Part) -> Part {
         (Ins::Div, Part::Const(z), _) if *z == 0.0 => return Part::Const(0.0),
         _ => {}
     }
+    let single = |p: &Part| match p {
+        Part::Const(c) => Some(Ins::Const(*c)),
+        Part::Code(c, _) if c.len() == 1 && matches!(c[0], Ins::Var(_)) => Some(c[0]),
+        _ => None,
+    };
+    // the right operand a variable or a constant: one fused instruction after the left's code
+    let fused = |op: Ins, x: Ins| -> Option<Ins> {
+        Some(match (op, x) {
+            (Ins::Add, Ins::Var(i)) => Ins::AddV(i),
+            (Ins::Sub, Ins::Var(i)) => Ins::SubV(i),
+            (Ins::Mul, Ins::Var(i)) => Ins::MulV(i),
+            (Ins::Div, Ins::Var(i)) => Ins::DivV(i),
+            (Ins::Add, Ins::Const(c)) => Ins::AddC(c),
+            (Ins::Sub, Ins::Const(c)) => Ins::AddC(-c),
+            (Ins::Mul, Ins::Const(c)) => Ins::MulC(c),
+            (Ins::Div, Ins::Const(c)) => Ins::DivC(c),
+            _ => return None,
+        })
+    };
+    // the left operand a variable or a constant: the right's code, then the reversed form
+    let reversed = |op: Ins, x: Ins| -> Option<Ins> {
+        Some(match (op, x) {
+            (Ins::Add, Ins::Var(i)) => Ins::AddV(i),
+            (Ins::Mul, Ins::Var(i)) => Ins::MulV(i),
+            (Ins::Sub, Ins::Var(i)) => Ins::RSubV(i),
+            (Ins::Div, Ins::Var(i)) => Ins::RDivV(i),
+            (Ins::Add, Ins::Const(c)) => Ins::AddC(c),
+            (Ins::Mul, Ins::Const(c)) => Ins::MulC(c),
+            (Ins::Sub, Ins::Const(c)) => Ins::RSubC(c),
+            (Ins::Div, Ins::Const(c)) => Ins::RDivC(c),
+            _ => return None,
+        })
+    };
+    if let Some(f) = single(&b).and_then(|x| fused(op, x)) {
+        let (mut ca, da) = a.into_code();
+        ca.push(f);
+        return Part::Code(ca, da);
+    }
+    if let Some(f) = single(&a).and_then(|x| reversed(op, x)) {
+        let (mut cb, db) = b.into_code();
+        cb.push(f);
+        return Part::Code(cb, db);
+    }
     let (mut ca, da) = a.into_code();
     let (cb, db) = b.into_code();
     ca.extend(cb);
@@ -103,11 +163,31 @@ fn apply_bin(op: Ins, x: f64, y: f64) -> f64 {
     }
 }
 
+/// `x^n` by products for the small powers formulas use (no library call), `powi` beyond.
+#[inline]
+fn powi(x: f64, n: i32) -> f64 {
+    match n {
+        0 => 1.0,
+        1 => x,
+        2 => x * x,
+        3 => x * x * x,
+        4 => {
+            let x2 = x * x;
+            x2 * x2
+        }
+        -1 => 1.0 / x,
+        -2 => 1.0 / (x * x),
+        _ => x.powi(n),
+    }
+}
+
 fn apply_un(ins: Ins, x: f64) -> f64 {
     match ins {
         Ins::Neg => -x,
-        Ins::Powi(n) => x.powi(n),
-        Ins::PowHalf(n) => x.powi(n) * x.sqrt(),
+        Ins::Powi(n) => powi(x, n),
+        Ins::PowHalf(n) => powi(x, n) * x.sqrt(),
+        Ins::Sqrt => x.sqrt(),
+        Ins::Abs => x.abs(),
         Ins::PowC(c) => x.powf(c),
         Ins::Call(f) => f.apply(x),
         _ => x,
@@ -123,7 +203,14 @@ fn compile_part(e: &Expr, slot: &dyn Fn(&str) -> Option<usize>) -> Result<Part, 
             Part::Code(vec![Ins::Var(i as u32)], 1)
         }
         Expr::Neg(a) => unary(Ins::Neg, compile_part(a, slot)?),
-        Expr::Call(f, a) => unary(Ins::Call(*f), compile_part(a, slot)?),
+        Expr::Call(f, a) => {
+            let ins = match f {
+                Func::Sqrt => Ins::Sqrt,
+                Func::Abs => Ins::Abs,
+                f => Ins::Call(*f),
+            };
+            unary(ins, compile_part(a, slot)?)
+        }
         Expr::Bin(Op::Pow, a, b) => {
             let base = compile_part(a, slot)?;
             match b.exact_constant() {
@@ -172,7 +259,7 @@ impl Program {
                 "`{e}` nests too deeply for a compiled formula ({depth} > {MAX_DEPTH} stack slots): name a part of it in [definitions]"
             ));
         }
-        Ok(Program { code })
+        Ok(Program { code, depth })
     }
 
     /// The constant value, if the formula folded to one.
@@ -187,13 +274,25 @@ impl Program {
     pub fn from_constant(c: f64) -> Program {
         Program {
             code: vec![Ins::Const(c)],
+            depth: 1,
         }
     }
 
-    /// The value at `vars` (indexed as the slot map of [`Program::compile`] said).
+    /// The value at `vars` (indexed as the slot map of [`Program::compile`] said). The stack is
+    /// an array on the Rust stack sized to the program (no allocation, and no long array to
+    /// clear for a short formula).
     #[inline]
     pub fn eval(&self, vars: &[f64]) -> f64 {
-        let mut st = [0.0f64; MAX_DEPTH];
+        match self.depth {
+            0..=8 => self.run::<8>(vars),
+            9..=16 => self.run::<16>(vars),
+            _ => self.run::<MAX_DEPTH>(vars),
+        }
+    }
+
+    #[inline]
+    fn run<const D: usize>(&self, vars: &[f64]) -> f64 {
+        let mut st = [0.0f64; D];
         let mut sp = 0usize;
         for ins in &self.code {
             match *ins {
@@ -205,10 +304,40 @@ impl Program {
                     st[sp] = vars[i as usize];
                     sp += 1;
                 }
-                Ins::Add | Ins::Sub | Ins::Mul | Ins::Div | Ins::Pow => {
+                Ins::Add => {
                     sp -= 1;
-                    st[sp - 1] = apply_bin(*ins, st[sp - 1], st[sp]);
+                    st[sp - 1] += st[sp];
                 }
+                Ins::Sub => {
+                    sp -= 1;
+                    st[sp - 1] -= st[sp];
+                }
+                Ins::Mul => {
+                    sp -= 1;
+                    st[sp - 1] *= st[sp];
+                }
+                Ins::Div => {
+                    sp -= 1;
+                    st[sp - 1] /= st[sp];
+                }
+                Ins::Pow => {
+                    sp -= 1;
+                    st[sp - 1] = st[sp - 1].powf(st[sp]);
+                }
+                Ins::AddV(i) => st[sp - 1] += vars[i as usize],
+                Ins::SubV(i) => st[sp - 1] -= vars[i as usize],
+                Ins::MulV(i) => st[sp - 1] *= vars[i as usize],
+                Ins::DivV(i) => st[sp - 1] /= vars[i as usize],
+                Ins::RSubV(i) => st[sp - 1] = vars[i as usize] - st[sp - 1],
+                Ins::RDivV(i) => st[sp - 1] = vars[i as usize] / st[sp - 1],
+                Ins::AddC(c) => st[sp - 1] += c,
+                Ins::MulC(c) => st[sp - 1] *= c,
+                Ins::DivC(c) => st[sp - 1] /= c,
+                Ins::RSubC(c) => st[sp - 1] = c - st[sp - 1],
+                Ins::RDivC(c) => st[sp - 1] = c / st[sp - 1],
+                Ins::Neg => st[sp - 1] = -st[sp - 1],
+                Ins::Sqrt => st[sp - 1] = st[sp - 1].sqrt(),
+                Ins::Abs => st[sp - 1] = st[sp - 1].abs(),
                 _ => st[sp - 1] = apply_un(*ins, st[sp - 1]),
             }
         }
