@@ -143,6 +143,31 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_symbols_dimensions_are_their_si_units() {
+        // the reference: each symbol's unit as 000 defines it, read by the units module (kg, m,
+        // s exponents of the named SI units), not this table
+        for (name, unit) in [
+            ("E", "Pa"),
+            ("eta", "Pa s"),
+            ("alpha", "1/s"),
+            ("zeta", "s"),
+            ("v0", "m/s"),
+            ("h", "m"),
+            ("rho", "kg/m^3"),
+            ("Kw", "N/m^3"),
+            ("KG", "N/m"),
+            ("CT", "N s/m^3"),
+            ("m_s", "kg"),
+            ("P", "N"),
+        ] {
+            let u = crate::algebra::units::Unit::parse(unit).expect("unit");
+            let want: Vec<i32> = u.0.iter().map(|e| *e.numer() as i32).collect();
+            let got = of_symbol(Sym::new(name)).expect("known").0;
+            assert_eq!(got.to_vec(), want, "{name} ({unit})");
+        }
+    }
+
+    #[test]
     fn detects_inhomogeneous_sum() {
         let e = RatFunc::sym("E");
         let z = RatFunc::sym("zeta");

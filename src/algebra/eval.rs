@@ -275,6 +275,18 @@ mod tests {
     use crate::algebra::ratfunc::RatFunc;
 
     #[test]
+    fn a_rational_function_is_evaluated_at_the_values_given() {
+        // x^2/(1 + y) at x = 3, y = 1 is 4.5 (by hand); pi is known without a value
+        let r = crate::algebra::expr::parse("x^2/(1 + y) + pi")
+            .expect("parses")
+            .to_ratfunc()
+            .expect("rational");
+        let values = [("x".to_string(), 3.0), ("y".to_string(), 1.0)].into();
+        let v = ratfunc_f64(&r, &values).expect("evaluates");
+        assert!((v - (4.5 + std::f64::consts::PI)).abs() < 1e-14, "{v}");
+    }
+
+    #[test]
     fn fixed_point_exp_matches_libm() {
         // Reference: f64 exp, correct to ~1 ulp.
         for x in [-3.5f64, -0.001, 0.0, 0.7, 12.25] {

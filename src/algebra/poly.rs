@@ -600,6 +600,15 @@ mod tests {
     use super::*;
 
     #[test]
+    fn decimal_exponents_are_read_up_to_4000() {
+        // the limit is inclusive: 1e4000 is a number, 1e4001 is refused (a file from anyone
+        // must not ask for a number of a million digits)
+        assert!(parse_decimal("1e4000").is_some());
+        assert!(parse_decimal("1e-4000").is_some());
+        assert!(parse_decimal("1e4001").is_none());
+    }
+
+    #[test]
     fn exact_division_recovers_factor_and_rejects_non_factor() {
         let x = Poly::sym("alpha");
         let y = Poly::sym("gamma");
