@@ -275,6 +275,25 @@ mod tests {
     use crate::algebra::ratfunc::RatFunc;
 
     #[test]
+    fn an_exponential_with_a_fractional_rate_is_read_exactly() {
+        // exp(-3 t/2) and 2 t exp(-t/4) read as exponential polynomials: the reference is the
+        // same formula evaluated by f64's exp
+        for text in ["exp(-3*t/2)", "2*t*exp(-t/4) + exp(5*t/3)"] {
+            let e = crate::algebra::expr::parse(text).expect("parses");
+            let expo = e.to_expo("t").expect("an exponential polynomial");
+            let ev = Evaluator::new(&expo).expect("constant rates");
+            for t in [0.0, 0.3, 1.7] {
+                let want = e.eval(&|s| (s == "t").then_some(t)).expect("evaluates");
+                let got = ev.eval(t).expect("evaluates");
+                assert!(
+                    (got - want).abs() < 1e-13 * want.abs().max(1.0),
+                    "{text} at {t}: {got} vs {want}"
+                );
+            }
+        }
+    }
+
+    #[test]
     fn a_rational_function_is_evaluated_at_the_values_given() {
         // x^2/(1 + y) at x = 3, y = 1 is 4.5 (by hand); pi is known without a value
         let r = crate::algebra::expr::parse("x^2/(1 + y) + pi")
