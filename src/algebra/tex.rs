@@ -726,7 +726,9 @@ impl Reader<'_> {
             }),
             "max" | "min" => Err(TexError {
                 column: col,
-                construct: format!("`\\{c}` (no max or min in the formula language yet)"),
+                construct: format!(
+                    "`\\{c}` (a maximum over a set; retype it with `{c}(a, b)` of the formula language)"
+                ),
                 found: format!("\\{c}"),
             }),
             "ldots" | "cdots" | "dots" => Err(TexError {
@@ -1141,6 +1143,15 @@ mod tests {
             .bytes()
             .fold(7u64, |h, b| h.wrapping_mul(31).wrapping_add(u64::from(b)));
         Some(0.5 + (h % 1000) as f64 / 666.0)
+    }
+
+    #[test]
+    fn two_formulas_in_one_and_a_derivative_by_a_number_are_refused() {
+        let e = read_formula("a \\pm b", &TexSymbols::default()).unwrap_err();
+        assert!(e.construct.contains("\\pm"), "{e}");
+        let e = read_formula("c \\mp d", &TexSymbols::default()).unwrap_err();
+        assert!(e.construct.contains("\\pm"), "{e}");
+        assert!(read_formula("\\frac{\\partial f}{\\partial 1}", &TexSymbols::default()).is_err());
     }
 
     /// The LaTeX read equals the reference typed by hand: the same value at a point where every
