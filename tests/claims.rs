@@ -159,6 +159,49 @@ rtol = {rtol}
 }
 
 #[test]
+fn runs_compare_two_runs_of_one_scene_in_one_formula() {
+    // Hertz impact: the duration scales as m^(2/5) at fixed k and v0 (dimensional analysis:
+    // (m/k)^(2/5) v0^(-1/5) is the only time), so run a (mass m) against run b (mass 1 kg)
+    // is (m/1)^(2/5); the exponent misprinted as 1/2 is off by m^(1/10), 15 % at m = 4 kg
+    let p = claims_file(
+        "runs",
+        r#"
+[[claim]]
+id = "t.runs"
+equation = "(1)"
+reading = "the duration scales as m^(2/5)"
+kind = "model"
+scene = "hertz.toml"
+runs = { a = {}, b = { set = { "impactor.mass" = 1.0 } } }
+quantity = "a.contact.duration"
+printed = "(m/m1)^(2/5)*b.contact.duration"
+where = { m1 = "1" }
+bind = { m = "a.impactor.mass" }
+vary = ["impactor.mass=0.25:4:3:log", "impactor.v0=0.5:2:2"]
+rtol = 1e-7
+
+[[claim]]
+id = "t.runs-wrong"
+equation = "(1)"
+reading = "the duration scales as m^(1/2)"
+kind = "model"
+scene = "hertz.toml"
+runs = { a = {}, b = { set = { "impactor.mass" = 1.0 } } }
+quantity = "a.contact.duration"
+printed = "(m/m1)^(1/2)*b.contact.duration"
+where = { m1 = "1" }
+bind = { m = "a.impactor.mass" }
+vary = ["impactor.mass=0.25:4:3:log", "impactor.v0=0.5:2:2"]
+rtol = 1e-7
+"#,
+    );
+    let v = verdicts(&p);
+    assert_eq!(v[0].1, Verdict::Holds, "{}", v[0].2);
+    assert!(v[0].2.contains("6 grid points"), "{}", v[0].2);
+    assert_eq!(v[1].1, Verdict::Fails, "{}", v[1].2);
+}
+
+#[test]
 fn bound_holds_and_fails_with_the_worst_sample() {
     // Hunt-Crossley damping dissipates (restitution < 1) but never below zero rebound speed
     // (restitution > 0): true for every sample; restitution > 0.99 is false once
@@ -294,6 +337,21 @@ fn bad_claims_exit_2_naming_file_claim_and_key_and_write_nothing() {
             "a key of another kind",
             model("scene = \"hertz.toml\"\nquantity = \"contact.duration\"\ncorrected = \"x\""),
             "claim t.bad: corrected: kind `model` does not take this key",
+        ),
+        (
+            "one run",
+            model("scene = \"hertz.toml\"\nquantity = \"a.contact.duration\"\nruns = { a = {} }"),
+            "claim t.bad: runs: one run given",
+        ),
+        (
+            "a run's bad field",
+            model("scene = \"hertz.toml\"\nquantity = \"a.contact.duration\"\nruns = { a = {}, b = { set = { \"impactor.mass\" = -1.0 } } }"),
+            "claim t.bad: runs.b: run `b`: ",
+        ),
+        (
+            "a run's bad name",
+            model("scene = \"hertz.toml\"\nquantity = \"a.contact.duration\"\nruns = { a = {}, 2b = {} }"),
+            "claim t.bad: runs.2b: a run's name is a letter",
         ),
     ];
     for (case, body, want) in &table {
@@ -700,4 +758,165 @@ fn an_identity_undefined_at_its_points_does_not_hold() {
     let v = verdicts(&p);
     assert_eq!(v[0].1, Verdict::Fails, "{}", v[0].2);
     assert!(v[0].2.contains("not a finite number"), "{}", v[0].2);
+}
+
+#[test]
+fn fail_on_fails_exits_1_naming_the_failing_claims() {
+    // (x + y)^2 = x^2 + y^2 fails (by hand: 2 x y is missing); (x + y)^2 expanded holds
+    let p = claims_file(
+        "fail-on",
+        r#"
+[[claim]]
+id = "t.square"
+equation = "(1)"
+reading = "(x + y)^2 = x^2 + 2 x y + y^2"
+kind = "identity"
+printed = "x^2 + 2*x*y + y^2"
+derived = "(x + y)^2"
+
+[[claim]]
+id = "t.square-wrong"
+equation = "(1)"
+reading = "(x + y)^2 = x^2 + y^2"
+kind = "identity"
+printed = "x^2 + y^2"
+derived = "(x + y)^2"
+"#,
+    );
+    let run = |extra: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_verify"))
+            .arg("--claims")
+            .arg(&p)
+            .args(extra)
+            .output()
+            .expect("verify runs");
+        (
+            out.status.code().unwrap_or(-1),
+            String::from_utf8_lossy(&out.stderr).to_string(),
+        )
+    };
+    let (code, err) = run(&[]);
+    assert_eq!(code, 0, "a failing claim is a finding by default: {err}");
+    let (code, err) = run(&["--fail-on", "fails"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("1 claim(s) fail: t.square-wrong"),
+        "the failing claim is named: {err}"
+    );
+    let (code, err) = run(&["--fail-on", "fails", "--only", "t.square-wrong"]);
+    assert_eq!(code, 1, "{err}");
+    let (code, err) = run(&["--fail-on", "fails", "--only", "t.nothing"]);
+    assert_eq!(code, 2, "no claim matches: bad input, {err}");
+    let (code, err) = run(&["--fail-on", "sometimes"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("never") && err.contains("fails"), "{err}");
+}
+
+#[test]
+fn integrals_over_a_square_root_endpoint_are_judged_with_their_error_estimate() {
+    // closed forms: int_0^a sqrt(a^2 - x^2) dx = pi a^2/4 (a quarter disc); int_-a^a
+    // 1/sqrt(a^2 - x^2) dx = pi (the arcsine). The second's nodes round onto +-a within 1e-16,
+    // so its quadrature is good to about 1e-8: the verdict widens its tolerance by the estimate
+    // and says so; a printed constant 1e-6 off still fails
+    let p = claims_file(
+        "int",
+        r#"
+[[claim]]
+id = "t.quarter-disc"
+equation = "(1)"
+reading = "the quarter disc"
+kind = "identity"
+printed = "pi*x^2/4"
+derived = "int(sqrt(x^2 - y^2), y, 0, x)"
+
+[[claim]]
+id = "t.arcsine"
+equation = "(1)"
+reading = "the arcsine integral"
+kind = "identity"
+printed = "pi"
+derived = "int(1/sqrt(x^2 - y^2), y, -x, x)"
+
+[[claim]]
+id = "t.arcsine-misprint"
+equation = "(1)"
+reading = "the arcsine integral, misprinted"
+kind = "identity"
+printed = "pi*(1 + 1e-6)"
+derived = "int(1/sqrt(x^2 - y^2), y, -x, x)"
+"#,
+    );
+    let v = verdicts(&p);
+    let get = |id: &str| v.iter().find(|c| c.0 == id).expect("claim ran");
+    for id in ["t.quarter-disc", "t.arcsine"] {
+        let (_, verdict, detail) = get(id);
+        assert_eq!(*verdict, Verdict::Holds, "{id}: {detail}");
+        assert!(
+            detail.contains("tanh-sinh quadrature, largest estimated relative error"),
+            "{id}: the detail names the quadrature: {detail}"
+        );
+    }
+    let (_, verdict, detail) = get("t.arcsine-misprint");
+    assert_eq!(*verdict, Verdict::Fails, "{detail}");
+}
+
+#[test]
+fn a_constant_ratio_between_the_sides_is_named_a_constant_factor() {
+    // by hand: 2 x^2 against x^2 is a factor 1/2 (derived/printed); -sqrt(x y) against
+    // sqrt(x y) the opposite sign; the Hertz duration with the constant doubled is 1/2 of the
+    // model's at every grid point; x^2 + y against x^2 is no constant factor
+    let p = claims_file(
+        "factor",
+        r#"
+[[claim]]
+id = "t.exact"
+equation = "(1)"
+reading = "x^2, misprinted 2 x^2"
+kind = "identity"
+printed = "2*x^2"
+derived = "x^2"
+
+[[claim]]
+id = "t.not-constant"
+equation = "(1)"
+reading = "x^2, misprinted x^2 + x*y"
+kind = "identity"
+printed = "x^2 + x*y"
+derived = "x^2"
+
+[[claim]]
+id = "t.numeric-sign"
+equation = "(1)"
+reading = "sqrt(x y), misprinted with a minus"
+kind = "identity"
+printed = "-sqrt(x*y)"
+derived = "sqrt(x*y)"
+
+[[claim]]
+id = "t.model"
+equation = "(1)"
+reading = "the Hertz duration, its constant doubled"
+kind = "model"
+scene = "hertz.toml"
+quantity = "contact.duration"
+printed = "2*3.2180654597*(m/k)^(2/5)*v0^(-1/5)"
+bind = { m = "impactor.mass", k = "contact.k", v0 = "impactor.v0" }
+vary = ["impactor.v0=0.5:2:3"]
+rtol = 1e-6
+"#,
+    );
+    let v = verdicts(&p);
+    let get = |id: &str| v.iter().find(|c| c.0 == id).expect("claim ran");
+    for (id, want) in [
+        ("t.exact", "derived/printed = 1/2: a constant factor of 1/2"),
+        ("t.numeric-sign", "the opposite sign"),
+        ("t.model", "a constant factor of 0.5000"),
+    ] {
+        let (_, verdict, detail) = get(id);
+        assert_eq!(*verdict, Verdict::Fails, "{id}: {detail}");
+        assert!(detail.contains(want), "{id}: `{want}` not in {detail}");
+    }
+    let (_, verdict, detail) = get("t.not-constant");
+    assert_eq!(*verdict, Verdict::Fails, "{detail}");
+    assert!(!detail.contains("constant factor"), "{detail}");
 }

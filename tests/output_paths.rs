@@ -118,3 +118,45 @@ fn the_writer_refuses_paths_that_leave_its_folder() {
         );
     }
 }
+
+/// The relative link targets (file part) of a Markdown text: `[text](target)`, `![alt](target)`.
+fn link_targets(md: &str) -> Vec<String> {
+    md.split("](")
+        .skip(1)
+        .filter_map(|after| after.split(')').next())
+        .map(|t| t.split('#').next().unwrap_or("").to_string())
+        .filter(|t| !t.is_empty() && !t.contains("://") && !t.contains(char::is_whitespace))
+        .collect()
+}
+
+#[test]
+fn a_report_under_out_links_only_files_that_are_there() {
+    // the index of the project's reports links the work-precision page and the peers'
+    // benchmark page, which a claims file's run under --out does not write
+    let (code, err, d) = run("links", "t.md", "t.eq1");
+    assert_eq!(code, 0, "{err}");
+    let out = d.join("out");
+    let mut checked = 0;
+    for entry in std::fs::read_dir(&out).expect("out") {
+        let p = entry.expect("entry").path();
+        if p.extension().is_some_and(|e| e == "md") {
+            let text = std::fs::read_to_string(&p).expect("md");
+            for t in link_targets(&text) {
+                assert!(
+                    out.join(&t).exists(),
+                    "{} links {t}, which is not in {}",
+                    p.display(),
+                    out.display()
+                );
+                checked += 1;
+            }
+        }
+    }
+    // the claim's figure and data are linked (and there): the check above saw links
+    assert!(checked >= 2, "only {checked} links seen");
+    let readme = std::fs::read_to_string(out.join("README.md")).expect("README");
+    assert!(
+        readme.contains("what accuracy costs in time") && !readme.contains("accuracy_cost.md"),
+        "the unwritten page keeps its words without its link"
+    );
+}

@@ -9,6 +9,14 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum FailOn {
+    /// Exit 0 whatever the verdicts (the default: a failing claim is a finding, not an error).
+    Never,
+    /// Exit 1 when a claim's verdict is `fails`.
+    Fails,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
 enum Fmt {
     Text,
     Json,
@@ -35,7 +43,10 @@ enum Fmt {
         relative to the claims file. A bad claim (syntax, unknown symbol or kind, missing scene, a \
         quantity the model does not produce) exits 2 before anything runs, naming the file, the \
         claim and the key. Reports are written only with --out DIR (or for the default claims); \
-        without it the verdicts are printed."
+        without it the verdicts are printed.\n\n\
+        Exit status: 0 when the run ended (a claim that fails is a finding, not an error); 1 when \
+        --check found a change, or with --fail-on fails when a claim fails; 2 for bad input \
+        (a claims file, a scene, an option), with nothing written."
 )]
 struct Args {
     /// Compare with the committed summary instead of writing reports.
@@ -79,6 +90,11 @@ struct Args {
     /// reports never depend on it: coverage is counted from the lists.
     #[arg(long, value_name = "DIR")]
     papers: Option<PathBuf>,
+    /// For CI use: `fails` exits with status 1 when any claim's verdict is `fails` (after
+    /// writing or printing as usual), naming them on stderr; `never` (the default) exits 0
+    /// whatever the verdicts.
+    #[arg(long, value_enum, value_name = "WHEN", default_value = "never")]
+    fail_on: FailOn,
 }
 
 fn default_dir(name: &str) -> PathBuf {
@@ -195,6 +211,24 @@ fn run(args: Args) -> Result<bool> {
         }
         None => {}
     }
+    // --fail-on fails: the run goes on as usual, and its exit says whether a claim failed
+    let failing: Vec<&str> = outcomes
+        .iter()
+        .filter(|o| o.verdict == report::Verdict::Fails)
+        .map(|o| o.id.as_str())
+        .collect();
+    let gate = || {
+        if args.fail_on == FailOn::Fails && !failing.is_empty() {
+            eprintln!(
+                "verify --fail-on fails: {} claim(s) fail: {}",
+                failing.len(),
+                failing.join(", ")
+            );
+            false
+        } else {
+            true
+        }
+    };
     let partial = args.only.is_some();
     if args.check {
         let path = args
@@ -211,7 +245,7 @@ fn run(args: Args) -> Result<bool> {
                 fresh.claims.len(),
                 path.display()
             );
-            return Ok(true);
+            return Ok(gate());
         }
         eprintln!(
             "verify --check: {} change(s) against {}:",
@@ -231,14 +265,14 @@ fn run(args: Args) -> Result<bool> {
             "verify: --only ran {} claims; reports are written only by a full run",
             outcomes.len()
         );
-        return Ok(true);
+        return Ok(gate());
     }
     if !write_reports {
         eprintln!(
             "verify: {} claims checked; give --out DIR to write their report",
             outcomes.len()
         );
-        return Ok(true);
+        return Ok(gate());
     }
     let mut files = report::render(&verify::paper_infos(&papers), &outcomes);
     // the coverage table opens the index, after its first paragraphs
@@ -259,6 +293,20 @@ fn run(args: Args) -> Result<bool> {
         }
         files.extend(verify::accuracy::render(args.repeats.max(1)).context("work-precision runs")?);
     }
+    // the reports link only files that are there: those written now, and for the project's
+    // own reports the benchmark pages kept beside them (performance*, written by benches/peers)
+    let kept: Vec<String> = if custom {
+        Vec::new()
+    } else {
+        std::fs::read_dir(&out_dir)
+            .into_iter()
+            .flatten()
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().to_string())
+            .filter(|n| n.starts_with("performance"))
+            .collect()
+    };
+    report::keep_written_links(&mut files, &kept);
     let write = || report::write_atomically(&out_dir, &files);
     #[cfg(unix)]
     let written = impactcheck::interrupt::while_writing("verify", write);
@@ -279,7 +327,7 @@ fn run(args: Args) -> Result<bool> {
             .join(", "),
         out_dir.display()
     );
-    Ok(true)
+    Ok(gate())
 }
 
 fn main() -> ExitCode {

@@ -421,6 +421,74 @@ fn power_line(p: &Power) -> String {
     line
 }
 
+/// Unlinks, in every Markdown file of `files`, each relative link or image whose target is
+/// neither one of `files` nor in `also` (files that stay in the output folder beside them):
+/// `[text](target)` becomes `text`, `![alt](target)` becomes `alt`. A report written to
+/// `--out DIR` then links only what is there.
+pub fn keep_written_links(files: &mut [(String, String)], also: &[String]) {
+    let written: std::collections::BTreeSet<String> = files
+        .iter()
+        .map(|(n, _)| n.clone())
+        .chain(also.iter().cloned())
+        .collect();
+    for (name, text) in files.iter_mut() {
+        if !name.ends_with(".md") {
+            continue;
+        }
+        let dir = Path::new(name.as_str())
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_default();
+        *text = unlink_missing(text, &|target: &str| {
+            let mut parts: Vec<String> = dir
+                .components()
+                .map(|c| c.as_os_str().to_string_lossy().to_string())
+                .collect();
+            for part in target.split('/') {
+                match part {
+                    "" | "." => {}
+                    ".." => {
+                        if parts.pop().is_none() {
+                            return false;
+                        }
+                    }
+                    p => parts.push(p.to_string()),
+                }
+            }
+            written.contains(&parts.join("/"))
+        });
+    }
+}
+
+/// `text` with the relative links whose file `exists` says is missing turned into their text.
+fn unlink_missing(text: &str, exists: &dyn Fn(&str) -> bool) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(close) = rest.find("](") {
+        // the link's text starts at the last `[` before `](` on its line
+        let open = rest[..close].rfind('[');
+        let end = rest[close + 2..].find(')').map(|e| close + 2 + e);
+        let (Some(open), Some(end)) = (open, end) else {
+            out.push_str(&rest[..close + 2]);
+            rest = &rest[close + 2..];
+            continue;
+        };
+        let target = &rest[close + 2..end];
+        let file = target.split('#').next().unwrap_or("");
+        let relative = !file.is_empty() && !file.contains("://") && !file.starts_with('/');
+        if relative && !target.contains(char::is_whitespace) && !exists(file) {
+            let image = open > 0 && rest.as_bytes()[open - 1] == b'!';
+            out.push_str(&rest[..if image { open - 1 } else { open }]);
+            out.push_str(&rest[open + 1..close]);
+        } else {
+            out.push_str(&rest[..=end]);
+        }
+        rest = &rest[end + 1..];
+    }
+    out.push_str(rest);
+    out
+}
+
 /// Writes rendered files into `dir` through a temporary folder beside it.
 ///
 /// Every file name must be a relative path of plain components (no `..`, no root): anything else
@@ -556,6 +624,28 @@ pub fn diff(baseline: &Summary, fresh: &Summary, partial: bool) -> Vec<(String, 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn links_to_unwritten_files_lose_their_target_only() {
+        let mut files = vec![
+            (
+                "README.md".to_string(),
+                "See [a](a.md#x), [b](b.md), ![fig](f.svg), [web](https://x.org/y.md), [here](#top)."
+                    .to_string(),
+            ),
+            ("a.md".to_string(), String::new()),
+            (
+                "sub/c.md".to_string(),
+                "[up](../a.md) [gone](../b.md) [kept](../k.md)".to_string(),
+            ),
+        ];
+        keep_written_links(&mut files, &["k.md".to_string()]);
+        assert_eq!(
+            files[0].1,
+            "See [a](a.md#x), b, fig, [web](https://x.org/y.md), [here](#top)."
+        );
+        assert_eq!(files[2].1, "[up](../a.md) gone [kept](../k.md)");
+    }
 
     #[test]
     fn numbers_in_details_compare_with_tolerance() {

@@ -23,6 +23,9 @@ pub struct BoundSpec {
     /// Formula symbol -> scene field.
     #[serde(default)]
     bind: BTreeMap<String, String>,
+    /// Named runs of the scene compared in one formula (`a.quantity`, `b.quantity`).
+    #[serde(default)]
+    runs: scene::Runs,
     /// Scene field (or symbol) -> distribution.
     #[serde(default)]
     sample: BTreeMap<String, String>,
@@ -85,7 +88,7 @@ impl Kind for Bound {
         let require = scene::inequality(cx, c, &s.where_, "require", &s.require)?;
         let scene = match &s.scene {
             Some(name) => {
-                let scene = Scene::open(cx, c, name, &s.set, s.bind)?;
+                let scene = Scene::open(cx, c, name, &s.set, s.bind, s.runs)?;
                 scene.probe(
                     cx,
                     c,
@@ -95,6 +98,14 @@ impl Kind for Bound {
                 Some(scene)
             }
             None => {
+                if !s.runs.is_empty() {
+                    return Err(claim_err(
+                        cx.file,
+                        c,
+                        "runs",
+                        "runs compare runs of a scene; this claim has no `scene`".into(),
+                    ));
+                }
                 formulas_alone(cx, c, &samples, &require)?;
                 None
             }

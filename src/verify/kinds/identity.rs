@@ -133,11 +133,17 @@ impl Kind for Identity {
                 Some((diff, d, p)) => {
                     all_printed = false;
                     let mut line = format!("{at}derived {d}; derived - printed = {diff}");
-                    // a ratio says more than a difference when it is shorter (a factor 2)
-                    if let Some(ratio) = d.div(&p).filter(|_| !d.is_zero())
-                        && ratio.to_text().len() < diff.to_text().len()
-                    {
-                        line.push_str(&format!("; derived/printed = {ratio}"));
+                    // a ratio says more than a difference when it is shorter (a factor 2), and
+                    // a constant one is a coefficient misprint's signature
+                    if let Some(ratio) = d.div(&p).filter(|_| !d.is_zero()) {
+                        if let Some(k) = ratio.as_constant() {
+                            line.push_str(&format!(
+                                "; derived/printed = {k}: {}",
+                                factor_text(&k.to_string())
+                            ));
+                        } else if ratio.to_text().len() < diff.to_text().len() {
+                            line.push_str(&format!("; derived/printed = {ratio}"));
+                        }
                     }
                     match &self.corrected {
                         Some(k) => match self.exact_difference(cx, c, &k.expr, params, der)? {
@@ -269,7 +275,8 @@ impl Identity {
 
     /// A non-rational identity (sqrt, exp of a non-linear argument, rational powers) compared
     /// in `f64` at seeded random points, each symbol in [0.5, 2]: holds when every relative
-    /// difference is below 1e-12.
+    /// difference is below 1e-12, plus twice the largest estimated relative error of a numeric
+    /// `int` ([`crate::algebra::calculus::integral_with_error`]), which the detail states.
     fn numeric(
         &self,
         cx: &Checked,
@@ -294,6 +301,10 @@ impl Identity {
         let (mut worst, mut worst_abs): (f64, f64) = (0.0, 0.0);
         let atol = self.atol.unwrap_or(0.0);
         let mut undefined = 0;
+        // derived/printed at each point: one constant is a coefficient misprint's signature
+        let mut ratios = Vec::new();
+        // the quadratures of `int` evaluated below, and their error estimates
+        let _ = crate::algebra::calculus::quadrature_log();
         for _ in 0..8 {
             let vals: BTreeMap<String, f64> = syms
                 .iter()
@@ -321,11 +332,15 @@ impl Identity {
                 worst_abs = f64::INFINITY;
                 continue;
             }
+            ratios.push(b / a);
             let excess = ((a - b).abs() - atol).max(0.0);
             let rel = excess / a.abs().max(b.abs()).max(f64::MIN_POSITIVE);
             worst = worst.max(rel);
             worst_abs = worst_abs.max((a - b).abs());
         }
+        // a numeric integral widens the tolerance by twice its estimated error
+        let quad = crate::algebra::calculus::quadrature_log();
+        let tol = 1e-12 + 2.0 * quad.worst_rel;
         let mut text = match self.atol {
             Some(atol) => format!(
                 "not rational: compared in floating point at 8 seeded points in [0.5, 2]; largest difference {} (atol {}), largest relative excess {}",
@@ -343,8 +358,45 @@ impl Identity {
                 "; at {undefined} of the 8 points a side is not a finite number (outside a function's domain)"
             ));
         }
-        Ok((worst <= 1e-12, text))
+        if worst > tol
+            && let Some(k) = constant_factor(&ratios, tol)
+        {
+            text.push_str(&format!(
+                "; derived/printed = {} at every point: {}",
+                g4(k),
+                factor_text(&g4(k))
+            ));
+        }
+        if quad.count > 0 {
+            text.push_str(&format!(
+                "; {} integral(s) by tanh-sinh quadrature, largest estimated relative error {}, so the tolerance is {}",
+                quad.count,
+                g4(quad.worst_rel),
+                g4(tol)
+            ));
+        }
+        Ok((worst <= tol, text))
     }
+}
+
+/// What a constant ratio between two sides says: the opposite sign, or a factor.
+pub(super) fn factor_text(k: &str) -> String {
+    if k == "-1" || k == "-1.000" {
+        "the opposite sign (a sign misprint?)".into()
+    } else {
+        format!("a constant factor of {k} (a coefficient misprint?)")
+    }
+}
+
+/// The common value of `ratios` when they agree to `tol` (relative, at least 1e-12) and
+/// differ from 1 by more: a constant factor between two sides; `None` otherwise.
+pub(super) fn constant_factor(ratios: &[f64], tol: f64) -> Option<f64> {
+    let tol = tol.max(1e-12);
+    let first = *ratios.first()?;
+    let same = ratios
+        .iter()
+        .all(|r| r.is_finite() && (r - first).abs() <= tol * first.abs());
+    (same && ratios.len() > 1 && (first - 1.0).abs() > tol && first.abs() > 0.0).then_some(first)
 }
 
 /// The terms of a top-level sum with their signs (`a - (b - c)` gives `+a`, `-b`, `+c`).

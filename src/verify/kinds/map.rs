@@ -20,6 +20,9 @@ pub struct MapSpec {
     /// Formula symbol -> scene field.
     #[serde(default)]
     bind: BTreeMap<String, String>,
+    /// Named runs of the scene compared in one formula (`a.quantity`, `b.quantity`).
+    #[serde(default)]
+    runs: scene::Runs,
     /// The grid's two axes, `FIELD=START:STOP:COUNT[:log]` each.
     #[serde(default)]
     vary: Vec<String>,
@@ -68,7 +71,7 @@ impl Kind for Map {
 
     fn validate(cx: &Checked, c: &Head, s: MapSpec) -> Result<Self, VerifyError> {
         let err = |field: &str, m: String| super::claim_err(cx.file, c, field, m);
-        let scene = Scene::open(cx, c, &s.scene, &s.set, s.bind)?;
+        let scene = Scene::open(cx, c, &s.scene, &s.set, s.bind, s.runs)?;
         if s.vary.len() != 2 {
             return Err(err(
                 "vary",

@@ -407,7 +407,7 @@ impl<'a> Checked<'a> {
     /// Every symbol of `e` has a unit (or is a definition, or one of `also`).
     fn units_of(&self, c: &Head, field: &str, e: &Expr, also: &[&str]) -> Result<(), VerifyError> {
         for s in e.symbols() {
-            if !self.units.contains_key(&s)
+            if self.declared(&s).is_none()
                 && !self.defs.contains_key(&s)
                 && !also.contains(&s.as_str())
                 && !s.starts_with("at_ref_")
@@ -439,9 +439,18 @@ impl<'a> Checked<'a> {
             if s == "m" || s == "n" {
                 self.units.get(s).copied().or(Some(Unit::one()))
             } else {
-                self.units.get(s).copied()
+                self.declared(s)
             }
         }
+    }
+
+    /// The unit `[symbols]` gives `s`; a run's quantity (`a.impulse.2`, a claim with `runs`)
+    /// has the unit of the quantity (`impulse.2`).
+    fn declared(&self, s: &str) -> Option<Unit> {
+        self.units.get(s).copied().or_else(|| {
+            let (_, rest) = s.split_once('.')?;
+            self.units.get(rest).copied()
+        })
     }
 
     /// A formula of a claim, with the claim's `where` and then the file's definitions expanded.

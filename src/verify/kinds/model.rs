@@ -21,6 +21,9 @@ pub struct ModelSpec {
     /// Formula symbol -> scene field.
     #[serde(default)]
     bind: BTreeMap<String, String>,
+    /// Named runs of the scene compared in one formula (`a.quantity`, `b.quantity`).
+    #[serde(default)]
+    runs: scene::Runs,
     /// The grid, `FIELD=START:STOP:COUNT[:log]` per axis.
     #[serde(default)]
     vary: Vec<String>,
@@ -54,7 +57,7 @@ impl Kind for Model {
     type Spec = ModelSpec;
 
     fn validate(cx: &Checked, c: &Head, s: ModelSpec) -> Result<Self, VerifyError> {
-        let scene = Scene::open(cx, c, &s.scene, &s.set, s.bind)?;
+        let scene = Scene::open(cx, c, &s.scene, &s.set, s.bind, s.runs)?;
         scene::check_rtol(cx, c, s.rtol)?;
         let (axes, probe) = scene::axes(cx, c, &s.vary)?;
         let printed = cx.formula(c, &s.where_, "printed", &s.printed)?;
@@ -62,13 +65,19 @@ impl Kind for Model {
         scene::check_quantity(cx, c, &outcome, &s.quantity)?;
         // the quantity's unit: the claims file's, or the model's own (a text model states the
         // unit of each outcome, `outcome_units`)
-        let model_unit = s
-            .quantity
+        // (with `runs`, the quantity `a.outcome.x` is run a's `outcome.x`)
+        let (run_out, path) = match s.quantity.split_once('.') {
+            Some((run, rest)) if scene.runs.iter().any(|(r, _)| r == run) => {
+                (outcome.get(run).unwrap_or(&outcome), rest)
+            }
+            _ => (&outcome, s.quantity.as_str()),
+        };
+        let model_unit = path
             .strip_prefix("outcome.")
-            .and_then(|q| outcome.get("outcome_units")?.get(q)?.as_str())
+            .and_then(|q| run_out.get("outcome_units")?.get(q)?.as_str())
             .and_then(|u| units::Unit::parse(u).ok());
         let units_note = match (
-            cx.units.get(&s.quantity).copied().or(model_unit),
+            cx.declared(&s.quantity).or(model_unit),
             units::dimension(&printed, &cx.unit_fn()),
         ) {
             (Some(u), Ok(pu)) if pu != u => {
@@ -128,6 +137,17 @@ impl Kind for Model {
             }
             None => (Verdict::NotCheckable, format!("{n} grid points, none ran")),
         };
+        // model/printed the same at every point: a constant factor, a coefficient misprint
+        if verdict == Verdict::Fails && errors.is_empty() {
+            let ratios: Vec<f64> = rows.iter().flatten().map(|(m, p)| m / p).collect();
+            if let Some(k) = super::identity::constant_factor(&ratios, rtol) {
+                detail.push_str(&format!(
+                    "; model/printed = {} at every point (within rtol): {}",
+                    g4(k),
+                    super::identity::factor_text(&g4(k))
+                ));
+            }
+        }
         if !errors.is_empty() {
             detail.push_str(&format!(
                 "; {} point(s) failed: {}",

@@ -20,6 +20,9 @@ pub struct ProbabilitySpec {
     /// Formula symbol -> scene field.
     #[serde(default)]
     bind: BTreeMap<String, String>,
+    /// Named runs of the scene compared in one formula (`a.quantity`, `b.quantity`).
+    #[serde(default)]
+    runs: scene::Runs,
     /// Scene field -> distribution.
     #[serde(default)]
     sample: BTreeMap<String, String>,
@@ -56,7 +59,7 @@ impl Kind for Probability {
     type Spec = ProbabilitySpec;
 
     fn validate(cx: &Checked, c: &Head, s: ProbabilitySpec) -> Result<Self, VerifyError> {
-        let scene = Scene::open(cx, c, &s.scene, &s.set, s.bind)?;
+        let scene = Scene::open(cx, c, &s.scene, &s.set, s.bind, s.runs)?;
         let samples = Samples::read(cx, c, s.sample, s.count, s.seed)?;
         let expect = match s.expect {
             Some(e) => {

@@ -6,8 +6,24 @@ use super::{Checked, Where, claim_err, g4};
 use crate::algebra::expr::{self, Expr, Inequality};
 use crate::scene::field_value;
 use crate::verify::{Head, VerifyError};
+use serde::Deserialize;
 use serde_json::Value;
 use std::collections::BTreeMap;
+
+/// One named run of a claim's scene (`runs = { a = { set = { e = 0.5 } }, b = { set = {...} } }`):
+/// the scene fields it sets on top of the claim's `set` and the grid point or sample. With
+/// `runs`, the scene runs once per run at every point, and a formula reads each run's outcome
+/// under its name (`a.impulse.2 = (1 + e)*b.compression_impulse`).
+#[derive(Deserialize, Default, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct RunSpec {
+    /// Scene fields of this run (a number or a string).
+    #[serde(default)]
+    pub set: BTreeMap<String, toml::Value>,
+}
+
+/// The `runs` key of a claim: run name -> its fields.
+pub type Runs = BTreeMap<String, RunSpec>;
 
 /// A claim's scene: read once, with the claim's `set` fields applied.
 pub(super) struct Scene {
@@ -17,18 +33,23 @@ pub(super) struct Scene {
     pub label: String,
     /// The scene with `set` applied.
     pub base: toml::Table,
-    /// Formula symbol -> scene field.
+    /// Formula symbol -> scene field (`a.FIELD`: the field in run `a`).
     pub bind: BTreeMap<String, String>,
+    /// The named runs (`runs`): each run's fields, in name order; empty: one run, its outcome
+    /// read without a prefix.
+    pub runs: Vec<(String, BTreeMap<String, toml::Value>)>,
 }
 
 impl Scene {
-    /// Reads the scene `name` (relative to the claims file) and applies `set`.
+    /// Reads the scene `name` (relative to the claims file), applies `set` and checks each
+    /// run's fields of `runs`.
     pub fn open(
         cx: &Checked,
         c: &Head,
         name: &str,
         set: &BTreeMap<String, toml::Value>,
         bind: BTreeMap<String, String>,
+        runs: Runs,
     ) -> Result<Scene, VerifyError> {
         let path = cx.dir.join(name);
         if !path.is_file() {
@@ -46,12 +67,91 @@ impl Scene {
             crate::scene::set_value(&mut base, field, v.clone(), &label)
                 .map_err(|e| claim_err(cx.file, c, &format!("set.{field}"), e.to_string()))?;
         }
+        if runs.len() == 1 {
+            return Err(claim_err(
+                cx.file,
+                c,
+                "runs",
+                "one run given; `runs` names two or more runs to compare (one run is the claim's own `set`)".into(),
+            ));
+        }
+        for (run, spec) in &runs {
+            let ident = run
+                .chars()
+                .next()
+                .is_some_and(|ch| ch.is_ascii_alphabetic())
+                && run
+                    .chars()
+                    .all(|ch| ch.is_ascii_alphanumeric() || ch == '_');
+            if !ident {
+                return Err(claim_err(
+                    cx.file,
+                    c,
+                    &format!("runs.{run}"),
+                    "a run's name is a letter then letters, digits or _ (formulas read `NAME.quantity`)".into(),
+                ));
+            }
+            let mut t = base.clone();
+            for (field, v) in &spec.set {
+                crate::scene::set_value(&mut t, field, v.clone(), &label).map_err(|e| {
+                    claim_err(
+                        cx.file,
+                        c,
+                        &format!("runs.{run}.set.{field}"),
+                        e.to_string(),
+                    )
+                })?;
+            }
+        }
         Ok(Scene {
             name: name.to_string(),
             label,
             base,
             bind,
+            runs: runs.into_iter().map(|(k, v)| (k, v.set)).collect(),
         })
+    }
+
+    /// Runs the scene table `t` (a grid point or sample applied): its outcome, or with `runs`
+    /// an object of each run's outcome under its name.
+    /// An error names the claim's key it comes from (`scene`, or `runs.NAME` for a run).
+    fn run_all(&self, t: &toml::Table) -> Result<Value, (String, String)> {
+        if self.runs.is_empty() {
+            return run_table(t, &self.label).map_err(|m| ("scene".to_string(), m));
+        }
+        let mut all = serde_json::Map::new();
+        for (run, set) in &self.runs {
+            let out = self
+                .run_table(t, set)
+                .and_then(|t| run_table(&t, &self.label))
+                .map_err(|m| (format!("runs.{run}"), format!("run `{run}`: {m}")))?;
+            all.insert(run.clone(), out);
+        }
+        Ok(Value::Object(all))
+    }
+
+    /// `t` with one run's fields set.
+    fn run_table(
+        &self,
+        t: &toml::Table,
+        set: &BTreeMap<String, toml::Value>,
+    ) -> Result<toml::Table, String> {
+        let mut t = t.clone();
+        for (field, v) in set {
+            crate::scene::set_value(&mut t, field, v.clone(), &self.label)
+                .map_err(|e| e.to_string())?;
+        }
+        Ok(t)
+    }
+
+    /// The value of a bound scene field in `t` (`a.FIELD`: in run `a`).
+    fn field(&self, t: &toml::Table, field: &str) -> Option<f64> {
+        if let Some((run, rest)) = field.split_once('.')
+            && let Some((_, set)) = self.runs.iter().find(|(r, _)| r == run)
+        {
+            return field_value(&self.run_table(t, set).ok()?, rest);
+        }
+        field_value(t, field)
     }
 
     /// One run of the scene at `probe` (the first grid point, or the samples' medians), to know
@@ -70,7 +170,7 @@ impl Scene {
                 .map_err(|m| claim_err(cx.file, c, key, m))?;
         }
         for (sym, field) in &self.bind {
-            if field_value(&table, field).is_none() {
+            if self.field(&table, field).is_none() {
                 return Err(claim_err(
                     cx.file,
                     c,
@@ -79,8 +179,9 @@ impl Scene {
                 ));
             }
         }
-        let outcome =
-            run_table(&table, &self.label).map_err(|m| claim_err(cx.file, c, "scene", m))?;
+        let outcome = self
+            .run_all(&table)
+            .map_err(|(key, m)| claim_err(cx.file, c, &key, m))?;
         for (field, e) in formulas {
             for s in e.free_symbols() {
                 if !self.bind.contains_key(&s) && lookup(&outcome, &s).is_none() {
@@ -107,9 +208,9 @@ impl Scene {
         for (fields, v) in pt {
             set_fields(&mut t, fields, *v, &self.label)?;
         }
-        let out = run_table(&t, &self.label)?;
+        let out = self.run_all(&t).map_err(|(_, m)| m)?;
         let value = |s: &str| match self.bind.get(s) {
-            Some(field) => field_value(&t, field),
+            Some(field) => self.field(&t, field),
             None => lookup(&out, s),
         };
         Ok((sides.0.eval(&value)?, sides.1.eval(&value)?))
