@@ -339,6 +339,16 @@ fn bad_claims_exit_2_naming_file_claim_and_key_and_write_nothing() {
             "claim t.bad: corrected: kind `model` does not take this key",
         ),
         (
+            "taylor without a scene",
+            identity("x", "@taylor.x[order=2]"),
+            "claim t.bad: derived: `@taylor.x` is the Taylor series of a text model's solution: give the model as `scene`",
+        ),
+        (
+            "taylor of a built-in model",
+            identity("x", "@taylor.x[order=2]").replace("kind = \"identity\"\n", "kind = \"identity\"\nscene = \"hertz.toml\"\n"),
+            "claim t.bad: scene: `hertz.toml` is not a text model",
+        ),
+        (
             "one run",
             model("scene = \"hertz.toml\"\nquantity = \"a.contact.duration\"\nruns = { a = {} }"),
             "claim t.bad: runs: one run given",
@@ -919,4 +929,82 @@ rtol = 1e-6
     let (_, verdict, detail) = get("t.not-constant");
     assert_eq!(*verdict, Verdict::Fails, "{detail}");
     assert!(!detail.contains("constant factor"), "{detail}");
+}
+
+#[test]
+fn the_guide_lists_every_key_of_every_kind() {
+    // the keys each kind takes, as its own error lists them (a claim with an unknown key), and
+    // the head's keys; each must be a row `| kind | key |` of the guide's table, and the table
+    // has no row for a key a kind does not take
+    let guide =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("verify/README.md"))
+            .expect("guide");
+    let mut rows = std::collections::BTreeSet::new();
+    for line in guide.lines() {
+        let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+        if cells.len() > 3 && cells[1].starts_with('`') && cells[2].starts_with('`') {
+            rows.insert((
+                cells[1].trim_matches('`').to_string(),
+                cells[2].trim_matches('`').to_string(),
+            ));
+        }
+    }
+    let mut want = std::collections::BTreeSet::new();
+    for kind in [
+        "identity",
+        "dimension",
+        "model",
+        "bound",
+        "probability",
+        "map",
+        "definition",
+        "not-checkable",
+        "check",
+    ] {
+        let (code, err, _) = verify_bad(
+            &format!("keys-{kind}"),
+            &format!(
+                "[[claim]]\nid = \"t.a\"\nequation = \"(1)\"\nreading = \"q\"\nkind = \"{kind}\"\nno_such_key = 1\n"
+            ),
+        );
+        assert_eq!(code, 2, "{kind}: {err}");
+        let allowed = err
+            .split("allowed: ")
+            .nth(1)
+            .unwrap_or_else(|| panic!("{kind}: no list of keys in {err}"));
+        for key in allowed
+            .split(',')
+            .map(|k| k.trim().trim_matches('`').trim())
+        {
+            if !key.is_empty() {
+                want.insert((kind.to_string(), key.to_string()));
+            }
+        }
+    }
+    for key in [
+        "id",
+        "equation",
+        "quote",
+        "reading",
+        "kind",
+        "assumption",
+        "blind",
+        "finding",
+        "extends",
+        "printed_from",
+        "printed_tex",
+    ] {
+        want.insert(("every kind".to_string(), key.to_string()));
+    }
+    let missing: Vec<_> = want.difference(&rows).collect();
+    assert!(
+        missing.is_empty(),
+        "keys not in the guide's table: {missing:?}"
+    );
+    let kinds: std::collections::BTreeSet<&String> = want.iter().map(|(k, _)| k).collect();
+    let extra: Vec<_> = rows
+        .iter()
+        .filter(|r| kinds.contains(&r.0) && !want.contains(*r))
+        .collect();
+    assert!(extra.is_empty(), "rows for keys no kind takes: {extra:?}");
 }

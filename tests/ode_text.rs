@@ -237,3 +237,75 @@ fn units_are_checked_equation_by_equation_before_anything_runs() {
         }
     }
 }
+
+/// A text scene read from the repository with fields set, as the library's text model.
+fn ode_scene(file: &str, set: &[(&str, f64)]) -> impactcheck::models::ode::OdeScene {
+    use impactcheck::models::Model;
+    let mut t = scene::read_table(&root().join(file)).expect("reads");
+    for (f, v) in set {
+        scene::set_field(&mut t, f, *v, file).expect("sets");
+    }
+    impactcheck::models::ode::OdeScene::from_table(&t, file).expect("a text model")
+}
+
+#[test]
+fn taylor_series_of_a_text_model_are_exact_and_agree_with_its_numerics() {
+    use impactcheck::algebra::expr::parse;
+    // the undamped oscillator from rest at x0 is x0 cos(w t): its Taylor polynomial of degree 8
+    // is x0 sum_k (-1)^k (w t)^(2k)/(2k)! (the cosine series, independent of the code)
+    let ode = ode_scene("scenes/oscillator_wall.toml", &[]);
+    let got = ode.taylor("x", 8).expect("polynomial right sides");
+    let want = parse("x0*(1 - (w*t)^2/2 + (w*t)^4/24 - (w*t)^6/720 + (w*t)^8/40320)")
+        .expect("parses")
+        .to_ratfunc()
+        .expect("rational");
+    let zeta0 = got
+        .subst(
+            impactcheck::algebra::poly::Sym::new("zeta"),
+            &impactcheck::algebra::ratfunc::RatFunc::zero(),
+        )
+        .expect("substitutes");
+    assert!((&zeta0 - &want).is_zero(), "{zeta0} against {want}");
+    // a misprinted coefficient (1/700 for 1/720) is not the series
+    let wrong = parse("x0*(1 - (w*t)^2/2 + (w*t)^4/24 - (w*t)^6/700 + (w*t)^8/40320)")
+        .expect("parses")
+        .to_ratfunc()
+        .expect("rational");
+    assert!(!(&zeta0 - &wrong).is_zero());
+    // series against numerics (the general form of 000's check): damped, at t = 2e-3 s
+    // (w t = 0.04) the degree-8 polynomial is within (w t)^9/9! ~ 7e-19 of the solution, so the
+    // solver (rtol 1e-12) and the series agree to ~1e-12
+    let tt = 2e-3;
+    let run = run_with(
+        "scenes/oscillator_wall.toml",
+        &[("solve.t_end", tt), ("parameters.zeta", 0.3)],
+    );
+    let vals = |s: &str| match s {
+        "t" => Some(tt),
+        "w" => Some(20.0),
+        "zeta" => Some(0.3),
+        "x0" => Some(0.01),
+        _ => None,
+    };
+    for (state, order) in [("x", 8), ("v", 7)] {
+        let series = ode.taylor(state, order).expect("series");
+        let value = parse(&series.to_text())
+            .expect("prints as a formula")
+            .eval(&vals)
+            .expect("evaluates");
+        let numeric = num(&run, &format!("state.{state}"));
+        assert!(
+            rel(value, numeric) < 1e-10,
+            "{state}: series {value}, solver {numeric}"
+        );
+    }
+    // a right side that is not polynomial in the states has no such series: an error says so
+    let hertz = ode_scene("scenes/hertz_ode.toml", &[]);
+    let err = hertz.taylor("z", 4).expect_err("z^(3/2)");
+    assert!(err.contains("not rational"), "{err}");
+    let err = ode.taylor("q", 4).expect_err("no such state");
+    assert!(
+        err.contains("its states: x, v") || err.contains("its states: v, x"),
+        "{err}"
+    );
+}

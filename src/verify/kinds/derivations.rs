@@ -8,6 +8,11 @@ use std::collections::BTreeMap;
 /// The derivations `@name[...]` reaches, with their parameters and what they are.
 pub const DERIVATIONS: &[(&str, &str, &str)] = &[
     (
+        "taylor.STATE",
+        "order (and the claim's `scene`, a text model)",
+        "the Taylor polynomial at t = 0 of the text model's solution for STATE, to degree `order`, exact in its parameters as symbols (right sides polynomial in the states and t)",
+    ),
+    (
         "galerkin.bend",
         "m, n (odd)",
         "000 (2),(12): the projection of the bending term D~ Delta^2 w onto sin(m pi x/a) sin(n pi y/b), the coefficient of E~/(1-nu~^2)[f]",
@@ -89,7 +94,10 @@ pub(super) fn split_refs(text: &str) -> Result<(String, Vec<DerivationRef>), Str
             .find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '_' || ch == '.'))
             .unwrap_or(after.len());
         let name = after[..end].to_string();
-        if !DERIVATIONS.iter().any(|d| d.0 == name) {
+        let taylor = name
+            .strip_prefix("taylor.")
+            .is_some_and(|st| !st.is_empty() && !st.contains('.'));
+        if !taylor && !DERIVATIONS.iter().any(|d| d.0 == name) {
             return Err(format!(
                 "unknown derivation `@{name}`; known: {}",
                 DERIVATIONS

@@ -41,6 +41,10 @@ pub struct IdentitySpec {
     /// Definitions for this claim only.
     #[serde(default, rename = "where")]
     pub(super) where_: Where,
+    /// A text model (`model = "ode"`, relative to the claims file) whose solution's Taylor
+    /// series `@taylor.STATE[order=N]` reaches.
+    #[serde(default)]
+    pub(super) scene: Option<String>,
 }
 
 /// A formula with its `@` references replaced by placeholders, expanded.
@@ -61,6 +65,8 @@ pub struct Identity {
     taylor: Option<u32>,
     variable: String,
     atol: Option<f64>,
+    /// The Taylor polynomials of a text model's solution, by placeholder (`@taylor.x`).
+    solved: BTreeMap<String, RatFunc>,
 }
 
 impl Kind for Identity {
@@ -99,7 +105,9 @@ impl Kind for Identity {
                 .map(|[m, n]| vec![("m".to_string(), q(*m)), ("n".to_string(), q(*n))])
                 .collect()
         };
+        let solved = taylor_refs(cx, c, s.scene.as_deref(), &derived.refs)?;
         Ok(Identity {
+            solved,
             printed,
             derived,
             corrected,
@@ -258,9 +266,12 @@ impl Identity {
             return Ok(None);
         };
         for r in refs {
-            let v = der
-                .get(r, params)
-                .map_err(|m| claim_err(cx.file, c, "derived", m))?;
+            let v = match self.solved.get(&r.placeholder) {
+                Some(v) => v.clone(),
+                None => der
+                    .get(r, params)
+                    .map_err(|m| claim_err(cx.file, c, "derived", m))?,
+            };
             d = d.subst(Sym::new(&r.placeholder), &v).ok_or_else(|| {
                 claim_err(
                     cx.file,
@@ -377,6 +388,80 @@ impl Identity {
         }
         Ok((worst <= tol, text))
     }
+}
+
+/// The Taylor polynomials `@taylor.STATE[order=N]` of `derived`, from the text model `scene`
+/// (exact, [`crate::models::ode::OdeScene::taylor`]), by placeholder.
+fn taylor_refs(
+    cx: &Checked,
+    c: &Head,
+    scene: Option<&str>,
+    refs: &[DerivationRef],
+) -> Result<BTreeMap<String, RatFunc>, VerifyError> {
+    use crate::models::Model;
+    let wanted: Vec<&DerivationRef> = refs
+        .iter()
+        .filter(|r| r.name.starts_with("taylor."))
+        .collect();
+    let Some(name) = scene else {
+        if let Some(r) = wanted.first() {
+            return Err(claim_err(
+                cx.file,
+                c,
+                "derived",
+                format!(
+                    "`@{}` is the Taylor series of a text model's solution: give the model as `scene`",
+                    r.name
+                ),
+            ));
+        }
+        return Ok(BTreeMap::new());
+    };
+    let err = |m: String| claim_err(cx.file, c, "scene", m);
+    if wanted.is_empty() {
+        return Err(err(
+            "an identity's `scene` serves `@taylor.STATE[order=N]` in `derived`, and there is none"
+                .into(),
+        ));
+    }
+    let path = cx.dir.join(name);
+    let label = path.display().to_string();
+    let table = crate::scene::read_table(&path).map_err(|e| err(format!("`{name}`: {e}")))?;
+    if table.get("model").and_then(|m| m.as_str()) != Some("ode") {
+        return Err(err(format!(
+            "`{name}` is not a text model (model = \"ode\"): only a text model's equations are read"
+        )));
+    }
+    let ode =
+        crate::models::ode::OdeScene::from_table(&table, &label).map_err(|e| err(e.to_string()))?;
+    let mut out = BTreeMap::new();
+    for r in wanted {
+        let state = r.name.trim_start_matches("taylor.");
+        let order = match r.params.as_slice() {
+            [(k, v)] if k == "order" && v.is_integer() && *v >= Q::from_integer(0.into()) => {
+                use num_traits::ToPrimitive;
+                v.to_integer().to_u32().unwrap_or(u32::MAX)
+            }
+            _ => {
+                return Err(claim_err(
+                    cx.file,
+                    c,
+                    "derived",
+                    format!("`@{}` takes one parameter, [order=N] with N >= 0", r.name),
+                ));
+            }
+        };
+        let poly = ode.taylor(state, order).map_err(|m| {
+            claim_err(
+                cx.file,
+                c,
+                "derived",
+                format!("`@{}[order={order}]`: {m}", r.name),
+            )
+        })?;
+        out.insert(r.placeholder.clone(), poly);
+    }
+    Ok(out)
 }
 
 /// What a constant ratio between two sides says: the opposite sign, or a factor.
