@@ -105,3 +105,49 @@ fn a_pendulum_striking_a_rough_wall_in_its_plane_matches_the_closed_form() {
         "{cases} {cut_off}"
     );
 }
+
+/// A scene the model must refuse, with the field and the reason named: a held body whose
+/// contact velocity it cannot have, an inertia 1e-11 off symmetric (above the 1e-12 relative
+/// rounding allowed), a zero contact normal.
+#[test]
+fn impossible_held_motions_and_bad_matrices_are_refused_by_name() {
+    let base = |inertia: &str, fixed: &str, normal: &str, v: &str| {
+        format!(
+            "model = \"rigid-impact\"\n[[body]]\nmass = 2.0\ninertia = {inertia}\ncontact_offset = [0.0, 0.0, -0.3]\n[[body]]\nmass = \"inf\"\n{fixed}[contact]\nnormal = {normal}\nmu = 0.3\nlaw = \"newton\"\ne = 0.5\n[initial]\nv_rel = {v}\n"
+        )
+    };
+    let iso = "[[0.05, 0.0, 0.0], [0.0, 0.05, 0.0], [0.0, 0.0, 0.05]]";
+    let point = "[fixed]\nbody = 1\noffset = [0.0, 0.0, 0.0]\n";
+    let cases = [
+        (
+            // held at G: C can only turn about it, orthogonally to OC = (0, 0, -0.3); this
+            // velocity is along OC, its component 1 m/s an exact multiple of |OC|
+            base(iso, point, "[0.0, 0.0, 1.0]", "[0.0, 0.0, -1.0]"),
+            "orthogonal to OC",
+        ),
+        (
+            base(
+                "[[0.05, 1e-4, 0.0], [1.00000001e-4, 0.05, 0.0], [0.0, 0.0, 0.05]]",
+                "",
+                "[0.0, 0.0, 1.0]",
+                "[0.1, 0.0, -1.0]",
+            ),
+            "not symmetric positive-definite",
+        ),
+        (
+            base(iso, "", "[0.0, 0.0, 0.0]", "[0.1, 0.0, -1.0]"),
+            "contact.normal",
+        ),
+    ];
+    for (text, want) in cases {
+        let table: toml::Table = text.parse().expect("toml");
+        let err = match RigidImpactScene::from_table(&table, "bad.toml") {
+            Err(e) => e.to_string(),
+            Ok(s) => match s.run() {
+                Err(e) => e.to_string(),
+                Ok(_) => panic!("accepted: {text}"),
+            },
+        };
+        assert!(err.contains(want), "`{want}` not in: {err}");
+    }
+}

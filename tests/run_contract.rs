@@ -110,3 +110,37 @@ fn impact_run_output_is_unchanged_for_every_scene() {
         );
     }
 }
+
+#[test]
+fn a_sweep_sets_its_field_on_every_model() {
+    // disk-friction sets no field on its typed parameters (the scene table is re-read per
+    // point): k = v/(a omega) = 0.02/(0.05 omega) must follow omega = 1, 4 (0.4, 0.1 by hand)
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args([
+            "sweep",
+            "scenes/disk_friction.toml",
+            "--vary",
+            "omega=1:4:2",
+        ])
+        .args(["--format", "json", "--quiet"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("impact runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: Value = serde_json::from_slice(&out.stdout).expect("json");
+    let ks: Vec<f64> = v["runs"]
+        .as_array()
+        .expect("runs")
+        .iter()
+        .map(|r| r["result"]["k"].as_f64().expect("k"))
+        .collect();
+    assert_eq!(ks.len(), 2);
+    assert!(
+        (ks[0] - 0.4).abs() < 1e-12 && (ks[1] - 0.1).abs() < 1e-12,
+        "{ks:?}"
+    );
+}

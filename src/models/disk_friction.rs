@@ -726,6 +726,94 @@ mod tests {
         }
     }
 
+    /// Friction is a vector law: rotating the velocity and the centre of pressure rotates the
+    /// force and keeps the moment; mirroring them (x -> -x, which turns the spin) mirrors the
+    /// force and turns the moment. Both with the instantaneous centre in the disk and outside,
+    /// the centre of pressure off both axes (a symmetry, not a value of the code).
+    #[test]
+    fn friction_is_covariant_under_rotation_and_mirror() {
+        let a = 1.5;
+        for (v, w, c) in [
+            ([0.3, 0.2], 1.0, [0.1, -0.2]),    // P inside (|v|/w < a)
+            ([2.0, -1.1], 0.7, [-0.25, 0.15]), // P outside
+            ([0.0, 0.4], -2.0, [0.2, 0.2]),    // negative spin
+        ] {
+            let r0 = friction(v, w, c, a, 1e-14);
+            let th: f64 = 0.7;
+            let (sn, cs) = th.sin_cos();
+            let rot = |x: [f64; 2]| [cs * x[0] - sn * x[1], sn * x[0] + cs * x[1]];
+            let r1 = friction(rot(v), w, rot(c), a, 1e-14);
+            let f0 = rot(r0.force);
+            for i in 0..2 {
+                assert!(
+                    (r1.force[i] - f0[i]).abs() < 1e-12,
+                    "{v:?} {w} {c:?}: {r1:?} vs {f0:?}"
+                );
+            }
+            assert!((r1.moment - r0.moment).abs() < 1e-12, "{r1:?} vs {r0:?}");
+            let mir = |x: [f64; 2]| [-x[0], x[1]];
+            let r2 = friction(mir(v), -w, mir(c), a, 1e-14);
+            let f2 = mir(r0.force);
+            for i in 0..2 {
+                assert!((r2.force[i] - f2[i]).abs() < 1e-12, "{r2:?} vs {f2:?}");
+            }
+            assert!((r2.moment + r0.moment).abs() < 1e-12, "{r2:?} vs {r0:?}");
+            // and the force is a unit load's: |F| <= 1, equal only in pure translation
+            assert!(r0.force[0].hypot(r0.force[1]) < 1.0);
+        }
+    }
+
+    /// The brute-force quadrature (Gauss-Legendre in r, midpoint in theta) against (2.3)'s
+    /// elliptic forms, P inside and outside the disk.
+    #[test]
+    fn brute_force_quadrature_meets_the_elliptic_forms() {
+        for k in [0.3, 0.8, 2.5] {
+            let (f, m) = quadrature(k, 1.0, 24, 4000);
+            let (fe, me) = force_moment_elliptic(k);
+            assert!((f.abs() - fe).abs() < 1e-5, "k = {k}: F {f} vs {fe}");
+            assert!((m.abs() - me).abs() < 1e-5, "k = {k}: M {m} vs {me}");
+        }
+    }
+
+    /// Impulsive motion without spin and with the centre of mass over the base centre: the
+    /// friction is f N against the velocity, so dV/dS = -f/m and V+ = v0 - f u0 (1 + e) (by
+    /// hand), the spin stays 0.
+    #[test]
+    fn impulsive_translation_loses_f_times_the_normal_impulse() {
+        let plate = Plate {
+            m: 2.0,
+            rho: 0.3,
+            a: 0.5,
+            f: 0.2,
+            c: [0.0, 0.0],
+        };
+        let (v0, u0, e) = (3.0, 1.5, 0.6);
+        let (v, w) = impulsive_motion(&plate, v0, 0.0, u0, e).expect("integrates");
+        let want = v0 - 0.2 * u0 * (1.0 + e);
+        assert!((v - want).abs() < 1e-10, "{v} vs {want}");
+        assert!(w.abs() < 1e-12, "{w}");
+    }
+
+    /// The scene's k is V/(a omega), and its force and moment are (2.3)'s at that k.
+    #[test]
+    fn the_scene_reports_k_and_the_elliptic_forms() {
+        use crate::models::Model;
+        let s = DiskFrictionScene {
+            a: 2.0,
+            v: 1.0,
+            omega: 4.0,
+            c: 0.0,
+        };
+        let (out, _) = s.run().expect("runs");
+        let k = out.k.expect("spinning");
+        assert!((k - 0.125).abs() < 1e-15, "{k}");
+        let (fe, me) = force_moment_elliptic(0.125);
+        assert!(
+            (out.force - fe).abs() < 1e-12 && (out.moment - me).abs() < 1e-12,
+            "{out:?}"
+        );
+    }
+
     /// A linear pressure: pure translation and pure spin have closed forms.
     #[test]
     fn linear_pressure_limits() {

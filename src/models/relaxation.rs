@@ -60,3 +60,33 @@ pub fn energy_history(
     out.extend(sol.dense.iter().map(|(t, y)| (*t, sys.energy(y))));
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Without the cubic term, with equal damping d, each coordinate is a damped oscillator
+    /// q'' + d q' + q = 0: from q = A, p = 0, q = A e^(-d t/2) (cos wt + d/(2w) sin wt) and
+    /// p = -A e^(-d t/2) sin(wt)/w, w = sqrt(1 - d^2/4) (by hand), so H is known in closed form.
+    /// A small amplitude (H ~ 1e-11) asks the solver for an absolute accuracy far below 1e-6.
+    #[test]
+    fn the_linear_damped_energy_follows_its_closed_form() {
+        let d = 0.3;
+        let sys = Relaxation {
+            kappa: 0.0,
+            d: [d, d],
+        };
+        let a = 4e-6;
+        let w = (1.0 - d * d / 4.0_f64).sqrt();
+        let hist = energy_history(&sys, &[0.0, 0.0, a, 0.0], 10.0, 20).expect("integrates");
+        assert_eq!(hist.len(), 21);
+        for (t, h) in hist {
+            let decay = a * (-d * t / 2.0).exp();
+            let q = decay * ((w * t).cos() + d / (2.0 * w) * (w * t).sin());
+            let p = -decay * (w * t).sin() / w;
+            let want = 0.5 * (p * p + q * q);
+            assert!((h - want).abs() < 1e-8 * want, "t = {t}: H {h} vs {want}");
+        }
+        assert!((sys.linear_rate() - d / 2.0).abs() < 1e-15);
+    }
+}
