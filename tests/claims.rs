@@ -305,7 +305,7 @@ fn bad_claims_exit_2_naming_file_claim_and_key_and_write_nothing() {
         (
             "quantity not produced",
             model("scene = \"hertz.toml\"\nquantity = \"contact.nothing\""),
-            "claim t.bad: quantity: `contact.nothing`: the model does not produce this number",
+            "claim t.bad: quantity: `contact.nothing`: the model does not produce this number; it produces: atol_used, contact.duration, contact.ended,",
         ),
         (
             "bad grid",
@@ -1007,4 +1007,32 @@ fn the_guide_lists_every_key_of_every_kind() {
         .filter(|r| kinds.contains(&r.0) && !want.contains(*r))
         .collect();
     assert!(extra.is_empty(), "rows for keys no kind takes: {extra:?}");
+}
+
+#[test]
+fn a_model_formula_in_another_unit_than_its_quantity_says_so() {
+    // the Hertz duration formula (s) compared with the peak force (N): the detail names both
+    // units beside the verdict
+    let p = claims_file(
+        "units-note",
+        r#"
+[[claim]]
+id = "t.units"
+equation = "(1)"
+reading = "a time against a force"
+kind = "model"
+scene = "hertz.toml"
+quantity = "contact.duration"
+printed = "3.2181*(m/k)^(2/5)*v0^(-1/5)*k/k*m/m*v0/v0*k*m"
+bind = { m = "impactor.mass", k = "contact.k", v0 = "impactor.v0" }
+vary = ["impactor.v0=0.5:2:2"]
+rtol = 1e-3
+"#,
+    );
+    let v = verdicts(&p);
+    assert!(
+        v[0].2.contains("; units: the formula is") && v[0].2.contains("the quantity s"),
+        "{}",
+        v[0].2
+    );
 }

@@ -124,3 +124,23 @@ pub fn ratio(ineq: &Inequality, (l, r): (f64, f64)) -> Option<f64> {
     };
     (num >= 0.0 && den > 0.0).then(|| num / den)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::ratio;
+    use crate::algebra::expr::parse_inequality;
+
+    #[test]
+    fn the_ratio_to_a_bound_is_side_over_bound_for_positive_sides() {
+        // by hand: l <= r at (1, 4) reaches 1/4 of its bound; l >= r at (4, 1) too; a side
+        // that is not positive gives no ratio
+        let le = parse_inequality("a <= b").expect("parses");
+        let ge = parse_inequality("a >= b").expect("parses");
+        assert_eq!(ratio(&le, (1.0, 4.0)), Some(0.25));
+        assert_eq!(ratio(&ge, (4.0, 1.0)), Some(0.25));
+        assert_eq!(ratio(&le, (1.0, -4.0)), None);
+        assert_eq!(ratio(&le, (-1.0, 4.0)), None);
+        assert_eq!(ratio(&le, (0.0, 4.0)), Some(0.0));
+        assert_eq!(ratio(&le, (1.0, 0.0)), None);
+    }
+}
