@@ -331,3 +331,20 @@ impl std::ops::Add for Expo {
         &self + &o
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn powers_of_t_print_as_written() {
+        // t^0 is not printed, t^1 is `t`, t^2 is `t^2` (the constant 3 as a rational function)
+        let three = || RatFunc::from_q(crate::algebra::poly::qi(3));
+        let texts: Vec<String> = (0..3)
+            .map(|k| Expo::monomial(three(), k).to_text())
+            .collect();
+        assert!(!texts[0].contains('t'), "{}", texts[0]);
+        assert!(texts[1].ends_with("*t"), "{}", texts[1]);
+        assert!(texts[2].ends_with("*t^2"), "{}", texts[2]);
+    }
+}

@@ -1152,6 +1152,13 @@ mod tests {
         let e = read_formula("c \\mp d", &TexSymbols::default()).unwrap_err();
         assert!(e.construct.contains("\\pm"), "{e}");
         assert!(read_formula("\\frac{\\partial f}{\\partial 1}", &TexSymbols::default()).is_err());
+        for bad in [
+            "\\frac{d f}{d ,}",
+            "\\frac{d f}{d +}",
+            "\\frac{\\partial f}{\\partial (}",
+        ] {
+            assert!(read_formula(bad, &TexSymbols::default()).is_err(), "{bad}");
+        }
     }
 
     /// The LaTeX read equals the reference typed by hand: the same value at a point where every
@@ -1183,6 +1190,8 @@ mod tests {
         same(r"2\left(\nu+1\right)\lambda", "2*(nu + 1)*lambda");
         same(r"a \cdot b \times c", "a*b*c");
         same(r"A_{5} + p_{1} + \rho_{0}", "A5 + p1 + rho0");
+        // an unbraced subscript ends at a power: A_5^2 is A5 squared
+        same(r"A_5^2 + p_1^{3}", "A5^2 + p1^3");
         same(r"\tan \theta", "tan(theta)");
         same(r"\sin^{2}\phi + \cos^{2}\phi", "sin(phi)^2 + cos(phi)^2");
         same(

@@ -282,6 +282,24 @@ mod tests {
     use super::*;
 
     #[test]
+    fn integrals_of_single_sines() {
+        // closed form: int_0^a sin(k pi x/a) dx = a (1 - cos k pi)/(k pi): 2a/(k pi) for odd k,
+        // 0 for even k; over y, int_0^b dy = b
+        for k in 1..=6u32 {
+            let f = Field::term(RatFunc::one(), Basis::Sin(k), Basis::Cos(0));
+            let want = if k % 2 == 1 {
+                (&RatFunc::sym("a") * &RatFunc::sym("b"))
+                    .scale(&q(2, i64::from(k)))
+                    .div(&RatFunc::sym("pi"))
+                    .expect("nz")
+            } else {
+                RatFunc::zero()
+            };
+            assert_eq!(f.integral(), want, "k = {k}");
+        }
+    }
+
+    #[test]
     fn orthogonality_of_sines() {
         // Closed form: int_0^a sin(j pi x/a) sin(k pi x/a) dx = a/2 [j == k].
         for j in 1..=5u32 {

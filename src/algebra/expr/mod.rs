@@ -816,6 +816,21 @@ mod tests {
     use crate::algebra::poly::q;
 
     #[test]
+    fn dotted_names_and_exponents_lex_as_written() {
+        // a dotted path is one name; an index part too; `2e-3` is a number, `2e` at the end is
+        // no number with an exponent (an error, not a panic), nor is `2e+`
+        assert_eq!(
+            parse("contact.duration").unwrap(),
+            Expr::sym("contact.duration")
+        );
+        assert_eq!(parse("impulse.0").unwrap(), Expr::sym("impulse.0"));
+        assert_eq!(parse("2e-3").unwrap(), Expr::Num(q(1, 500)));
+        for bad in ["2e", "2e+", "x*3E"] {
+            assert!(parse(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
     fn precedence_and_associativity() {
         // by hand from the grammar: ^ right-assoc above unary minus above * / above + -
         let e = parse("-x^2").unwrap();
