@@ -166,4 +166,41 @@ mod tests {
         assert!((o.impulse_c - want).abs() < 1e-7, "{}", o.impulse_c);
         assert!(o.impulse_a.abs() < f64::MIN_POSITIVE, "{}", o.impulse_a);
     }
+
+    /// The degenerate case: no friction, the contact force through G2 (b2 = 0), the support
+    /// under G2 (a3 = 0): body 2 slides freely and the impact is the central impact of two
+    /// masses through a linear spring, elastic, whose impulse is 2 m1 m2 v0/(m1 + m2) (by hand:
+    /// momentum and energy); the support carries nothing.
+    #[test]
+    fn a_central_frictionless_impact_is_elastic_for_any_masses() {
+        for (m1, m2) in [(0.1, 1.0), (1.0, 1.0), (2.0, 0.5)] {
+            let p = Deformable {
+                m1,
+                m2,
+                rho2: 0.1,
+                c: [0.05, 0.0],
+                a: [0.0, -0.05],
+                mu_star: 0.0,
+                k_c: 1e5,
+                k_a: 1e6,
+                v0: 2.0,
+                slide: 0.0,
+            };
+            let out = simulate(&p, 1e-10).expect("integrates");
+            let want = 2.0 * m1 * m2 * p.v0 / (m1 + m2);
+            assert!(
+                (out.impulse_c - want).abs() < 1e-7 * want,
+                "m1 {m1}, m2 {m2}: {} vs {want}",
+                out.impulse_c
+            );
+            assert!(out.impulse_a.abs() < 1e-12 && out.max_deformation_a.abs() < 1e-15);
+            // the largest compression: energy m1 m2/(m1 + m2) v0^2/2 = k_c d^2/2
+            let d = p.v0 * (m1 * m2 / ((m1 + m2) * p.k_c)).sqrt();
+            assert!(
+                (out.max_deformation_c - d).abs() < 1e-3 * d,
+                "{}",
+                out.max_deformation_c
+            );
+        }
+    }
 }
