@@ -993,6 +993,7 @@ fn the_guide_lists_every_key_of_every_kind() {
         "extends",
         "printed_from",
         "printed_tex",
+        "printed_equations_from",
     ] {
         want.insert(("every kind".to_string(), key.to_string()));
     }

@@ -37,6 +37,9 @@ fn verdict(file: &str, id: &str, from: &str, to: &str, tag: &str) -> Verdict {
     std::fs::create_dir_all(dir.join("verify")).expect("temp dir");
     #[cfg(unix)]
     std::os::unix::fs::symlink(repo.join("scenes"), dir.join("scenes")).expect("link scenes");
+    // the paper's displays, which [definitions_from] and printed_from read
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(repo.join("verify/tex"), dir.join("verify/tex")).expect("link tex");
     let path = dir.join("verify").join(file);
     std::fs::write(&path, format!("{header}{claim}")).expect("write copy");
     let papers = load_claims(&path).expect("loads");

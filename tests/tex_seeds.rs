@@ -80,8 +80,11 @@ fn the_seeds_display_equations_are_read() {
     for (construct, wheres) in &by_construct {
         println!("- {construct}: {} ({})", wheres.len(), wheres.join("; "));
     }
-    // the count measured when the reader was written (242 of 290); reading fewer is a regression
-    assert!(read >= 242, "read {read} of {total}");
+    // measured when the reader was written: 48 relations not read (242 of 290; 239 of 287 since
+    // the continuation rows of 000's (22) and (23), tagged on a middle row, join their
+    // relation); more unread relations is a regression
+    assert!(total - read <= 48, "read {read} of {total}");
+    assert!(total >= 287, "fewer relations found: {total}");
 }
 
 #[test]
@@ -135,16 +138,14 @@ fn tagged(paper: &str, tag: &str, lhs: &str) -> TexRelation {
     panic!("no relation {lhs} = ... in ({tag}) of {paper}");
 }
 
-/// The retyped formula of a definition in a claims file.
-fn definition(file: &str, name: &str) -> Expr {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("verify")
-        .join(file);
-    let table: toml::Table = std::fs::read_to_string(path)
-        .expect("readable")
-        .parse()
-        .expect("toml");
-    let text = table["definitions"][name].as_str().expect("a formula");
+/// The retyped formula of a definition: the hand transcription the claims file held before its
+/// definitions were read from the paper's LaTeX (`[definitions_from]`).
+fn definition(_file: &str, name: &str) -> Expr {
+    let text = match name {
+        "A5" => "E*m^2*n^2*pi^4*b/(64*a^3) + E*m^2*n^2*pi^4*a/(64*b^3)",
+        "A6" => "m^2*n^2*pi^4*b/(64*a^3)*eta + m^2*n^2*pi^4*a/(64*b^3)*eta",
+        _ => panic!("no transcription of {name}"),
+    };
     parse(text).expect("parses")
 }
 

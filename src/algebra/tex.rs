@@ -25,17 +25,37 @@
 use super::expr::{Calc, Expr, Func, Op};
 use super::poly::Q;
 
-/// Spellings mapped to symbols, longest first (a file's `[tex_symbols]`).
+/// Spellings mapped to symbols, longest first (a file's `[tex_symbols]`). A target that is
+/// not a bare name is a formula of the text language (`"E(k)" = "ellipe(k)"`): the spelling
+/// reads as that formula.
 #[derive(Clone, Debug, Default)]
 pub struct TexSymbols(Vec<(String, String)>);
 
 impl TexSymbols {
-    /// A table from `(spelling, symbol)` pairs.
+    /// A table from `(spelling, symbol or formula)` pairs.
     pub fn new(pairs: impl IntoIterator<Item = (String, String)>) -> Self {
         let mut v: Vec<(String, String)> = pairs.into_iter().collect();
         v.sort_by(|a, b| b.0.len().cmp(&a.0.len()).then(a.0.cmp(&b.0)));
         TexSymbols(v)
     }
+
+    /// The targets that are formulas, parsed (a target that does not parse stays a symbol
+    /// with an odd name, which the claim's reader refuses naming it).
+    fn formulas(&self) -> Vec<(String, Expr)> {
+        self.0
+            .iter()
+            .filter(|(_, t)| !is_name(t))
+            .filter_map(|(_, t)| super::expr::parse(t).ok().map(|e| (t.clone(), e)))
+            .collect()
+    }
+}
+
+/// A bare symbol name (letters, digits, `_`, not starting with a digit).
+fn is_name(t: &str) -> bool {
+    t.chars()
+        .next()
+        .is_some_and(|c| c.is_alphabetic() || c == '_')
+        && t.chars().all(|c| c.is_alphanumeric() || c == '_')
 }
 
 /// Why a piece of LaTeX could not be read: the column (1-based, in characters of the piece
@@ -983,7 +1003,20 @@ pub fn read_relation(tex: &str, syms: &TexSymbols) -> Result<TexRelation, TexErr
         in_abs: 0,
         depth: 0,
     };
-    r.relation()
+    let mut rel = r.relation()?;
+    let formulas = syms.formulas();
+    if !formulas.is_empty() {
+        let lookup = |s: &str| {
+            formulas
+                .iter()
+                .find(|(t, _)| t == s)
+                .map(|(_, e)| e.clone())
+        };
+        for side in &mut rel.sides {
+            *side = side.substitute(&lookup);
+        }
+    }
+    Ok(rel)
 }
 
 /// The environments a display may wrap its rows in: their `\begin{..}`/`\end{..}` are dropped.
@@ -1089,9 +1122,15 @@ pub fn read_display(block: &str, syms: &TexSymbols) -> Vec<TexRow> {
         let t = row.trim_start();
         let continues = t.starts_with('+') || t.starts_with('-') || t.starts_with('=');
         match rows.last_mut() {
-            Some(prev) if continues && !prev.contains("\\tag") => {
-                prev.push(' ');
-                prev.push_str(&row);
+            // a row that continues a relation joins it, also when the tag was printed on the
+            // row before (a long relation tagged on its middle row, 000's (22)); the tag then
+            // moves to the end of the joined row
+            Some(prev) if continues && (!prev.contains("\\tag") || !starts_relation(&row)) => {
+                let (body, tag) = take_tag(prev);
+                *prev = format!("{body} {row}");
+                if let Some(tag) = tag {
+                    prev.push_str(&format!(" \\tag{{{tag}}}"));
+                }
             }
             _ => rows.push(row),
         }
@@ -1113,6 +1152,12 @@ pub fn read_display(block: &str, syms: &TexSymbols) -> Vec<TexRow> {
             }
         })
         .collect()
+}
+
+/// Whether a row that starts with `-` or `+` is a relation of its own (`-a = b`) rather than the
+/// continuation of the row before (a relation sign at the top level).
+fn starts_relation(row: &str) -> bool {
+    split_top(row, &["=", "\\le", "\\ge", "<", ">", "\\approx"]).len() > 1
 }
 
 /// The row without its `\tag{...}`, and the tag.
@@ -1277,5 +1322,30 @@ mod tests {
         let r = rows[1].relations[0].as_ref().expect("reads");
         assert_eq!(r.rels, vec!["="]);
         assert_eq!(r.sides[0].to_string(), "A7");
+    }
+
+    #[test]
+    fn a_relation_tagged_on_its_middle_row_keeps_its_continuations() {
+        // 000's (22): the tag printed on the middle row of a relation over three rows; a row
+        // after it that is a relation of its own stays apart
+        let rows = read_display(
+            "& x=1+2 \\\\ & +3 \\tag{22} \\\\ & -4 \\\\ & -y=2",
+            &TexSymbols::default(),
+        );
+        assert_eq!(rows.len(), 2, "{rows:?}");
+        assert_eq!(rows[0].tag.as_deref(), Some("22"));
+        let r = rows[0].relations[0].as_ref().expect("reads");
+        assert_eq!(r.sides[1].eval(&|_| None), Ok(2.0));
+        assert_eq!(rows[1].tag, None);
+    }
+
+    #[test]
+    fn a_spelling_may_stand_for_a_formula() {
+        let syms = TexSymbols::new([
+            ("E(k)".to_string(), "ellipe(k)".to_string()),
+            ("\\tilde{E}".to_string(), "Et".to_string()),
+        ]);
+        let e = read_formula("\\tilde{E} E(k)", &syms).expect("reads");
+        assert_eq!(e.to_string(), "Et*ellipe(k)");
     }
 }

@@ -40,6 +40,14 @@ pub struct PaperClaims {
     /// name in the claims; their units follow from their formulas.
     #[serde(default)]
     pub definitions: BTreeMap<String, String>,
+    /// Named formulas read from the paper's LaTeX (`a1_22 = { tag = "(22)", lhs = "a_{1}(t)" }`,
+    /// or `{ after = "(2.9)", lhs = "\\delta" }` for the untagged display after an equation):
+    /// resolved into `definitions` ([`tex_claims`]).
+    #[serde(default)]
+    pub definitions_from: BTreeMap<String, toml::Value>,
+    /// The LaTeX each definition of `definitions_from` was read from, for the report.
+    #[serde(skip)]
+    pub definitions_latex: BTreeMap<String, String>,
     /// The paper's numbered equations (its `\\tag{...}` labels, in order), taken from the text
     /// once: coverage is counted from this list, and checked against the text when it is found.
     #[serde(default)]

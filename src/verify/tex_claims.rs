@@ -39,23 +39,39 @@ fn bad(file: &PaperClaims, id: &str, field: &str, message: String) -> VerifyErro
     }
 }
 
-/// The LaTeX of `printed_from`: the side of the tagged relation.
+/// The LaTeX of `printed_from` (or of an entry of `printed_equations_from`,
+/// `[definitions_from]`, named by `field`): the row of the tagged relation, or with `after`
+/// (`after = "(2.9)"`, `lhs` required) of the first untagged display after the tagged one (where
+/// papers print the definitions that go with an equation); and the left side asked for.
 fn from_paper(
     file: &PaperClaims,
     id: &str,
+    field: &str,
     spec: &toml::Table,
     syms: &TexSymbols,
-) -> Result<String, VerifyError> {
-    let err = |m: String| bad(file, id, "printed_from", m);
-    let tag = spec
-        .get("tag")
-        .and_then(|t| t.as_str())
-        .ok_or_else(|| err("needs `tag` (the equation's label, \"(16)\")".into()))?;
-    let tag = tag
-        .trim()
-        .trim_start_matches('(')
-        .trim_end_matches(')')
-        .to_string();
+) -> Result<(String, Option<String>), VerifyError> {
+    let err = |m: String| bad(file, id, field, m);
+    let label = |key: &str| {
+        spec.get(key).map(|t| {
+            t.as_str()
+                .map(|t| {
+                    t.trim()
+                        .trim_start_matches('(')
+                        .trim_end_matches(')')
+                        .to_string()
+                })
+                .ok_or_else(|| err(format!("`{key}` is the equation's label, \"(16)\"")))
+        })
+    };
+    let (tag, after) = match (label("tag").transpose()?, label("after").transpose()?) {
+        (Some(t), None) => (t, false),
+        (None, Some(a)) => (a, true),
+        _ => {
+            return Err(err(
+                "needs `tag` (the equation's label, \"(16)\") or `after` (the untagged display after it), not both".into(),
+            ));
+        }
+    };
     let lhs = match spec.get("lhs") {
         Some(v) => Some(
             v.as_str()
@@ -63,21 +79,52 @@ fn from_paper(
                 .and_then(|t| read_formula(t, syms).map_err(|e| err(format!("lhs: {e}"))))?
                 .to_string(),
         ),
+        None if after => {
+            return Err(err(
+                "`after` needs `lhs` (the left side of the relation read)".into(),
+            ));
+        }
         None => None,
     };
-    if let Some(k) = spec.keys().find(|k| *k != "tag" && *k != "lhs") {
-        return Err(err(format!("unknown key `{k}`; allowed: tag, lhs")));
+    if let Some(k) = spec
+        .keys()
+        .find(|k| !["tag", "after", "lhs", "at"].contains(&k.as_str()))
+    {
+        return Err(err(format!(
+            "unknown key `{k}`; allowed: tag, after, lhs, at"
+        )));
     }
     let dir = file.source.parent().unwrap_or(std::path::Path::new("."));
     let path = dir.join("tex").join(format!("{}.tex", file.paper));
     let text = std::fs::read_to_string(&path)
         .map_err(|e| err(format!("the paper's displays {}: {e}", path.display())))?;
+    let blocks = display_blocks(&text);
+    let tagged = |tex: &str, after_tag: &Option<String>| {
+        tex.contains(&format!("\\tag{{{tag}}}")) || after_tag.as_deref() == Some(tag.as_str())
+    };
+    let mut chosen: Vec<&(Option<String>, String)> = Vec::new();
+    if after {
+        // the first block after the tagged one with no tag of its own
+        let start = blocks.iter().position(|(a, tex)| tagged(tex, a));
+        if let Some(k) = start
+            && let Some(b) = blocks[k + 1..]
+                .iter()
+                .find(|(a, tex)| a.is_none() && !tex.contains("\\tag{"))
+        {
+            chosen.push(b);
+        }
+    } else {
+        chosen = blocks.iter().collect();
+    }
     let mut lefts = Vec::new();
     let mut found_tag = false;
-    for (after, tex) in display_blocks(&text) {
-        let in_block = tex.contains(&format!("\\tag{{{tag}}}"));
-        for row in read_display(&tex, syms) {
-            if row.tag.as_deref().or(after.as_deref()) != Some(tag.as_str()) && !in_block {
+    for (block_after, tex) in chosen {
+        let in_block = after || tex.contains(&format!("\\tag{{{tag}}}"));
+        for row in read_display(tex, syms) {
+            if !after
+                && row.tag.as_deref().or(block_after.as_deref()) != Some(tag.as_str())
+                && !in_block
+            {
                 continue;
             }
             found_tag = true;
@@ -85,25 +132,97 @@ fn from_paper(
                 let left = rel.sides[0].to_string();
                 match &lhs {
                     Some(l) if *l == left && rel.sides.len() > 1 => {
-                        return Ok(row_side(&row.tex, l));
+                        return Ok((row_side(&row.tex, l), lhs.clone()));
                     }
                     None if row.tag.as_deref() == Some(tag.as_str()) && rel.sides.len() > 1 => {
-                        return Ok(row.tex.clone());
+                        return Ok((row.tex.clone(), None));
                     }
                     _ => lefts.push(left),
                 }
             }
         }
     }
+    let place = if after {
+        format!("the display after ({tag})")
+    } else {
+        format!("({tag})")
+    };
     Err(err(if found_tag {
         format!(
-            "no relation of ({tag}) has the left side {}; its left sides: {}",
+            "no relation of {place} has the left side {}; its left sides: {}",
             lhs.unwrap_or_default(),
             lefts.join(", ")
+        )
+    } else if after {
+        format!(
+            "no untagged display follows one tagged ({tag}) in {}",
+            path.display()
         )
     } else {
         format!("no display is tagged ({tag}) in {}", path.display())
     }))
+}
+
+/// A formula read from the paper: the side asked for (`lhs`, or the right side of the tagged
+/// equation), as text of the formula language, and the LaTeX it was read from.
+fn formula_from_paper(
+    file: &PaperClaims,
+    id: &str,
+    field: &str,
+    spec: &toml::Value,
+    syms: &TexSymbols,
+) -> Result<(Expr, String), VerifyError> {
+    let spec = spec.as_table().ok_or_else(|| {
+        bad(
+            file,
+            id,
+            field,
+            "is a table { tag = \"(16)\", lhs = \"A_{5}\" } (or { after = \"(2.9)\", lhs = ... })"
+                .into(),
+        )
+    })?;
+    let (latex, lhs) = from_paper(file, id, field, spec, syms)?;
+    let mut e = read_side(&latex, lhs.as_deref(), syms)
+        .map_err(|e| bad(file, id, field, format!("`{latex}`: {e}")))?;
+    // `at = { k = "k1" }`: the formula at other arguments (f1(k) of (2.3) read as f1(k1))
+    if let Some(at) = spec.get("at") {
+        let at = at
+            .as_table()
+            .ok_or_else(|| bad(file, id, field, "`at` is a table { k = \"k1\" }".into()))?;
+        let mut with = Vec::new();
+        for (name, v) in at {
+            let text = v.as_str().unwrap_or_default();
+            let f = crate::algebra::expr::parse(text)
+                .map_err(|err| bad(file, id, field, format!("at.{name}: `{text}`: {err}")))?;
+            if !e.symbols().contains(name) {
+                return Err(bad(
+                    file,
+                    id,
+                    field,
+                    format!("at.{name}: the formula read does not use `{name}`"),
+                ));
+            }
+            with.push((name.clone(), f));
+        }
+        e = e.substitute(&|s| with.iter().find(|(n, _)| n == s).map(|(_, f)| f.clone()));
+    }
+    no_opaque(file, id, field, &e)?;
+    Ok((e, latex))
+}
+
+/// Refuses a formula that kept an opaque function application (`{w(x,y,t)}`).
+fn no_opaque(file: &PaperClaims, id: &str, field: &str, e: &Expr) -> Result<(), VerifyError> {
+    match e.symbols().into_iter().find(|s| s.starts_with('{')) {
+        Some(s) => Err(bad(
+            file,
+            id,
+            field,
+            format!(
+                "`{s}` is a function application or a tuple the formula language has no name for: map its spelling to a symbol in [tex_symbols]"
+            ),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// The LaTeX of a row (kept whole: the report shows the row the side was read from).
@@ -144,7 +263,59 @@ fn read_side(
 pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
     let syms = TexSymbols::new(file.tex_symbols.clone());
     let snapshot = file.clone();
+    // the file's definitions read from the paper (`[definitions_from]`)
+    for (name, spec) in std::mem::take(&mut file.definitions_from) {
+        let field = format!("definitions_from.{name}");
+        if file.definitions.contains_key(&name) {
+            return Err(bad(
+                &snapshot,
+                "(file)",
+                &field,
+                format!("`{name}` is also in [definitions]: define it once"),
+            ));
+        }
+        let (e, latex) = formula_from_paper(&snapshot, "(file)", &field, &spec, &syms)?;
+        file.definitions.insert(name.clone(), e.to_string());
+        file.definitions_latex.insert(name, latex);
+    }
     for c in &mut file.claim {
+        if let Some(list) = c.keys.remove("printed_equations_from") {
+            let field = "printed_equations_from";
+            if c.keys.contains_key("printed_equations") {
+                return Err(bad(
+                    &snapshot,
+                    &c.head.id,
+                    field,
+                    "give printed_equations or printed_equations_from, not both".into(),
+                ));
+            }
+            let specs = list.as_array().cloned().ok_or_else(|| {
+                bad(
+                    &snapshot,
+                    &c.head.id,
+                    field,
+                    "is a list of { tag = ..., lhs = ... } (or { after = ..., lhs = ... })".into(),
+                )
+            })?;
+            let mut texts = Vec::new();
+            let mut rows: Vec<String> = Vec::new();
+            for (k, spec) in specs.iter().enumerate() {
+                let (e, latex) = formula_from_paper(
+                    &snapshot,
+                    &c.head.id,
+                    &format!("{field}[{k}]"),
+                    spec,
+                    &syms,
+                )?;
+                texts.push(toml::Value::String(e.to_string()));
+                if !rows.contains(&latex) {
+                    rows.push(latex);
+                }
+            }
+            c.keys
+                .insert("printed_equations".into(), toml::Value::Array(texts));
+            c.head.tex = Some(rows.join(" \\\\ "));
+        }
         let tex = c.keys.remove("printed_tex");
         let from = c.keys.remove("printed_from");
         let (field, latex, lhs) = match (tex, from) {
@@ -172,12 +343,7 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
                         "is a table { tag = \"(16)\", lhs = \"A_{5}\" }".into(),
                     )
                 })?;
-                let latex = from_paper(&snapshot, &c.head.id, &spec, &syms)?;
-                let lhs = spec
-                    .get("lhs")
-                    .and_then(|v| v.as_str())
-                    .and_then(|t| read_formula(t, &syms).ok())
-                    .map(|e| e.to_string());
+                let (latex, lhs) = from_paper(&snapshot, &c.head.id, "printed_from", &spec, &syms)?;
                 ("printed_from", latex, lhs)
             }
         };
@@ -213,16 +379,7 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
                 ));
             }
         };
-        if let Some(s) = e.symbols().into_iter().find(|s| s.starts_with('{')) {
-            return Err(bad(
-                &snapshot,
-                &c.head.id,
-                field,
-                format!(
-                    "`{s}` is a function application or a tuple the formula language has no name for: map its spelling to a symbol in [tex_symbols]"
-                ),
-            ));
-        }
+        no_opaque(&snapshot, &c.head.id, field, &e)?;
         c.keys
             .insert("printed".into(), toml::Value::String(e.to_string()));
         c.head.tex = Some(latex);

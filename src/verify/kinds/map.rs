@@ -111,6 +111,12 @@ impl Kind for Map {
                 let printed = cx.formula(c, &s.where_, "printed", &printed_text)?;
                 let outcome = scene.probe(cx, c, &probe, &[("printed", &printed)])?;
                 scene::check_quantity(cx, c, &outcome, &quantity)?;
+                // a formula read from the paper is named by its equation (the report shows
+                // its LaTeX); a typed one is quoted
+                let printed_text = match &c.tex {
+                    Some(_) => format!("{} as printed", c.equation),
+                    None => format!("`{printed_text}`"),
+                };
                 Region::Within {
                     quantity,
                     printed_text,
@@ -205,7 +211,7 @@ impl Map {
                 rtol,
                 ..
             } => format!(
-                "`{printed_text}` is within {} of the model's {quantity}",
+                "{printed_text} is within {} of the model's {quantity}",
                 g4(*rtol)
             ),
         }

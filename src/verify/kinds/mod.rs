@@ -362,6 +362,8 @@ impl<'a> Checked<'a> {
                 o.extends = c.head.extends.clone();
                 if let Some(tex) = &c.head.tex {
                     o.printed_latex = Some(tex.clone());
+                } else if let Some(tex) = self.definitions_latex_in(c) {
+                    o.printed_latex = Some(tex);
                 }
                 if let Some(x) = &c.head.extends {
                     o.detail = format!("extends the paper ({x}): {}", o.detail);
@@ -369,6 +371,21 @@ impl<'a> Checked<'a> {
                 Ok(super::with_assumption(o, &c.head))
             })
             .collect()
+    }
+
+    /// The LaTeX of the file's definitions read from the paper (`[definitions_from]`) that the
+    /// claim's `printed` uses, one row each.
+    fn definitions_latex_in(&self, c: &super::ClaimSpec) -> Option<String> {
+        let printed = c.keys.get("printed").and_then(|v| v.as_str())?;
+        let used = crate::algebra::expr::parse(printed).ok()?.symbols();
+        let rows: Vec<&str> = self
+            .file
+            .definitions_latex
+            .iter()
+            .filter(|(name, _)| used.contains(*name))
+            .map(|(_, tex)| tex.as_str())
+            .collect();
+        (!rows.is_empty()).then(|| rows.join(" \\\\ "))
     }
 
     /// Measures the power of each claim for which `pick(id)` holds, given its outcome of
