@@ -347,3 +347,52 @@ fn a_bad_definition_from_the_paper_stops_validation() {
         );
     }
 }
+
+/// A claim whose `printed` uses a definition read from the paper shows that definition's LaTeX in
+/// its report; a claim that uses none shows no printed LaTeX.
+#[test]
+fn the_report_shows_the_latex_of_the_definitions_a_claim_uses() {
+    let body = format!(
+        "[definitions_from]\nA5 = {{ tag = \"(16)\", lhs = \"A_{{5}}\" }}\n{}{}",
+        claim(
+            "uses.A5",
+            "printed = \"A5\"",
+            "E*@galerkin.cubic",
+            "[[1, 1]]"
+        ),
+        claim(
+            "typed.A5",
+            &format!("printed = \"{A5}\""),
+            "E*@galerkin.cubic",
+            "[[1, 1]]"
+        )
+    );
+    let d = claims_dir("report-latex", &body);
+    let out_dir = d.join("out");
+    let out = Command::new(env!("CARGO_BIN_EXE_verify"))
+        .args([
+            "--claims",
+            d.join("claims.toml").to_str().expect("utf-8"),
+            "--out",
+            out_dir.to_str().expect("utf-8"),
+        ])
+        .output()
+        .expect("runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let md = std::fs::read_to_string(out_dir.join("t.md")).expect("the report");
+    let section = |id: &str| {
+        let start = md.find(&format!("## {id}")).expect("section");
+        let rest = &md[start + 3..];
+        rest[..rest.find("\n## ").unwrap_or(rest.len())].to_string()
+    };
+    let uses = section("uses.A5");
+    assert!(
+        uses.contains("Printed:\n\n$$") && uses.contains(r"A_{5}") && uses.contains(r"\frac"),
+        "{uses}"
+    );
+    assert!(!section("typed.A5").contains("Printed:\n\n$$"), "{md}");
+}

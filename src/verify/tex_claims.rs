@@ -41,8 +41,9 @@ fn bad(file: &PaperClaims, id: &str, field: &str, message: String) -> VerifyErro
 
 /// The LaTeX of `printed_from` (or of an entry of `printed_equations_from`,
 /// `[definitions_from]`, named by `field`): the row of the tagged relation, or with `after`
-/// (`after = "(2.9)"`, `lhs` required) of the first untagged display after the tagged one (where
-/// papers print the definitions that go with an equation); and the left side asked for.
+/// (`after = "(2.9)"`, `lhs` required) of the untagged displays between the tagged one and the
+/// next tagged one (where papers print the definitions that go with an equation); and the left
+/// side asked for.
 fn from_paper(
     file: &PaperClaims,
     id: &str,
@@ -68,7 +69,7 @@ fn from_paper(
         (None, Some(a)) => (a, true),
         _ => {
             return Err(err(
-                "needs `tag` (the equation's label, \"(16)\") or `after` (the untagged display after it), not both".into(),
+                "needs `tag` (the equation's label, \"(16)\") or `after` (the untagged displays after it), not both".into(),
             ));
         }
     };
@@ -104,14 +105,14 @@ fn from_paper(
     };
     let mut chosen: Vec<&(Option<String>, String)> = Vec::new();
     if after {
-        // the first block after the tagged one with no tag of its own
+        // the untagged blocks after the tagged one, up to the next tagged block
         let start = blocks.iter().position(|(a, tex)| tagged(tex, a));
-        if let Some(k) = start
-            && let Some(b) = blocks[k + 1..]
-                .iter()
-                .find(|(a, tex)| a.is_none() && !tex.contains("\\tag{"))
-        {
-            chosen.push(b);
+        if let Some(k) = start {
+            chosen.extend(
+                blocks[k + 1..]
+                    .iter()
+                    .take_while(|(a, tex)| a.is_none() && !tex.contains("\\tag{")),
+            );
         }
     } else {
         chosen = blocks.iter().collect();
@@ -143,7 +144,7 @@ fn from_paper(
         }
     }
     let place = if after {
-        format!("the display after ({tag})")
+        format!("the untagged displays after ({tag})")
     } else {
         format!("({tag})")
     };
@@ -155,7 +156,7 @@ fn from_paper(
         )
     } else if after {
         format!(
-            "no untagged display follows one tagged ({tag}) in {}",
+            "no untagged display follows the one tagged ({tag}) in {}",
             path.display()
         )
     } else {
