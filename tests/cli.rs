@@ -503,3 +503,34 @@ fn sharded_sweep_merges_to_the_whole() {
     assert_ne!(code, 0);
     assert!(err.contains("first missing indices [2, 3]"), "{err}");
 }
+
+/// `impact --help` describes every subcommand under its own name (a doc comment once slid onto
+/// the next command: `describe` read "Merge the JSON outputs..." and `merge` had no text).
+#[test]
+fn every_impact_subcommand_has_its_own_description() {
+    let out = Command::new(env!("CARGO_BIN_EXE_impact"))
+        .arg("--help")
+        .output()
+        .expect("runs");
+    let text = String::from_utf8_lossy(&out.stdout).to_string();
+    let line = |name: &str| {
+        text.lines()
+            .find(|l| l.trim_start().starts_with(&format!("{name} ")))
+            .unwrap_or_else(|| panic!("{name} not listed:\n{text}"))
+            .trim_start()[name.len()..]
+            .trim()
+            .to_string()
+    };
+    for (name, says) in [
+        ("run", "Run one scene"),
+        ("sweep", "over a range"),
+        ("describe", "scene key"),
+        ("merge", "Merge the JSON outputs"),
+        ("bench", "Measure"),
+        ("series", "Adomian"),
+        ("galerkin", "A1..A7"),
+    ] {
+        let l = line(name);
+        assert!(l.contains(says), "{name}: `{l}`");
+    }
+}

@@ -95,8 +95,6 @@ enum Command {
         #[arg(long)]
         out: Option<std::path::PathBuf>,
     },
-    /// Merge the JSON outputs of a sharded sweep (`sweep --shard K/N --format json`) into one,
-    /// checking that every point is there exactly once.
     /// Every scene key of a model (unit, allowed range, default, meaning) and every outcome
     /// of its run (unit, meaning, sign convention), from the model's own documentation; without
     /// MODEL, every model (verify/MODELS.md is this output). E.g. `impact describe ode`.
@@ -108,6 +106,8 @@ enum Command {
         #[arg(long, value_enum, default_value = "markdown")]
         format: DocFmt,
     },
+    /// Merge the JSON outputs of a sharded sweep (`sweep --shard K/N --format json`) into one,
+    /// checking that every point is there exactly once.
     Merge {
         /// The shards' JSON files.
         #[arg(required = true)]
