@@ -230,3 +230,40 @@ fn no_allocation_per_step() {
         "{a1} allocations for {s1} steps, {a2} for {s2} steps"
     );
 }
+
+#[test]
+fn radau5_allocates_nothing_per_step() {
+    // a stiff forced system (rates 1 and 1e4): Radau5 refactors its two matrices on most steps,
+    // in its own workspace; the allocations of a solve do not grow with its steps
+    struct Stiff;
+    impl OdeSystem for Stiff {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+            // y1 follows cos(10 t) on the fast scale, y0 follows y1 slowly: the forcing keeps
+            // the steps short all the way
+            dy[0] = -y[0] + y[1];
+            dy[1] = -1e4 * (y[1] - (10.0 * t).cos());
+        }
+    }
+    let count = |t_end: f64| {
+        let opts = Options {
+            rtol: 1e-9,
+            atol: 1e-12,
+            method: Method::Radau5,
+            ..Options::default()
+        };
+        let before = ALLOCS.with(Cell::get);
+        let sol = solve(&Stiff, 0.0, &[1.0, 0.0], t_end, &opts).expect("solves");
+        let after = ALLOCS.with(Cell::get);
+        (after - before, sol.stats.steps, sol.stats.lu_decomps)
+    };
+    let (a1, s1, d1) = count(2.0);
+    let (a2, s2, d2) = count(40.0);
+    assert!(s2 > 3 * s1 && d2 > 3 * d1, "{s1} {s2} steps, {d1} {d2} LUs");
+    assert_eq!(
+        a1, a2,
+        "{a1} allocations for {s1} steps ({d1} LUs), {a2} for {s2} steps ({d2} LUs)"
+    );
+}

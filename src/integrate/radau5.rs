@@ -4,8 +4,11 @@
 //! The stage increments $Z = (Y_i - y_0)$ solve $Z = h(A\otimes I)F(Z)$ by simplified Newton in
 //! the variables $W = (T^{-1}\otimes I)Z$, with $T^{-1}A^{-1}T = \mathrm{diag}(\gamma,
 //! \begin{smallmatrix}\alpha&-\beta\\\beta&\alpha\end{smallmatrix})$, so each iteration solves one
-//! real system with $\gamma/h - J$ and one complex system with $(\alpha + i\beta)/h - J$ (nalgebra
-//! LU). Tolerances are used as given (Hairer transforms them to $r' = 0.1 r^{2/3}$, which at
+//! real system with $\gamma/h - J$ and one complex system with $(\alpha + i\beta)/h - J$ (LU with
+//! partial pivoting, factored and solved in place in the stepper's workspace, as Hairer's
+//! DEC/DECC and SOL/SOLC do: written by hand because nalgebra's `LU` takes its matrix by value and
+//! allocates a permutation per factorisation, and a stiff solve refactors on most steps; no
+//! allocation after the stepper is built). Tolerances are used as given (Hairer transforms them to $r' = 0.1 r^{2/3}$, which at
 //! tight tolerances lets the global error grow three orders past the request), the Newton stopping
 //! criterion is $\theta/(1-\theta)\,\|\Delta W\| \le \kappa$, the error estimate is
 //! $(\gamma/h - J)^{-1}[f(y_0) + (d_1 Z_1 + d_2 Z_2 + d_3 Z_3)/h]$ (re-filtered once after a
@@ -14,7 +17,9 @@
 //! changes. Dense output is the collocation polynomial.
 
 use super::{IntegrateError, OdeSystem, Options, Stats, Stepper, rms};
-use nalgebra::{Complex, DMatrix, DVector, LU};
+use nalgebra::{Complex, DMatrix};
+use num_traits::Zero;
+use std::ops::{Div, Mul, Sub};
 
 const NIT: usize = 7;
 const SAFE: f64 = 0.9;
@@ -99,6 +104,69 @@ fn consts() -> Consts {
     }
 }
 
+/// Factors the row-major `n x n` matrix `a` in place with partial pivoting (the row of the
+/// largest `mag` in each column), as LINPACK's DGEFA and Hairer's DEC/DECC: `a` holds `U` and
+/// the multipliers of `L`, `piv[k]` the row exchanged with row `k` at step `k` (only the columns
+/// from `k` on are exchanged, so [`lu_solve`] applies exchange and elimination step by step).
+/// False when a pivot is exactly zero (singular).
+fn lu_factor<T>(a: &mut [T], piv: &mut [usize], n: usize, mag: fn(&T) -> f64) -> bool
+where
+    T: Copy + Zero + Sub<Output = T> + Mul<Output = T> + Div<Output = T>,
+{
+    for k in 0..n {
+        let (mut p, mut best) = (k, mag(&a[k * n + k]));
+        for i in k + 1..n {
+            let m = mag(&a[i * n + k]);
+            if m > best {
+                (p, best) = (i, m);
+            }
+        }
+        piv[k] = p;
+        if best <= 0.0 || best.is_nan() {
+            return false;
+        }
+        if p != k {
+            for j in k..n {
+                a.swap(k * n + j, p * n + j);
+            }
+        }
+        let pivot = a[k * n + k];
+        for i in k + 1..n {
+            let f = a[i * n + k] / pivot;
+            a[i * n + k] = f;
+            if !f.is_zero() {
+                for j in k + 1..n {
+                    a[i * n + j] = a[i * n + j] - f * a[k * n + j];
+                }
+            }
+        }
+    }
+    true
+}
+
+/// Solves `A x = b` in place with the factors of [`lu_factor`].
+fn lu_solve<T>(a: &[T], piv: &[usize], n: usize, b: &mut [T])
+where
+    T: Copy + Sub<Output = T> + Mul<Output = T> + Div<Output = T>,
+{
+    for k in 0..n {
+        if piv[k] != k {
+            b.swap(k, piv[k]);
+        }
+        let bk = b[k];
+        for i in k + 1..n {
+            b[i] = b[i] - a[i * n + k] * bk;
+        }
+    }
+    for k in (0..n).rev() {
+        let mut s = b[k];
+        for j in k + 1..n {
+            s = s - a[k * n + j] * b[j];
+        }
+        b[k] = s / a[k * n + k];
+    }
+}
+
 /// The Radau5 stepper.
 pub struct Radau5 {
     n: usize,
@@ -121,10 +189,15 @@ pub struct Radau5 {
     tmp2: Vec<f64>,
     f1: Vec<f64>,
     jac: DMatrix<f64>,
-    lu_real: Option<LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
-    lu_cplx: Option<LU<Complex<f64>, nalgebra::Dyn, nalgebra::Dyn>>,
-    rhs_real: DVector<f64>,
-    rhs_cplx: DVector<Complex<f64>>,
+    /// $\gamma/h - J$, factored in place (row-major), and its pivots.
+    lu_real: Vec<f64>,
+    piv_real: Vec<usize>,
+    /// $(\alpha + i\beta)/h - J$, factored in place, and its pivots.
+    lu_cplx: Vec<Complex<f64>>,
+    piv_cplx: Vec<usize>,
+    /// Whether the factors are there (a first decomposition was made).
+    factored: bool,
+    rhs_cplx: Vec<Complex<f64>>,
     jac_current: bool,
     lu_h: f64,
     first: bool,
@@ -174,10 +247,12 @@ impl Radau5 {
             tmp2: v(),
             f1: v(),
             jac: DMatrix::zeros(n, n),
-            lu_real: None,
-            lu_cplx: None,
-            rhs_real: DVector::zeros(n),
-            rhs_cplx: DVector::from_element(n, Complex::new(0.0, 0.0)),
+            lu_real: vec![0.0; n * n],
+            piv_real: vec![0; n],
+            lu_cplx: vec![Complex::new(0.0, 0.0); n * n],
+            piv_cplx: vec![0; n],
+            factored: false,
+            rhs_cplx: vec![Complex::new(0.0, 0.0); n],
             jac_current: false,
             lu_h: f64::NAN,
             first: true,
@@ -218,35 +293,27 @@ impl Radau5 {
         let n = self.n;
         let fac1 = self.k.u1 / h;
         let (alphn, betan) = (self.k.alph / h, self.k.beta / h);
-        let e1 = DMatrix::from_fn(
-            n,
-            n,
-            |i, j| if i == j { fac1 } else { 0.0 } - self.jac[(i, j)],
-        );
-        let e2 = DMatrix::from_fn(n, n, |i, j| {
-            let d = if i == j {
-                Complex::new(alphn, betan)
-            } else {
-                Complex::new(0.0, 0.0)
-            };
-            d - Complex::new(self.jac[(i, j)], 0.0)
-        });
-        let l1 = LU::new(e1);
-        let l2 = LU::new(e2);
+        for i in 0..n {
+            for j in 0..n {
+                let d = if i == j { 1.0 } else { 0.0 };
+                self.lu_real[i * n + j] = d * fac1 - self.jac[(i, j)];
+                self.lu_cplx[i * n + j] = Complex::new(d * alphn - self.jac[(i, j)], d * betan);
+            }
+        }
         self.stats.lu_decomps += 2;
-        let ok = l1.is_invertible() && l2.is_invertible();
-        self.lu_real = Some(l1);
-        self.lu_cplx = Some(l2);
+        let ok = lu_factor(&mut self.lu_real, &mut self.piv_real, n, |x| x.abs())
+            && lu_factor(&mut self.lu_cplx, &mut self.piv_cplx, n, |z| {
+                z.re.abs() + z.im.abs()
+            });
+        self.factored = true;
         self.lu_h = h;
         ok
     }
 
     fn solve_real(&mut self, v: &mut [f64]) {
-        self.rhs_real.as_mut_slice().copy_from_slice(v);
-        if let Some(lu) = &self.lu_real {
-            lu.solve_mut(&mut self.rhs_real);
+        if self.factored {
+            lu_solve(&self.lu_real, &self.piv_real, self.n, v);
         }
-        v.copy_from_slice(self.rhs_real.as_slice());
     }
 
     /// One attempt at a step of size `h`; `Ok(Some((err, newton_iterations)))` when Newton
@@ -323,8 +390,8 @@ impl Radau5 {
             for m in 0..n {
                 self.rhs_cplx[m] = Complex::new(dz[1][m], dz[2][m]);
             }
-            if let Some(lu) = &self.lu_cplx {
-                lu.solve_mut(&mut self.rhs_cplx);
+            if self.factored {
+                lu_solve(&self.lu_cplx, &self.piv_cplx, n, &mut self.rhs_cplx);
             }
             for m in 0..n {
                 dz[1][m] = self.rhs_cplx[m].re;
@@ -427,7 +494,7 @@ impl Stepper for Radau5 {
             if fresh_jacobian {
                 self.jacobian(sys);
             }
-            let needs_lu = fresh_jacobian || (self.lu_h - h).abs() > 0.0 || self.lu_real.is_none();
+            let needs_lu = fresh_jacobian || (self.lu_h - h).abs() > 0.0 || !self.factored;
             if needs_lu && !self.decompose(h) {
                 self.nsing += 1;
                 if self.nsing >= 5 {
