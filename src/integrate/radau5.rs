@@ -372,10 +372,8 @@ impl Radau5 {
                 *slot = out;
             }
             self.stats.rhs_evals += 3;
-            if fz.iter().any(|v| v.iter().any(|x| !x.is_finite())) {
-                self.z = fz;
-                return Ok(self.unexpected_rejection(h));
-            }
+            // a stage derivative that is not finite makes the increment's norm not finite
+            // (checked once below, on the norm, instead of on every component here)
             let mut dz = fz;
             for m in 0..n {
                 let f = [dz[0][m], dz[1][m], dz[2][m]];
@@ -404,6 +402,10 @@ impl Radau5 {
                 dyno += (dz[0][m] / s).powi(2) + (dz[1][m] / s).powi(2) + (dz[2][m] / s).powi(2);
             }
             let dyno = (dyno / (3 * n) as f64).sqrt();
+            if !dyno.is_finite() {
+                self.z = dz;
+                return Ok(self.unexpected_rejection(h));
+            }
             if newt > 1 && newt < nit {
                 let thq = dyno / dynold;
                 self.theta = if newt == 2 {
