@@ -207,6 +207,9 @@ pub struct Radau5 {
     hacc: f64,
     erracc: f64,
     nsing: u32,
+    /// The step the controller proposed at the last accepted step (before the factorisation is
+    /// kept with the old one): Hairer decides the last step to the interval's end with it.
+    h_proposed: f64,
     stats: Stats,
     fixed: Option<f64>,
 }
@@ -262,6 +265,8 @@ impl Radau5 {
             hacc: h,
             erracc: 1e-2,
             nsing: 0,
+            // Hairer's first test: x + 1.0001 h >= xend
+            h_proposed: 1.0001 * QUOT1 * h,
             stats: Stats {
                 rhs_evals: 1,
                 ..Stats::default()
@@ -483,15 +488,20 @@ impl Stepper for Radau5 {
         let n = self.n;
         let mut last = false;
         let mut newt_failures = 0;
+        // the last step is decided as Hairer's RADAU5 decides it, once per step with the step
+        // the controller proposed (x + h_new/quot1 >= xend), not with the step kept for its
+        // factorisation; a retry after a rejection checks its own, smaller step
+        let mut probe = self.h_proposed;
         loop {
             let mut h = self.h;
             if 0.1 * h.abs() <= self.t.abs() * f64::EPSILON {
                 return Err(IntegrateError::StepSizeTooSmall { t: self.t, h });
             }
-            if self.t + h / QUOT1 - t_end >= 0.0 {
+            if self.t + probe.max(h) / QUOT1 - t_end >= 0.0 {
                 h = t_end - self.t;
                 last = true;
             }
+            probe = 0.0;
             let fresh_jacobian = !self.jac_current;
             if fresh_jacobian {
                 self.jacobian(sys);
@@ -562,6 +572,7 @@ impl Stepper for Radau5 {
                     h_new = h_new.min(h);
                 }
                 self.reject = false;
+                self.h_proposed = h_new;
                 let qt = h_new / h;
                 if self.theta <= THET && (QUOT1..=QUOT2).contains(&qt) {
                     // keep h and the factorisation
