@@ -396,3 +396,13 @@ fn the_report_shows_the_latex_of_the_definitions_a_claim_uses() {
     );
     assert!(!section("typed.A5").contains("Printed:\n\n$$"), "{md}");
 }
+
+/// Without `lhs`, `printed_from` reads the row that carries the tag, not the first row of its
+/// display: (5) of 000 is the second row of the display of (4)-(7) (w(x, y, 0) = 0, the right
+/// side 0), whose first row is (4) (z'(0) = V_0).
+#[test]
+fn without_lhs_the_tagged_row_is_read() {
+    let body = "[[claim]]\nid = \"row.5\"\nequation = \"(5)\"\nquote = \"q\"\nkind = \"identity\"\nprinted_from = { tag = \"(5)\" }\nderived = \"0\"\n";
+    let v = verdicts(&claims_dir("tagged-row", body));
+    assert_eq!(v, vec![("row.5".to_string(), "holds".to_string())]);
+}
