@@ -35,6 +35,19 @@ impl OdeSystem for PendulumWall {
         dy[2] = -eo * (1.0 + r2) - self.sigma * ec * (1.0 - r2);
         dy[3] = -eo * (1.0 - r2) - self.sigma * ec * (1.0 + r2);
     }
+    /// (2.15) is linear: its Jacobian is the constant matrix of the right side (Radau5 then
+    /// needs no finite differences).
+    fn jacobian(&self, _t: f64, _y: &[f64], jac: &mut nalgebra::DMatrix<f64>) -> bool {
+        let r2 = 1.0 / (self.rho * self.rho);
+        jac.fill(0.0);
+        jac[(0, 2)] = 1.0;
+        jac[(1, 3)] = 1.0;
+        jac[(2, 0)] = -(1.0 + r2);
+        jac[(2, 1)] = -self.sigma * (1.0 - r2);
+        jac[(3, 0)] = -(1.0 - r2);
+        jac[(3, 1)] = -self.sigma * (1.0 + r2);
+        true
+    }
 }
 
 /// The outcome of one impact.
@@ -450,3 +463,37 @@ pub const DOC: d::ModelDoc = d::ModelDoc {
         ],
     ],
 };
+
+#[cfg(test)]
+mod tests {
+    use super::PendulumWall;
+    use crate::integrate::OdeSystem;
+
+    #[test]
+    fn the_jacobian_is_the_right_sides_derivative() {
+        // against central differences of the right side (a second method: (2.15) is linear, so
+        // the differences are exact up to rounding), for both rho < 1 and rho > 1
+        for (rho, sigma) in [(0.5, 1e-6), (1.7, 3.0)] {
+            let sys = PendulumWall { rho, sigma };
+            let y = [0.3, -0.2, 0.7, 1.1];
+            let mut jac = nalgebra::DMatrix::zeros(4, 4);
+            assert!(sys.jacobian(0.0, &y, &mut jac));
+            for j in 0..4 {
+                let (mut yp, mut ym) = (y, y);
+                yp[j] += 1e-3;
+                ym[j] -= 1e-3;
+                let (mut fp, mut fm) = ([0.0; 4], [0.0; 4]);
+                sys.rhs(0.0, &yp, &mut fp);
+                sys.rhs(0.0, &ym, &mut fm);
+                for i in 0..4 {
+                    let fd = (fp[i] - fm[i]) / 2e-3;
+                    assert!(
+                        (jac[(i, j)] - fd).abs() <= 1e-9 * (1.0 + fd.abs()),
+                        "rho {rho}: J[{i}][{j}] = {} vs {fd}",
+                        jac[(i, j)]
+                    );
+                }
+            }
+        }
+    }
+}
