@@ -552,6 +552,82 @@ vary = ["contact.damping=1:120:13", "impactor.mass=0.1:2:11"]
     assert_eq!(share, inside as f64 / 143.0, "{}", out[0].detail);
     assert_eq!(out[0].verdict, Verdict::Fails);
     assert!(out[0].files[0].1.contains("<svg"));
+    // the figure's data: every grid point with its own state, by the same closed form
+    let csv = &out[0].files[1].1;
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(rows.len(), 143, "{csv}");
+    for row in rows {
+        let f: Vec<&str> = row.split(',').collect();
+        let (c, m): (f64, f64) = (f[0].parse().expect("c"), f[1].parse().expect("m"));
+        let want = if c <= 2.0 * zeta_star * (1e4 * m).sqrt() {
+            "1"
+        } else {
+            "0"
+        };
+        assert_eq!(f[2], want, "{row}");
+    }
+}
+
+#[test]
+fn a_model_claim_draws_the_model_and_the_printed_curve() {
+    // the figure's data: one row per grid point, the model's duration and the printed formula;
+    // the printed column is the formula at the m and k of the scene beside the claims
+    let p = claims_file(
+        "model-plot",
+        r#"
+[[claim]]
+id = "t.plot"
+equation = "(3)"
+quote = "t_c = 3.2181 (m/k)^(2/5) v0^(-1/5)"
+kind = "model"
+scene = "hertz.toml"
+quantity = "contact.duration"
+printed = "3.2181*(m/k)^(2/5)*v0^(-1/5)"
+bind = { m = "impactor.mass", k = "contact.k", v0 = "impactor.v0" }
+vary = ["impactor.v0=0.1:10:5:log"]
+rtol = 2e-5
+"#,
+    );
+    let papers = load_claims(&p).expect("claims");
+    let out = run_all(&papers, p.parent().expect("dir")).expect("run");
+    let svg = out[0]
+        .files
+        .iter()
+        .find(|f| f.0.ends_with(".svg"))
+        .expect("a figure");
+    assert!(svg.1.contains("<svg"));
+    let csv = &out[0]
+        .files
+        .iter()
+        .find(|f| f.0.ends_with(".csv"))
+        .expect("its data")
+        .1;
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|x| x.parse().expect("number")).collect())
+        .collect();
+    assert_eq!(rows.len(), 5, "{csv}");
+    let scene =
+        std::fs::read_to_string(p.parent().expect("dir").join("hertz.toml")).expect("scene");
+    let value = |key: &str| -> f64 {
+        scene
+            .lines()
+            .find(|l| l.trim_start().starts_with(&format!("{key} ")))
+            .and_then(|l| l.split('=').nth(1))
+            .and_then(|v| v.split('#').next())
+            .and_then(|v| v.trim().parse().ok())
+            .unwrap_or_else(|| panic!("{key} in the scene:\n{scene}"))
+    };
+    let (m, k) = (value("mass"), value("k"));
+    for r in rows {
+        let printed = 3.2181 * (m / k).powf(0.4) * r[0].powf(-0.2);
+        assert!(
+            (r[2] - printed).abs() <= 1e-12 * printed,
+            "{r:?} vs {printed}"
+        );
+        assert!((r[1] - printed).abs() <= 2e-5 * printed, "{r:?}");
+    }
 }
 
 #[test]
