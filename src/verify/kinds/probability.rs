@@ -170,3 +170,16 @@ fn samples_needed(p: f64, x: f64, n: usize, conf: f64) -> f64 {
     let floor = 1.0 / n.max(1) as f64;
     (z * z * p.max(floor) * (1.0 - p).max(floor) / (gap * gap)).ceil()
 }
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn samples_needed_is_the_normal_approximations_count() {
+        // z^2 p (1 - p)/(p - x)^2 with z = 1.959964 (95 %): 3.841459 * 0.21/0.0025 = 322.68,
+        // rounded up (by hand); a gap twice as wide needs a quarter of them, 80.67 -> 81
+        assert!((super::samples_needed(0.3, 0.35, 100, 0.95) - 323.0).abs() < 1e-9);
+        assert!((super::samples_needed(0.3, 0.4, 100, 0.95) - 81.0).abs() < 1e-9);
+        // p = 0 is floored at 1/n: (1.959964^2 (1/50)(49/50))/0.1^2 = 7.53 -> 8
+        assert!((super::samples_needed(0.0, 0.1, 50, 0.95) - 8.0).abs() < 1e-9);
+    }
+}
