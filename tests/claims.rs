@@ -318,6 +318,11 @@ fn bad_claims_exit_2_naming_file_claim_and_key_and_write_nothing() {
             "claim t.bad: sample.impactor.v0: `gauss(1, 2)`: expected uniform(a, b)",
         ),
         (
+            "empty uniform range",
+            "[[claim]]\nid = \"t.bad\"\nequation = \"(1)\"\nquote = \"q\"\nkind = \"bound\"\nscene = \"hertz.toml\"\nsample = { \"impactor.v0\" = \"uniform(2, 1)\" }\ncount = 3\nseed = 1\nrequire = \"restitution <= 1\"\n".into(),
+            "claim t.bad: sample.impactor.v0: `uniform(2, 1)`: expected uniform(a, b)",
+        ),
+        (
             "inequality missing",
             "[[claim]]\nid = \"t.bad\"\nequation = \"(1)\"\nquote = \"q\"\nkind = \"bound\"\nscene = \"hertz.toml\"\nsample = { \"impactor.v0\" = \"uniform(1, 2)\" }\ncount = 3\nseed = 1\nrequire = \"restitution\"\n".into(),
             "claim t.bad: require: `restitution`: column 12: expected one of < <= > >=",
