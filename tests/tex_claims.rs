@@ -54,6 +54,17 @@ fn verdicts(dir: &Path) -> Vec<(String, String)> {
         .collect()
 }
 
+/// Validates the claims of `dir`, which must be refused (exit 2); the message.
+fn refused(dir: &Path, name: &str) -> String {
+    let out = Command::new(env!("CARGO_BIN_EXE_verify"))
+        .args(["--claims", dir.join("claims.toml").to_str().expect("utf-8")])
+        .output()
+        .expect("runs");
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(out.status.code(), Some(2), "{name}: {err}");
+    err
+}
+
 #[test]
 fn the_papers_latex_reaches_the_verdicts_of_the_retyped_formula() {
     let equal = "[[1, 1], [3, 3]]";
@@ -140,12 +151,7 @@ fn a_tag_or_left_side_not_in_the_paper_stops_validation() {
             name,
             &claim("bad.from", from, "E*@galerkin.cubic", "[[1, 1]]"),
         );
-        let out = Command::new(env!("CARGO_BIN_EXE_verify"))
-            .args(["--claims", d.join("claims.toml").to_str().expect("utf-8")])
-            .output()
-            .expect("runs");
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{name}: {err}");
+        let err = refused(&d, name);
         assert!(
             err.contains("bad.from") && err.contains("printed_from") && err.contains(says),
             "{name}: {err}"
@@ -335,12 +341,7 @@ fn a_bad_definition_from_the_paper_stops_validation() {
             claim("ok", "printed = \"E\"", "E", "[[1, 1]]")
         );
         let d = claims_dir(name, &body);
-        let out = Command::new(env!("CARGO_BIN_EXE_verify"))
-            .args(["--claims", d.join("claims.toml").to_str().expect("utf-8")])
-            .output()
-            .expect("runs");
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{name}: {err}");
+        let err = refused(&d, name);
         assert!(
             err.contains("definitions_from") && err.contains(says),
             "{name}: {err}"
