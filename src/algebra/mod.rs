@@ -19,6 +19,7 @@ pub mod poly;
 pub mod ratfunc;
 pub mod series;
 pub mod tex;
+pub mod tex_matrix;
 pub mod trig;
 pub mod units;
 

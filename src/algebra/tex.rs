@@ -39,6 +39,11 @@ impl TexSymbols {
         TexSymbols(v)
     }
 
+    /// This table with more pairs.
+    pub fn with(&self, more: impl IntoIterator<Item = (String, String)>) -> Self {
+        TexSymbols::new(self.0.iter().cloned().chain(more))
+    }
+
     /// The targets that are formulas, parsed (a target that does not parse stays a symbol
     /// with an odd name, which the claim's reader refuses naming it).
     fn formulas(&self) -> Vec<(String, Expr)> {
@@ -1035,7 +1040,7 @@ const ENVIRONMENTS: &[&str] = &[
 ];
 
 /// Splits `text` at the top level (outside braces and parentheses) at each of `seps`.
-fn split_top(text: &str, seps: &[&str]) -> Vec<String> {
+pub(crate) fn split_top(text: &str, seps: &[&str]) -> Vec<String> {
     let chars: Vec<char> = text.chars().collect();
     let (mut depth, mut out, mut cur) = (0i32, Vec::new(), String::new());
     let mut i = 0;

@@ -12,6 +12,7 @@
 use super::{PaperClaims, VerifyError};
 use crate::algebra::expr::Expr;
 use crate::algebra::tex::{TexSymbols, read_display, read_formula};
+use crate::algebra::tex_matrix::{TexMatrix, factor_of, matrix_value, read_matrix_display};
 
 /// The blocks of a displays file: (the tag printed after the block, the LaTeX).
 fn display_blocks(text: &str) -> Vec<(Option<String>, String)> {
@@ -50,6 +51,7 @@ fn from_paper(
     field: &str,
     spec: &toml::Table,
     syms: &TexSymbols,
+    matrix: bool,
 ) -> Result<(String, Option<String>), VerifyError> {
     let err = |m: String| bad(file, id, field, m);
     let label = |key: &str| {
@@ -119,26 +121,59 @@ fn from_paper(
     }
     let mut lefts = Vec::new();
     let mut found_tag = false;
-    for (block_after, tex) in chosen {
-        let in_block = after || tex.contains(&format!("\\tag{{{tag}}}"));
-        for row in read_display(tex, syms) {
-            if !after
-                && row.tag.as_deref().or(block_after.as_deref()) != Some(tag.as_str())
-                && !in_block
-            {
-                continue;
-            }
-            found_tag = true;
-            for rel in row.relations.iter().flatten() {
-                let left = rel.sides[0].to_string();
-                match &lhs {
-                    Some(l) if *l == left && rel.sides.len() > 1 => {
-                        return Ok((row_side(&row.tex, l), lhs.clone()));
+    // a left side equal to `lhs` first; then one that is `lhs` times a factor (`m_2 B_A`)
+    for exact in [true, false] {
+        for (block_after, tex) in &chosen {
+            let in_block = after || tex.contains(&format!("\\tag{{{tag}}}"));
+            // a matrix's rows are not the display's: the display is read with its matrices
+            // taken out, and the whole block is what the claim shows
+            let rows = if matrix {
+                match read_matrix_display(tex, syms) {
+                    Ok((rows, _)) => rows,
+                    // a display that holds the tag asked for must read; another is passed over
+                    Err(e) if in_block || block_after.as_deref() == Some(tag.as_str()) => {
+                        return Err(err(format!("`{}`: {e}", tex.trim())));
                     }
-                    None if row.tag.as_deref() == Some(tag.as_str()) && rel.sides.len() > 1 => {
-                        return Ok((row.tex.clone(), None));
+                    Err(_) => continue,
+                }
+            } else {
+                read_display(tex, syms)
+            };
+            for row in rows {
+                if !after
+                    && row.tag.as_deref().or(block_after.as_deref()) != Some(tag.as_str())
+                    && !in_block
+                {
+                    continue;
+                }
+                found_tag = true;
+                let shown = if matrix {
+                    tex.trim().to_string()
+                } else {
+                    row.tex.trim().to_string()
+                };
+                for rel in row.relations.iter().flatten() {
+                    let left = rel.sides[0].to_string();
+                    match &lhs {
+                        Some(l) if exact && *l == left && rel.sides.len() > 1 => {
+                            return Ok((shown, lhs.clone()));
+                        }
+                        Some(l)
+                            if !exact
+                                && rel.sides.len() > 1
+                                && factor_of(&rel.sides[0], l).is_some() =>
+                        {
+                            return Ok((shown, lhs.clone()));
+                        }
+                        None if exact
+                            && row.tag.as_deref() == Some(tag.as_str())
+                            && rel.sides.len() > 1 =>
+                        {
+                            return Ok((shown, None));
+                        }
+                        _ if exact => lefts.push(left),
+                        _ => {}
                     }
-                    _ => lefts.push(left),
                 }
             }
         }
@@ -182,7 +217,7 @@ fn formula_from_paper(
                 .into(),
         )
     })?;
-    let (latex, lhs) = from_paper(file, id, field, spec, syms)?;
+    let (latex, lhs) = from_paper(file, id, field, spec, syms, false)?;
     let mut e = read_side(&latex, lhs.as_deref(), syms)
         .map_err(|e| bad(file, id, field, format!("`{latex}`: {e}")))?;
     // `at = { k = "k1" }`: the formula at other arguments (f1(k) of (2.3) read as f1(k1))
@@ -226,13 +261,9 @@ fn no_opaque(file: &PaperClaims, id: &str, field: &str, e: &Expr) -> Result<(), 
     }
 }
 
-/// The LaTeX of a row (kept whole: the report shows the row the side was read from).
-fn row_side(row: &str, _lhs: &str) -> String {
-    row.trim().to_string()
-}
-
 /// The side an equation's LaTeX gives: the right side of the relation whose left side is `lhs`
-/// (or of the first relation).
+/// (or of the first relation); failing that, of the one whose left side is `lhs` times a factor,
+/// divided by the factor (`m_2 \rho_2^2 \beta = ...` read for `\beta`).
 fn read_side(
     tex: &str,
     lhs: Option<&str>,
@@ -240,15 +271,26 @@ fn read_side(
 ) -> Result<Expr, crate::algebra::tex::TexError> {
     let pieces = read_display(tex, syms);
     let mut first_err = None;
-    for row in pieces {
-        for rel in row.relations {
-            match rel {
-                Ok(r) if lhs.is_none_or(|l| r.sides[0].to_string() == l) => {
-                    return Ok(r.sides.into_iter().last().unwrap_or(Expr::Pi));
-                }
-                Ok(_) => {}
-                Err(e) => {
-                    first_err.get_or_insert(e);
+    for exact in [true, false] {
+        for row in &pieces {
+            for rel in &row.relations {
+                match (rel, lhs) {
+                    (Ok(r), None) if exact => {
+                        return Ok(r.sides.last().cloned().unwrap_or(Expr::Pi));
+                    }
+                    (Ok(r), Some(l)) if exact && r.sides[0].to_string() == l => {
+                        return Ok(r.sides.last().cloned().unwrap_or(Expr::Pi));
+                    }
+                    (Ok(r), Some(l)) if !exact && r.sides.len() > 1 => {
+                        if let Some(f) = factor_of(&r.sides[0], l) {
+                            let side = r.sides.last().cloned().unwrap_or(Expr::Pi);
+                            return Ok(divided(side, f));
+                        }
+                    }
+                    (Err(e), _) => {
+                        first_err.get_or_insert(e.clone());
+                    }
+                    _ => {}
                 }
             }
         }
@@ -258,6 +300,47 @@ fn read_side(
         construct: "a relation with that left side".into(),
         found: tex.into(),
     }))
+}
+
+/// `side / factor`, or `side` when the factor is exactly 1.
+fn divided(side: Expr, factor: Expr) -> Expr {
+    // compared as a tree: an exact evaluation would intern the symbols (whose order the
+    // printed polynomials of every later claim follow)
+    if factor == Expr::Num(crate::algebra::poly::Q::from_integer(1.into())) {
+        side
+    } else {
+        Expr::Bin(
+            crate::algebra::expr::Op::Div,
+            Box::new(side),
+            Box::new(factor),
+        )
+    }
+}
+
+/// The matrix a display gives for the left side `lhs` (or `lhs` times a factor, divided out).
+fn read_matrix_side(tex: &str, lhs: &str, syms: &TexSymbols) -> Result<TexMatrix, String> {
+    let (rows, mats) = read_matrix_display(tex, syms).map_err(|e| e.to_string())?;
+    for exact in [true, false] {
+        for rel in rows.iter().flat_map(|r| r.relations.iter().flatten()) {
+            if rel.sides.len() < 2 {
+                continue;
+            }
+            let factor = if exact {
+                (rel.sides[0].to_string() == lhs)
+                    .then(|| Expr::Num(crate::algebra::poly::Q::from_integer(1.into())))
+            } else {
+                factor_of(&rel.sides[0], lhs)
+            };
+            if let Some(f) = factor {
+                let m = matrix_value(rel.sides.last().unwrap_or(&Expr::Pi), &mats)?;
+                return Ok(m
+                    .into_iter()
+                    .map(|r| r.into_iter().map(|c| divided(c, f.clone())).collect())
+                    .collect());
+            }
+        }
+    }
+    Err(format!("no relation has the left side {lhs}"))
 }
 
 /// Resolves `printed_tex` and `printed_from` of every claim of `file` into `printed`.
@@ -295,12 +378,17 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
                     &snapshot,
                     &c.head.id,
                     field,
-                    "is a list of { tag = ..., lhs = ... } (or { after = ..., lhs = ... })".into(),
+                    "is a list of { tag = ..., lhs = ... } (or { after = ..., lhs = ... }, or a formula printed in prose, retyped as text)".into(),
                 )
             })?;
             let mut texts = Vec::new();
             let mut rows: Vec<String> = Vec::new();
             for (k, spec) in specs.iter().enumerate() {
+                // a formula the paper prints in prose, retyped, stands in the list as text
+                if let Some(text) = spec.as_str() {
+                    texts.push(toml::Value::String(text.to_string()));
+                    continue;
+                }
                 let (e, latex) = formula_from_paper(
                     &snapshot,
                     &c.head.id,
@@ -316,6 +404,48 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
             c.keys
                 .insert("printed_equations".into(), toml::Value::Array(texts));
             c.head.tex = Some(rows.join(" \\\\ "));
+        }
+        if let Some(spec) = c.keys.remove("printed_matrix_from") {
+            let field = "printed_matrix_from";
+            if c.keys.contains_key("printed_matrix") {
+                return Err(bad(
+                    &snapshot,
+                    &c.head.id,
+                    field,
+                    "give printed_matrix or printed_matrix_from, not both".into(),
+                ));
+            }
+            let spec = spec.as_table().cloned().ok_or_else(|| {
+                bad(
+                    &snapshot,
+                    &c.head.id,
+                    field,
+                    "is a table { tag = \"(3.9)\", lhs = \"\\\\mathbf{B}\" } (or { after = ..., lhs = ... })".into(),
+                )
+            })?;
+            if !spec.contains_key("lhs") {
+                return Err(bad(
+                    &snapshot,
+                    &c.head.id,
+                    field,
+                    "needs `lhs`, the matrix's name as printed (\"\\\\mathbf{B}_A\")".into(),
+                ));
+            }
+            let (latex, lhs) = from_paper(&snapshot, &c.head.id, field, &spec, &syms, true)?;
+            let m = read_matrix_side(&latex, lhs.as_deref().unwrap_or_default(), &syms)
+                .map_err(|e| bad(&snapshot, &c.head.id, field, format!("`{latex}`: {e}")))?;
+            let mut rows = Vec::new();
+            for r in &m {
+                let mut cells = Vec::new();
+                for e in r {
+                    no_opaque(&snapshot, &c.head.id, field, e)?;
+                    cells.push(toml::Value::String(e.to_string()));
+                }
+                rows.push(toml::Value::Array(cells));
+            }
+            c.keys
+                .insert("printed_matrix".into(), toml::Value::Array(rows));
+            c.head.tex = Some(latex);
         }
         let tex = c.keys.remove("printed_tex");
         let from = c.keys.remove("printed_from");
@@ -344,7 +474,8 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
                         "is a table { tag = \"(16)\", lhs = \"A_{5}\" }".into(),
                     )
                 })?;
-                let (latex, lhs) = from_paper(&snapshot, &c.head.id, "printed_from", &spec, &syms)?;
+                let (latex, lhs) =
+                    from_paper(&snapshot, &c.head.id, "printed_from", &spec, &syms, false)?;
                 ("printed_from", latex, lhs)
             }
         };
