@@ -531,6 +531,10 @@ impl Reader<'_> {
                     e = Expr::Bin(Op::Div, Box::new(e), Box::new(self.unary()?));
                 }
                 Tok::Cmd(c) if arg && func(&c).is_some() => return Ok(e),
+                // a parenthesised factor ends a bare argument: `\cos \phi (a + b)` is
+                // cos(phi) (a + b), as `\sin \omega t` is sin(omega t)
+                Tok::Ch('(' | '[') if arg => return Ok(e),
+                Tok::Cmd(c) if arg && c == "left" => return Ok(e),
                 Tok::Ch('d') if arg && self.is_differential() => return Ok(e),
                 _ if self.starts_atom() && !self.is_differential_here() => {
                     e = mul(e, self.postfix()?);
@@ -604,6 +608,9 @@ impl Reader<'_> {
                 construct: "a number".into(),
                 found: n,
             }),
+            // a spelling mapped to a name takes primes and subscripts as a name does
+            // (`\varepsilon_{On}^{\prime\prime}` with `\varepsilon_{On}` mapped to `eOn`)
+            Tok::Sym(s) if is_name(&s) => Ok(Expr::Sym(self.name_tail(s)?)),
             Tok::Sym(s) => Ok(Expr::Sym(s)),
             Tok::Open => {
                 let e = self.expr()?;
@@ -1255,6 +1262,8 @@ mod tests {
         same(r"\left|x\right| + |y|", "abs(x) + abs(y)");
         same(r"t^{\prime} + t'", "tp + tp");
         same(r"\mathrm{w} + \operatorname{sin} x", "w + sin(x)");
+        same(r"\cos \phi (a + b)", "cos(phi)*(a + b)");
+        same(r"\sin 2\phi \left( a + b \right)", "sin(2*phi)*(a + b)");
         same(r"x \, y \; z \quad", "x*y*z");
     }
 

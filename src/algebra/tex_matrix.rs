@@ -121,36 +121,27 @@ fn matching(text: &str, from: usize, open: &str, close: &str) -> Option<usize> {
     None
 }
 
-/// The first matrix in `text` from byte `from`: (start, end, the matrix).
+/// A matrix in `text`: (start, end, the matrix), or why one could not be read.
 fn next_matrix(
     text: &str,
     syms: &TexSymbols,
 ) -> Option<Result<(usize, usize, TexMatrix), TexError>> {
     let col = |at: usize| text[..at].chars().count() + 1;
-    let mut best: Option<Result<(usize, usize, TexMatrix), TexError>> = None;
-    let mut consider = |r: Result<(usize, usize, TexMatrix), TexError>, start: usize| {
-        let earlier = match &best {
-            None => true,
-            Some(Ok((s, _, _))) => start < *s,
-            Some(Err(_)) => false,
-        };
-        if earlier {
-            best = Some(r);
-        }
-    };
+    // one matrix of each kind found (matrices do not nest: a cell is a formula, so the order in
+    // which they are taken out does not matter); an error first
+    let mut found: Vec<Result<(usize, usize, TexMatrix), TexError>> = Vec::new();
+    let mut consider = |r| found.push(r);
     for env in MATRIX_ENVS {
         let open = format!("\\begin{{{env}}}");
         let close = format!("\\end{{{env}}}");
         if let Some(at) = text.find(&open) {
             let body_at = at + open.len();
-            consider(
-                match matching(text, body_at, &open, &close) {
-                    Some(end) => cells(&text[body_at..end - close.len()], syms, col(at))
-                        .map(|m| (at, end, m)),
-                    None => Err(err(col(at), &format!("`{close}`"), &text[at..])),
-                },
-                at,
-            );
+            consider(match matching(text, body_at, &open, &close) {
+                Some(end) => {
+                    cells(&text[body_at..end - close.len()], syms, col(at)).map(|m| (at, end, m))
+                }
+                None => Err(err(col(at), &format!("`{close}`"), &text[at..])),
+            });
         }
     }
     if let Some(at) = text.find("\\begin{array}") {
@@ -184,11 +175,7 @@ fn next_matrix(
             }
             None => Err(err(col(at), "`\\end{array}`", &text[at..])),
         };
-        let start = match &r {
-            Ok((s, _, _)) => *s,
-            Err(_) => at,
-        };
-        consider(r, start);
+        consider(r);
     }
     for cmd in ["\\operatorname{diag}", "\\mathrm{diag}", "\\text{diag}"] {
         if let Some(at) = text.find(cmd) {
@@ -217,7 +204,7 @@ fn next_matrix(
                     break;
                 }
             }
-            consider(r, at);
+            consider(r);
         }
     }
     // the unit matrix, as 002 prints it: \mathbf{E}_{2}, \mathbf{E}_2
@@ -252,9 +239,9 @@ fn next_matrix(
                 rest,
             )),
         };
-        consider(r, at);
+        consider(r);
     }
-    best
+    found.into_iter().min_by_key(Result::is_ok)
 }
 
 /// A display whose relations hold matrices: each matrix taken out and read cell by cell, the
