@@ -627,3 +627,55 @@ fn equations_read_from_the_paper_equal_the_retyped_ones() {
         }
     }
 }
+
+/// `form = "difference"` reads a condition as left - right: (2.10) of 001 (`2(rho^2 + c^2) =
+/// a^2`) and of 002 (`rho^2 + (GO, GC) = 0`) equal their hand-typed transcriptions as they stood
+/// before the move; another `form` stops validation naming the allowed ones.
+#[test]
+fn a_condition_is_read_as_its_difference() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let load = |name: &str| {
+        impactcheck::verify::load_claims(&root.join("verify").join(name))
+            .unwrap_or_else(|e| panic!("{name}: {e}"))
+            .remove(0)
+    };
+    let (p001, p002) = (load("001_disk.toml"), load("002_constrained_impact.toml"));
+    let read001 = p001
+        .claim
+        .iter()
+        .find(|c| c.head.id == "001.eq2.10")
+        .expect("claim");
+    let read002 = p002
+        .claim
+        .iter()
+        .find(|c| c.head.id == "002.eq2.10")
+        .expect("claim");
+    let at = [("rho", 0.7), ("c", 0.3), ("a", 1.9), ("GO_GC", -0.45)];
+    for (read, typed) in [
+        (
+            read001.keys["printed_equations"][0].as_str().expect("text"),
+            "2*(rho^2 + c^2) - a^2",
+        ),
+        (
+            read002.keys["printed"].as_str().expect("text"),
+            "rho^2 + GO_GC",
+        ),
+    ] {
+        let (x, y) = (value(read, &at), value(typed, &at));
+        assert!((x - y).abs() < 1e-14, "{read} = {x}, retyped {typed} = {y}");
+    }
+    let d = claims_dir(
+        "form",
+        &claim(
+            "bad.form",
+            "printed_from = { tag = \"(16)\", lhs = \"A_{5}\", form = \"left\" }",
+            "E*@galerkin.cubic",
+            "[[1, 1]]",
+        ),
+    );
+    let err = refused(&d, "form");
+    assert!(
+        err.contains("bad.form") && err.contains("form = \"left\"") && err.contains("difference"),
+        "{err}"
+    );
+}

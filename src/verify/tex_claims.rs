@@ -91,10 +91,10 @@ fn from_paper(
     };
     if let Some(k) = spec
         .keys()
-        .find(|k| !["tag", "after", "lhs", "at"].contains(&k.as_str()))
+        .find(|k| !["tag", "after", "lhs", "at", "form"].contains(&k.as_str()))
     {
         return Err(err(format!(
-            "unknown key `{k}`; allowed: tag, after, lhs, at"
+            "unknown key `{k}`; allowed: tag, after, lhs, at, form"
         )));
     }
     let dir = file.source.parent().unwrap_or(std::path::Path::new("."));
@@ -199,6 +199,29 @@ fn from_paper(
     }))
 }
 
+/// `form = "difference"`: the relation read as `left - right` (a condition printed `... = 0`
+/// or `2(rho^2 + c^2) = a^2`, judged as its difference); `"right"` (the default) its right side.
+fn difference_form(
+    file: &PaperClaims,
+    id: &str,
+    field: &str,
+    spec: &toml::Table,
+) -> Result<bool, VerifyError> {
+    match spec.get("form").map(|v| v.as_str()) {
+        None | Some(Some("right")) => Ok(false),
+        Some(Some("difference")) => Ok(true),
+        Some(other) => Err(bad(
+            file,
+            id,
+            field,
+            format!(
+                "form = {}: allowed \"right\" (the right side, the default) or \"difference\" (left - right)",
+                other.map_or("(not text)".to_string(), |t| format!("\"{t}\""))
+            ),
+        )),
+    }
+}
+
 /// A formula read from the paper: the side asked for (`lhs`, or the right side of the tagged
 /// equation), as text of the formula language, and the LaTeX it was read from.
 fn formula_from_paper(
@@ -218,7 +241,8 @@ fn formula_from_paper(
         )
     })?;
     let (latex, lhs) = from_paper(file, id, field, spec, syms, false)?;
-    let mut e = read_side(&latex, lhs.as_deref(), syms)
+    let difference = difference_form(file, id, field, spec)?;
+    let mut e = read_side(&latex, lhs.as_deref(), syms, difference)
         .map_err(|e| bad(file, id, field, format!("`{latex}`: {e}")))?;
     // `at = { k = "k1" }`: the formula at other arguments (f1(k) of (2.3) read as f1(k1))
     if let Some(at) = spec.get("at") {
@@ -268,23 +292,36 @@ fn read_side(
     tex: &str,
     lhs: Option<&str>,
     syms: &TexSymbols,
+    difference: bool,
 ) -> Result<Expr, crate::algebra::tex::TexError> {
     let pieces = read_display(tex, syms);
     let mut first_err = None;
+    let side = |r: &crate::algebra::tex::TexRelation| {
+        let last = r.sides.last().cloned().unwrap_or(Expr::Pi);
+        let zero = Expr::Num(crate::algebra::poly::Q::from_integer(0.into()));
+        if difference && r.sides.len() > 1 && last == zero {
+            r.sides[0].clone()
+        } else if difference && r.sides.len() > 1 {
+            Expr::Bin(
+                crate::algebra::expr::Op::Sub,
+                Box::new(r.sides[0].clone()),
+                Box::new(last),
+            )
+        } else {
+            last
+        }
+    };
     for exact in [true, false] {
         for row in &pieces {
             for rel in &row.relations {
                 match (rel, lhs) {
-                    (Ok(r), None) if exact => {
-                        return Ok(r.sides.last().cloned().unwrap_or(Expr::Pi));
-                    }
+                    (Ok(r), None) if exact => return Ok(side(r)),
                     (Ok(r), Some(l)) if exact && r.sides[0].to_string() == l => {
-                        return Ok(r.sides.last().cloned().unwrap_or(Expr::Pi));
+                        return Ok(side(r));
                     }
-                    (Ok(r), Some(l)) if !exact && r.sides.len() > 1 => {
+                    (Ok(r), Some(l)) if !exact && !difference && r.sides.len() > 1 => {
                         if let Some(f) = factor_of(&r.sides[0], l) {
-                            let side = r.sides.last().cloned().unwrap_or(Expr::Pi);
-                            return Ok(divided(side, f));
+                            return Ok(divided(side(r), f));
                         }
                     }
                     (Err(e), _) => {
@@ -449,7 +486,7 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
         }
         let tex = c.keys.remove("printed_tex");
         let from = c.keys.remove("printed_from");
-        let (field, latex, lhs) = match (tex, from) {
+        let (field, latex, lhs, difference) = match (tex, from) {
             (None, None) => continue,
             (Some(_), Some(_)) => {
                 return Err(bad(
@@ -463,7 +500,7 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
                 let t = t.as_str().map(str::to_string).ok_or_else(|| {
                     bad(&snapshot, &c.head.id, "printed_tex", "is LaTeX text".into())
                 })?;
-                ("printed_tex", t, None)
+                ("printed_tex", t, None, false)
             }
             (None, Some(f)) => {
                 let spec = f.as_table().cloned().ok_or_else(|| {
@@ -476,10 +513,11 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
                 })?;
                 let (latex, lhs) =
                     from_paper(&snapshot, &c.head.id, "printed_from", &spec, &syms, false)?;
-                ("printed_from", latex, lhs)
+                let difference = difference_form(&snapshot, &c.head.id, "printed_from", &spec)?;
+                ("printed_from", latex, lhs, difference)
             }
         };
-        let e = read_side(&latex, lhs.as_deref(), &syms)
+        let e = read_side(&latex, lhs.as_deref(), &syms, difference)
             .map_err(|e| bad(&snapshot, &c.head.id, field, format!("`{latex}`: {e}")))?;
         // with `printed` beside `printed_from` and its `lhs`, the side read stands for the
         // left side's symbol in `printed` (A2 of (16) in `A2*Lop*fd`, a term of (15))
