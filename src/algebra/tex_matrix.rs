@@ -497,6 +497,8 @@ mod tests {
             "divides by a matrix",
         );
         refuse(r"B = \operatorname{diag} x", "a diagonal's entries");
+        refuse(r"B = \mathbf{E}_{0} + C", "the unit matrix's size");
+        refuse(r"B = \mathbf{E}_{65}", "the unit matrix's size");
     }
 
     #[test]

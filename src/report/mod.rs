@@ -37,6 +37,9 @@ pub struct SummaryClaim {
     /// What it tests beyond the paper (`extends`), when it does.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub extends: Option<String>,
+    /// Why its printed side is typed by hand, not read from the paper's LaTeX (`retyped`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub retyped: Option<String>,
 }
 
 /// `summary.json`: sorted by id, no timestamps or timings.
@@ -101,6 +104,7 @@ pub fn summary(outcomes: &[Outcome]) -> Summary {
             power: o.power.clone(),
             weak: o.power.as_ref().is_some_and(Power::weak),
             extends: o.extends.clone(),
+            retyped: o.retyped.clone(),
         })
         .collect();
     claims.sort_by(|a, b| a.id.cmp(&b.id));
@@ -188,6 +192,19 @@ pub fn render(papers: &[PaperInfo], outcomes: &[Outcome]) -> Vec<(String, String
         ));
     }
     readme.push_str("\n\n");
+    let of_papers = || {
+        outcomes
+            .iter()
+            .filter(|o| o.paper != "hard" && o.paper != "classics")
+    };
+    readme.push_str(&format!(
+        "Printed sides in the three papers' claims: {} read from the paper's LaTeX (`printed_from`, \
+         `printed_equations_from`, `printed_matrix_from`, or a definition read with \
+         `definitions_from`; each report shows the LaTeX), {} typed by hand, each saying why \
+         (`retyped`: printed in prose, read off a figure, a form the reader has no construct for).\n\n",
+        of_papers().filter(|o| o.printed_latex.is_some()).count(),
+        of_papers().filter(|o| o.retyped.is_some()).count(),
+    ));
     let generic = outcomes
         .iter()
         .filter(|o| !o.kind.is_empty() && !o.kind.starts_with("check"))
@@ -271,6 +288,11 @@ pub fn render(papers: &[PaperInfo], outcomes: &[Outcome]) -> Vec<(String, String
             }
             if let Some(p) = &o.printed_latex {
                 md.push_str(&format!("Printed:\n\n$$\n{p}\n$$\n\n"));
+            }
+            if let Some(why) = &o.retyped {
+                md.push_str(&format!(
+                    "Printed side typed by hand, not read from the paper's LaTeX: {why}\n\n"
+                ));
             }
             if let Some(d) = &o.derived_latex {
                 md.push_str(&format!("Derived:\n\n$$\n{d}\n$$\n\n"));
@@ -670,6 +692,7 @@ mod tests {
             weak: power.as_ref().is_some_and(Power::weak),
             power,
             extends: None,
+            retyped: None,
         };
         let sum = |power: Option<Power>| Summary {
             claims: vec![claim(power)],
@@ -715,6 +738,7 @@ mod tests {
             power: None,
             finding: finding.map(str::to_string),
             extends: None,
+            retyped: None,
         };
         let out = [
             o("p.a", Verdict::Fails, Some("wrong-a1")),

@@ -73,6 +73,8 @@ pub struct Outcome {
     pub finding: Option<String>,
     /// What the claim tests beyond the paper (`extends`): its verdict is the tool's extension.
     pub extends: Option<String>,
+    /// Why its printed side is typed by hand, not read from the paper's LaTeX (`retyped`).
+    pub retyped: Option<String>,
 }
 
 /// The power of a claim's check: how many misprints of its printed side it sees.

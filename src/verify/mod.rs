@@ -102,6 +102,11 @@ pub struct Head {
     /// and a fail of it is no finding.
     #[serde(default)]
     pub extends: Option<String>,
+    /// Why the printed side is typed by hand rather than read from the paper's LaTeX
+    /// (`printed_from`): a formula printed in prose, a number read off a figure, a form the
+    /// reader has no construct for. The report shows it; reports/README.md counts both.
+    #[serde(default)]
+    pub retyped: Option<String>,
     /// The LaTeX the printed side was read from (`printed_tex`, `printed_from`), for the report.
     #[serde(skip)]
     pub tex: Option<String>,
@@ -109,7 +114,7 @@ pub struct Head {
 
 impl Head {
     /// The keys of a head; every other key of a claim belongs to its kind.
-    const KEYS: [&str; 9] = [
+    const KEYS: [&str; 10] = [
         "id",
         "equation",
         "quote",
@@ -119,6 +124,7 @@ impl Head {
         "blind",
         "finding",
         "extends",
+        "retyped",
     ];
 }
 
@@ -267,6 +273,7 @@ pub(crate) fn outcome(paper: &PaperClaims, c: &Head, verdict: Verdict, detail: S
         power: None,
         finding: c.finding.clone(),
         extends: c.extends.clone(),
+        retyped: c.retyped.clone(),
     }
 }
 

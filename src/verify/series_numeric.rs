@@ -354,6 +354,7 @@ pub fn check(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Outcome
         power: None,
         finding: None,
         extends: None,
+        retyped: None,
         extra: std::collections::BTreeMap::new(),
     })
 }
@@ -471,6 +472,7 @@ pub fn passivity(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Out
         power: None,
         finding: None,
         extends: None,
+        retyped: None,
         extra: std::collections::BTreeMap::new(),
     })
 }

@@ -400,6 +400,20 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
         file.definitions_latex.insert(name, latex);
     }
     for c in &mut file.claim {
+        if c.head.retyped.is_some()
+            && let Some(k) = ["printed_from", "printed_tex", "printed_matrix_from"]
+                .into_iter()
+                .find(|k| c.keys.contains_key(*k))
+        {
+            return Err(bad(
+                &snapshot,
+                &c.head.id,
+                "retyped",
+                format!(
+                    "the printed side is read from the paper (`{k}`): nothing is typed by hand"
+                ),
+            ));
+        }
         if let Some(list) = c.keys.remove("printed_equations_from") {
             let field = "printed_equations_from";
             if c.keys.contains_key("printed_equations") {
