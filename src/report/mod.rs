@@ -719,6 +719,62 @@ mod tests {
         assert!(diff(&sum(Some(strong.clone())), &sum(Some(strong)), false).is_empty());
     }
 
+    /// The README counts the papers' printed sides read from the LaTeX and typed by hand (not
+    /// the classics' or the hard cases'), and a paper's report gives each reason.
+    #[test]
+    fn printed_sides_are_counted_by_source() {
+        let o = |id: &str, paper: &str, latex: bool, why: Option<&str>| Outcome {
+            id: id.into(),
+            paper: paper.into(),
+            equation: "(1)".into(),
+            quote: String::new(),
+            reading: None,
+            verdict: Verdict::Holds,
+            detail: "d".into(),
+            printed_latex: latex.then(|| "a = b".to_string()),
+            derived_latex: None,
+            extra_md: None,
+            files: vec![],
+            kind: "identity".into(),
+            extra: BTreeMap::new(),
+            power: None,
+            finding: None,
+            extends: None,
+            retyped: why.map(str::to_string),
+        };
+        let out = [
+            o("p.a", "p", true, None),
+            o("p.b", "p", true, None),
+            o("p.c", "p", false, Some("stated in the text")),
+            o("c.a", "classics", true, None),
+            o("c.b", "classics", false, Some("x")),
+            o("h.a", "hard", false, Some("y")),
+        ];
+        let papers = [PaperInfo {
+            paper: "p".into(),
+            title: "P".into(),
+            file: "p.txt".into(),
+            report: "p.md".into(),
+        }];
+        let files = render(&papers, &out);
+        let text = |name: &str| {
+            files
+                .iter()
+                .find(|(n, _)| n == name)
+                .map(|(_, t)| t.clone())
+                .unwrap_or_else(|| panic!("{name} not written"))
+        };
+        assert!(
+            text("README.md").contains("three papers' claims: 2 read from the paper's LaTeX"),
+            "{}",
+            text("README.md")
+        );
+        assert!(text("README.md").contains("LaTeX), 1 typed by hand"));
+        assert!(text("p.md").contains(
+            "Printed side typed by hand, not read from the paper's LaTeX: stated in the text"
+        ));
+    }
+
     #[test]
     fn every_error_is_in_one_finding_and_shared_names_group() {
         let o = |id: &str, verdict: Verdict, finding: Option<&str>| Outcome {
