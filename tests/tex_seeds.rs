@@ -3,7 +3,8 @@
 //! named with the construct it lacks (`cargo test --test tex_seeds -- --nocapture` prints them).
 
 use impactcheck::algebra::expr::{Expr, parse};
-use impactcheck::algebra::tex::{TexRelation, TexSymbols, read_display};
+use impactcheck::algebra::tex::{TexRelation, TexRow, TexSymbols, read_display};
+use impactcheck::algebra::tex_matrix::read_matrix_display;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -34,6 +35,22 @@ fn blocks(paper: &str) -> Vec<(usize, Option<String>, String)> {
     out
 }
 
+/// A display's rows: read with its matrices taken out (`src/algebra/tex_matrix.rs`) where it
+/// prints one and that fails on fewer of its relations, else as formulas.
+fn rows_of(tex: &str, syms: &TexSymbols) -> Vec<TexRow> {
+    let plain = read_display(tex, syms);
+    let failed = |rows: &[TexRow]| {
+        rows.iter()
+            .flat_map(|r| &r.relations)
+            .filter(|r| r.is_err())
+            .count()
+    };
+    match read_matrix_display(tex, syms) {
+        Ok((rows, mats)) if !mats.is_empty() && failed(&rows) < failed(&plain) => rows,
+        _ => plain,
+    }
+}
+
 #[test]
 fn the_seeds_display_equations_are_read() {
     let syms = TexSymbols::default();
@@ -43,7 +60,7 @@ fn the_seeds_display_equations_are_read() {
     for paper in PAPERS {
         let (mut t, mut r) = (0, 0);
         for (n, tag, tex) in blocks(paper) {
-            for row in read_display(&tex, &syms) {
+            for row in rows_of(&tex, &syms) {
                 let label = row
                     .tag
                     .clone()
@@ -82,9 +99,11 @@ fn the_seeds_display_equations_are_read() {
     }
     // measured when the reader was written: 48 relations not read (242 of 290; 239 of 287 since
     // the continuation rows of 000's (22) and (23), tagged on a middle row, join their
-    // relation); more unread relations is a regression
-    assert!(total - read <= 48, "read {read} of {total}");
-    assert!(total >= 287, "fewer relations found: {total}");
+    // relation; 243 of 285 since matrices are read: 002's (2.5), the B~ after (3.9) and the
+    // two displays before (4.8), whose matrix rows were counted as relations of their own); more
+    // unread relations is a regression
+    assert!(total - read <= 42, "read {read} of {total}");
+    assert!(total >= 285, "fewer relations found: {total}");
 }
 
 #[test]
