@@ -1075,6 +1075,8 @@ fn the_guide_lists_every_key_of_every_kind() {
         "printed_from",
         "printed_tex",
         "printed_equations_from",
+        "printed_matrix_from",
+        "retyped",
     ] {
         want.insert(("every kind".to_string(), key.to_string()));
     }
