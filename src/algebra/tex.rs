@@ -888,9 +888,11 @@ impl Reader<'_> {
     /// claim's reader refuses the symbol naming it.
     fn region_integral(&mut self) -> R<Expr> {
         let start = self.pos - 1;
-        self.in_integral += 1;
+        // inside the integrand `d \sigma` ends the product; the depth is restored as it was
+        let outer = self.in_integral;
+        self.in_integral = outer.saturating_add(1);
         let body = self.expr();
-        self.in_integral -= 1;
+        self.in_integral = outer;
         body?;
         self.skip_space();
         if !self.is_differential() {
