@@ -55,7 +55,8 @@ fn points_json(points: &[WorkPoint]) -> Vec<Value> {
         .iter()
         .map(|p| {
             json!({"method": p.method.name(), "tol": p.tol, "rhs_evals": p.stats.rhs_evals,
-                   "steps": p.stats.steps, "rejected": p.stats.rejected, "seconds": p.seconds,
+                   "steps": p.stats.steps, "rejected": p.stats.rejected,
+                   "jacobians": p.stats.jac_evals, "lu": p.stats.lu_decomps, "seconds": p.seconds,
                    "error": p.error})
         })
         .collect()
@@ -763,4 +764,34 @@ pub fn bench_scaling(repeats: usize) -> Result<Value, String> {
         points_rows.push(json!({"points": n, "solved": ok, "seconds": s.elapsed().as_secs_f64()}));
     }
     Ok(json!({"modes": modes_rows, "sweep_points": points_rows}))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bench_points_carry_the_counts_the_peer_tables_compare() {
+        // the pendulum at 1e-6 against its closed form (an independent solution): Radau5's
+        // point must name its steps, Jacobians and LU decompositions, consistently
+        let v = bench_problem("pendulum", &[1e-6], 1).expect("bench runs");
+        let radau = v["points"]
+            .as_array()
+            .expect("points")
+            .iter()
+            .find(|p| p["method"] == "radau5")
+            .expect("radau5 point")
+            .clone();
+        let n = |k: &str| {
+            radau[k]
+                .as_u64()
+                .unwrap_or_else(|| panic!("{k} in {radau}"))
+        };
+        assert!(n("steps") > 0 && n("jacobians") >= 1, "{radau}");
+        // at least one decomposition per Jacobian, at most one per attempted step
+        assert!(n("lu") >= n("jacobians"), "{radau}");
+        assert!(n("lu") <= n("steps") + n("rejected"), "{radau}");
+        assert!(radau["error"].as_f64().expect("error") < 1e-5, "{radau}");
+        assert!(bench_problem("nope", &[1e-6], 1).is_err());
+    }
 }

@@ -258,6 +258,8 @@ def main():
     ap.add_argument("--impact", required=True)
     ap.add_argument("--verify", required=True)
     ap.add_argument("--rust-peer", required=True)
+    ap.add_argument("--russell-peer", required=True)
+    ap.add_argument("--repeats-russell", type=int, default=101)
     ap.add_argument("--root", required=True)
     ap.add_argument("--out", required=True)
     ap.add_argument("--repeats-rust", type=int, default=1001)
@@ -298,9 +300,16 @@ def main():
                 [a.rust_peer, problem, repr(t_end), ",".join(map(repr, ref)), str(a.repeats_rust), tol_arg]))
             for p in rp["points"]:
                 peers[(f"ode_solvers {p['method']}", p["tol"])] = p
+        if problem in ("cone", "pendulum"):
+            rep = a.repeats_russell if problem == "cone" else max(1, a.repeats_russell // 10)
+            rp = json.loads(subprocess.check_output(
+                [a.russell_peer, problem, repr(t_end), ",".join(map(repr, y0)), ",".join(map(repr, ref)), str(rep),
+                 tol_arg]))
+            for p in rp["points"]:
+                peers[("russell_ode Radau5", p["tol"])] = p
         pairs = [("dop853", "ode dop853"), ("dop853", "solve_ivp DOP853"), ("dop853", "ode_solvers dop853"),
                  ("dopri5", "solve_ivp RK45"), ("dopri5", "ode_solvers dopri5"),
-                 ("radau5", "solve_ivp Radau"), ("radau5", "solve_ivp LSODA")]
+                 ("radau5", "russell_ode Radau5"), ("radau5", "solve_ivp Radau"), ("radau5", "solve_ivp LSODA")]
         lines += [f"### {problem}", "", f"Problem: {DESCRIPTION[problem]}. rtol = atol = tol; error = max over "
                   "components of |y - y_ref| / max(|y_ref|, 1) at the end.", "",
                   "| tol | impactcheck | RHS evals | time (us) | error | peer | RHS evals | time (us) | error | ratio |",
@@ -315,7 +324,7 @@ def main():
                              f"{p['seconds']/o['seconds']:.2f}x |")
         summary[problem] = (mine, peers)
         series = {f"impactcheck {m}": [mine[(m, t)] for t in TOLS] for m in ["dop853", "dopri5", "radau5"]}
-        for peer in ["ode dop853", "solve_ivp DOP853", "solve_ivp Radau", "solve_ivp LSODA", "ode_solvers dop853",
+        for peer in ["ode dop853", "solve_ivp DOP853", "russell_ode Radau5", "solve_ivp Radau", "solve_ivp LSODA", "ode_solvers dop853",
                      "ode_solvers dopri5"]:
             if (peer, TOLS[0]) in peers:
                 series[peer] = [peers[(peer, t)] for t in TOLS]
@@ -355,6 +364,37 @@ def main():
               "- Note on ode_solvers: its dense output at the end point is wrong when the output increment equals "
               "the interval (it interpolates with a stale step size: the Hertz end state came out as 3e6 instead of "
               "0); the peer therefore runs with sparse output and reads the last step's state.", ""]
+    # the stiff peer: russell_ode's Radau5 (a Rust port of Hairer's RADAU5), counts side by side
+    lines += ["### RADAU5 against the stiff peer", "",
+              "russell_ode 5 (`Radau5`, a port of Hairer's RADAU5; one thread, its default pure-Rust direct "
+              "solver; benches/peers/russell_peer) against impactcheck's `radau5`, both with the same Jacobian "
+              "(finite differences on the cone, the analytic one on the pendulum). russell maps its input "
+              "tolerance as Hairer's code does (0.1 tol^(2/3)); it is given (10 tol)^(3/2) so that both solve to "
+              "the same internal tolerance. At 1e-12 that input (3.2e-17) is below the smallest russell accepts "
+              "(10 machine epsilons), so it runs at that smallest, an internal tolerance of 1.7e-11: a looser "
+              "solve than impactcheck's (fewer evaluations, a larger error in the table). Counts: steps "
+              "(accepted), rejected, Jacobians, LU decompositions (one per pair of real and complex systems), "
+              "RHS evaluations (with those of the finite-difference Jacobians).", "",
+              "| problem | tol | peer internal tol | impactcheck steps / rej / jac / LU / RHS | time (us) | error "
+              "| russell steps / rej / jac / LU / RHS | time (us) | error | ratio |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
+    stiff_ratios = []
+    for problem in ("cone", "pendulum"):
+        mine, peers = summary[problem]
+        for tol in TOLS:
+            o, p = mine[("radau5", tol)], peers.get(("russell_ode Radau5", tol))
+            if p is None:
+                continue
+            r = p["seconds"] / o["seconds"]
+            stiff_ratios.append((r, problem, tol))
+            lines.append(f"| {problem} | {tol:g} | {p['internal_tol']:.1e} | {o['steps']} / {o['rejected']} / "
+                         f"{o['jacobians']} / {o['lu']} / {o['rhs_evals']} | {o['seconds']*1e6:.1f} | "
+                         f"{o['error']:.1e} | {p['accepted']} / {p['rejected']} / {p['jacobians']} / {p['lu']} / "
+                         f"{p['rhs_evals']} | {p['seconds']*1e6:.1f} | {p['error']:.1e} | {r:.2f}x |")
+    if stiff_ratios:
+        worst = min(stiff_ratios)
+        lines += ["", f"Target (every ratio >= 1.0): " + ("met" if worst[0] >= 1.0 else "NOT met")
+                  + f" (smallest {worst[0]:.2f}x, {worst[1]} at {worst[2]:g}).", ""]
     # 2. algebra
     ours_alg = json.loads(subprocess.check_output([a.impact, "bench", "algebra", "--repeats", "5"]))
     lines += ["## 2. The exact algebra against SymPy", ""]
@@ -437,7 +477,8 @@ def main():
               + ("" if vr.returncode == 0 else " (It reported changes against the committed summary: the time "
                  "is that of the full computation all the same.)"),
               "", "Reproduce: `bash benches/peers/run.sh` (installs NumPy, SciPy and SymPy into benches/peers/.venv, "
-              "builds `impact`, `verify` and the ode_solvers peer, runs everything, rewrites this file). For sweeps "
+              "builds `impact`, `verify`, the ode_solvers peer and the russell_ode peer (after installing the Debian "
+              "packages it links: OpenBLAS, LAPACKE, MUMPS, SuiteSparse), runs everything, rewrites this file). For sweeps "
               "larger than one machine see the README (shards and `impact merge`)."]
     open(os.path.join(a.out, "performance.md"), "w").write("\n".join(lines) + "\n")
     print("\n".join(lines))
