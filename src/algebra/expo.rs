@@ -27,6 +27,45 @@ pub struct Expo {
     parts: BTreeMap<PartKey, RatFunc>,
 }
 
+/// Parts collected before their coefficients are added: each key's terms are summed once, over
+/// one common denominator, by [`Acc::finish`] (see [`RatFunc::sum`]).
+#[derive(Default)]
+pub struct Acc {
+    parts: BTreeMap<PartKey, Vec<RatFunc>>,
+}
+
+impl Acc {
+    /// Adds the part `c t^k e^{-rate t}` (summed when finished).
+    pub fn push(&mut self, rate: Poly, k: u32, c: RatFunc) {
+        if !c.is_zero() {
+            self.parts.entry((rate, k)).or_default().push(c);
+        }
+    }
+
+    /// Adds every part of `e`.
+    pub fn push_all(&mut self, e: &Expo) {
+        for ((r, k), v) in &e.parts {
+            self.push(r.clone(), *k, v.clone());
+        }
+    }
+
+    /// The sum, each coefficient added once.
+    pub fn finish(self) -> Expo {
+        let mut out = Expo::zero();
+        for (key, terms) in self.parts {
+            let c = if terms.len() == 1 {
+                terms.into_iter().next().expect("one term")
+            } else {
+                RatFunc::sum(&terms)
+            };
+            if !c.is_zero() {
+                out.parts.insert(key, c);
+            }
+        }
+        out
+    }
+}
+
 impl PartialEq for Expo {
     fn eq(&self, o: &Expo) -> bool {
         (self - o).is_zero()
@@ -110,26 +149,49 @@ impl Expo {
         out
     }
 
-    /// $d/dt$.
-    pub fn deriv(&self) -> Expo {
-        let mut out = Expo::zero();
-        for ((r, k), v) in &self.parts {
-            if *k > 0 {
-                out.add_part(r.clone(), k - 1, v.scale(&qi(*k as i64)));
-            }
-            if !r.is_zero() {
-                out.add_part(r.clone(), *k, -&(v * &RatFunc::from_poly(r.clone())));
+    /// $\sum_i f_i g_i$ with every coefficient summed once (the $A_k = \sum a_i a_{k-i}$ of (19)).
+    pub fn sum_of_products(pairs: &[(&Expo, &Expo)]) -> Expo {
+        let mut out = Acc::default();
+        for (f, g) in pairs {
+            for ((r1, k1), v1) in &f.parts {
+                let v1 = v1.fraction_free();
+                for ((r2, k2), v2) in &g.parts {
+                    out.push(r1 + r2, k1 + k2, v1.mul(v2));
+                }
             }
         }
-        out
+        out.finish()
+    }
+
+    /// A sum of many, each coefficient summed once.
+    pub fn sum_all<'a>(terms: impl IntoIterator<Item = &'a Expo>) -> Expo {
+        let mut out = Acc::default();
+        for t in terms {
+            out.push_all(t);
+        }
+        out.finish()
+    }
+
+    /// $d/dt$.
+    pub fn deriv(&self) -> Expo {
+        let mut out = Acc::default();
+        for ((r, k), v) in &self.parts {
+            if *k > 0 {
+                out.push(r.clone(), k - 1, v.scale(&qi(*k as i64)));
+            }
+            if !r.is_zero() {
+                out.push(r.clone(), *k, -&(v * &RatFunc::from_poly(r.clone())));
+            }
+        }
+        out.finish()
     }
 
     /// $\int_0^t g(s)\,ds$.
     pub fn integral(&self) -> Expo {
-        let mut out = Expo::zero();
+        let mut out = Acc::default();
         for ((r, k), v) in &self.parts {
             if r.is_zero() {
-                out.add_part(
+                out.push(
                     Poly::zero(),
                     k + 1,
                     v.scale(&(Q::one() / qi(*k as i64 + 1))),
@@ -143,7 +205,7 @@ impl Expo {
             let mut fall = Q::one();
             let mut inv_pow = inv_r.clone();
             for i in 0..=*k {
-                out.add_part(r.clone(), k - i, -&(v * &inv_pow.scale(&fall)));
+                out.push(r.clone(), k - i, -&(v * &inv_pow.scale(&fall)));
                 fall *= qi((*k - i) as i64);
                 if i < *k {
                     inv_pow = &inv_pow * &inv_r;
@@ -151,9 +213,9 @@ impl Expo {
             }
             // constant k!/r^{k+1}; after the loop fall == 0, so recompute k!
             let kfact = (1..=*k).fold(Q::one(), |a, j| a * qi(j as i64));
-            out.add_part(Poly::zero(), 0, v * &inv_pow.scale(&kfact));
+            out.push(Poly::zero(), 0, v * &inv_pow.scale(&kfact));
         }
-        out
+        out.finish()
     }
 
     /// The double integral $\int_0^t\int_0^{t'} g\,dt''\,dt'$ of (9) and (20).
@@ -276,22 +338,22 @@ impl Expo {
 impl std::ops::Add for &Expo {
     type Output = Expo;
     fn add(self, o: &Expo) -> Expo {
-        let mut out = self.clone();
-        for ((r, k), v) in &o.parts {
-            out.add_part(r.clone(), *k, v.clone());
-        }
-        out
+        let mut out = Acc::default();
+        out.push_all(self);
+        out.push_all(o);
+        out.finish()
     }
 }
 
 impl std::ops::Sub for &Expo {
     type Output = Expo;
     fn sub(self, o: &Expo) -> Expo {
-        let mut out = self.clone();
+        let mut out = Acc::default();
+        out.push_all(self);
         for ((r, k), v) in &o.parts {
-            out.add_part(r.clone(), *k, -v);
+            out.push(r.clone(), *k, -v);
         }
-        out
+        out.finish()
     }
 }
 
@@ -305,13 +367,7 @@ impl std::ops::Neg for &Expo {
 impl std::ops::Mul for &Expo {
     type Output = Expo;
     fn mul(self, o: &Expo) -> Expo {
-        let mut out = Expo::zero();
-        for ((r1, k1), v1) in &self.parts {
-            for ((r2, k2), v2) in &o.parts {
-                out.add_part(r1 + r2, k1 + k2, v1 * v2);
-            }
-        }
-        out
+        Expo::sum_of_products(&[(self, o)])
     }
 }
 

@@ -13,6 +13,7 @@
 //! multivariate rationals with a sound equality; this module is ~300 lines and has no floats.
 
 use num_bigint::BigInt;
+use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 use std::collections::BTreeMap;
@@ -226,6 +227,103 @@ impl Monomial {
     }
 }
 
+/// The Mersenne prime 2^61 - 1 of [`Poly::may_be_divisible_by`]'s residues.
+const P: u64 = (1 << 61) - 1;
+
+/// `a b mod P` by the Mersenne reduction (no 128-bit division).
+fn mulm(a: u64, b: u64) -> u64 {
+    let x = a as u128 * b as u128;
+    let r = ((x as u64) & P) + ((x >> 61) as u64);
+    let r = (r & P) + (r >> 61);
+    if r >= P { r - P } else { r }
+}
+
+fn powm(mut a: u64, mut e: u64) -> u64 {
+    let mut r = 1;
+    while e > 0 {
+        if e & 1 == 1 {
+            r = mulm(r, a);
+        }
+        a = mulm(a, a);
+        e >>= 1;
+    }
+    r
+}
+
+fn int_mod(n: &BigInt) -> u64 {
+    let (sign, digits) = n.to_u64_digits();
+    // 2^64 = 8 mod P
+    let mut r: u64 = 0;
+    for d in digits.iter().rev() {
+        r = (mulm(r, 8) + (d & P) + (d >> 61)) % P;
+    }
+    if sign == num_bigint::Sign::Minus && r != 0 {
+        P - r
+    } else {
+        r
+    }
+}
+
+/// A point modulo [`P`]: symbol `i` at `1_000_003 + 2 i` but `x` at its own value, with the powers
+/// each symbol needs cached; values of polynomials come out as fractions `(num, den)` so that no
+/// coefficient needs an inverse.
+struct ModPoint {
+    xs: Sym,
+    x: Option<u64>,
+    powers: Vec<Vec<u64>>,
+}
+
+impl ModPoint {
+    fn new(xs: Sym) -> Self {
+        ModPoint {
+            xs,
+            x: None,
+            powers: Vec::new(),
+        }
+    }
+
+    fn q(&self, c: &Q) -> Option<(u64, u64)> {
+        let d = int_mod(c.denom());
+        (d != 0).then(|| (int_mod(c.numer()), d))
+    }
+
+    fn pow(&mut self, i: usize, e: u32) -> Option<u64> {
+        let base = if i == self.xs.0 as usize {
+            self.x?
+        } else {
+            1_000_003 + 2 * i as u64
+        };
+        if self.powers.len() <= i {
+            self.powers.resize(i + 1, Vec::new());
+        }
+        let table = &mut self.powers[i];
+        if table.is_empty() {
+            table.push(1);
+        }
+        while table.len() <= e as usize {
+            let next = mulm(*table.last().expect("non-empty"), base);
+            table.push(next);
+        }
+        Some(table[e as usize])
+    }
+
+    fn eval(&mut self, p: &Poly) -> Option<(u64, u64)> {
+        let (mut an, mut ad) = (0u64, 1u64);
+        for (m, c) in &p.terms {
+            let (mut n, d) = self.q(c)?;
+            for (i, e) in m.0.iter().enumerate() {
+                if *e > 0 {
+                    n = mulm(n, self.pow(i, *e)?);
+                }
+            }
+            // an/ad + n/d
+            an = (mulm(an, d) + mulm(n, ad)) % P;
+            ad = mulm(ad, d);
+        }
+        Some((an, ad))
+    }
+}
+
 /// A polynomial with exact rational coefficients; zero coefficients are never stored.
 #[derive(Clone, PartialEq, Eq, PartialOrd, Ord, Hash, Debug, Default)]
 pub struct Poly {
@@ -345,41 +443,89 @@ impl Poly {
         r
     }
 
-    /// Exact quotient `self / d` if `d` divides `self`, else `None`.
+    /// Exact quotient `self / d` if `d` divides `self`, else `None` (fraction-free, see
+    /// [`FPoly::div_exact`]).
     pub fn div_exact(&self, d: &Poly) -> Option<Poly> {
         let (dm, dc) = d.leading()?;
-        let (dm, dc) = (dm.clone(), dc.clone());
         // a single-symbol divisor `x` divides iff every monomial contains `x`
         if d.len() == 1 {
             let mut out = Poly::zero();
             for (m, c) in &self.terms {
-                out.terms.insert(m.div(&dm)?, c / &dc);
+                out.terms.insert(m.div(dm)?, c / dc);
             }
             return Some(out);
         }
-        let mut rem = self.terms.clone();
-        let mut quot = Poly::zero();
-        while let Some((m, c)) = rem.iter().next_back() {
-            let qm = m.div(&dm)?;
-            let qc = c / &dc;
-            for (dm2, dc2) in &d.terms {
-                let key = dm2.mul(&qm);
-                let sub = dc2 * &qc;
-                match rem.get_mut(&key) {
-                    Some(v) => {
-                        *v -= sub;
-                        if v.is_zero() {
-                            rem.remove(&key);
-                        }
-                    }
-                    None => {
-                        rem.insert(key, -sub);
+        FPoly::from_poly(self).div_exact(d).map(|q| q.to_poly())
+    }
+
+    /// Adds `o` in place (no copy of `self`).
+    pub fn add_assign_ref(&mut self, o: &Poly) {
+        for (m, c) in &o.terms {
+            match self.terms.get_mut(m) {
+                Some(v) => {
+                    *v += c;
+                    if v.is_zero() {
+                        self.terms.remove(m);
                     }
                 }
+                None => {
+                    self.terms.insert(m.clone(), c.clone());
+                }
             }
-            quot.terms.insert(qm, qc);
         }
-        Some(quot)
+    }
+
+    /// False only when `f` certainly does not divide `self`; true when it may (or the test cannot
+    /// tell).
+    ///
+    /// For `f` of degree one in one symbol `x` with a constant coefficient there (every rate
+    /// difference the series divides by: `alpha - gamma`, `2 alpha + gamma`, ...): `f | self`
+    /// implies `self = 0` on the zero set of `f`. The test evaluates both modulo the prime
+    /// 2^61 - 1 at a fixed point of that set (the other symbols at fixed residues, `x` solved from
+    /// `f = 0`); a non-zero value proves `f` does not divide. It costs one pass over the
+    /// coefficients in machine integers, where the exact division it spares runs long divisions
+    /// over big rationals before it fails. `None` (a coefficient's denominator divisible by the
+    /// prime, `f` not of that shape) leaves the decision to [`Poly::div_exact`].
+    pub fn may_be_divisible_by(&self, f: &Poly) -> bool {
+        self.vanishes_on_zero_set_mod_p(f) != Some(false)
+    }
+
+    fn vanishes_on_zero_set_mod_p(&self, f: &Poly) -> Option<bool> {
+        let (_, mut point) = zero_set_point(f)?;
+        let (vn, _) = point.eval(self)?;
+        Some(vn == 0)
+    }
+
+    /// The sum of many polynomials, fraction-free: integer coefficients over the least common
+    /// multiple of all denominators, each coefficient of the sum reduced once.
+    pub fn sum_many<'a>(polys: impl IntoIterator<Item = &'a Poly>) -> Poly {
+        let parts: Vec<FPoly> = polys.into_iter().map(FPoly::from_poly).collect();
+        FPoly::sum(&parts).to_poly()
+    }
+
+    /// `(integer coefficients, d)` with `self = (1/d) * sum c_i m_i`, `d` the least common
+    /// multiple of the coefficients' denominators.
+    fn integer_form(&self) -> (Vec<(&Monomial, BigInt)>, BigInt) {
+        let d = self.terms.values().fold(BigInt::one(), |l, c| {
+            if c.denom().is_one() {
+                l
+            } else {
+                l.lcm(c.denom())
+            }
+        });
+        let ints = self
+            .terms
+            .iter()
+            .map(|(m, c)| {
+                let n = if c.denom() == &d {
+                    c.numer().clone()
+                } else {
+                    c.numer() * (&d / c.denom())
+                };
+                (m, n)
+            })
+            .collect();
+        (ints, d)
     }
 
     /// Greatest common monomial divisor of all terms (`1` for zero).
@@ -541,6 +687,199 @@ pub fn rat_text(a: &Q, latex: bool) -> String {
     }
 }
 
+/// A polynomial kept fraction-free, `(1/d) * sum z_m m` with big-integer `z_m`: the working form
+/// of sums and exact divisions in [`crate::algebra::ratfunc::RatFunc`], where rational
+/// coefficients would reduce by a gcd at every operation. Converted back to [`Poly`] (each
+/// coefficient reduced once) when the work is done.
+#[derive(Clone, Debug)]
+pub(crate) struct FPoly {
+    z: BTreeMap<Monomial, BigInt>,
+    d: BigInt,
+}
+
+impl FPoly {
+    pub(crate) fn from_poly(p: &Poly) -> FPoly {
+        let (ints, d) = p.integer_form();
+        FPoly {
+            z: ints.into_iter().map(|(m, c)| (m.clone(), c)).collect(),
+            d,
+        }
+    }
+
+    pub(crate) fn is_zero(&self) -> bool {
+        self.z.is_empty()
+    }
+
+    /// The product.
+    pub(crate) fn mul(&self, o: &FPoly) -> FPoly {
+        let mut z: BTreeMap<Monomial, BigInt> = BTreeMap::new();
+        for (m1, c1) in &self.z {
+            for (m2, c2) in &o.z {
+                let c = c1 * c2;
+                match z.entry(m1.mul(m2)) {
+                    std::collections::btree_map::Entry::Occupied(mut e) => *e.get_mut() += c,
+                    std::collections::btree_map::Entry::Vacant(e) => {
+                        e.insert(c);
+                    }
+                }
+            }
+        }
+        z.retain(|_, c| !c.is_zero());
+        FPoly {
+            z,
+            d: &self.d * &o.d,
+        }
+    }
+
+    /// The sum of many, over the least common multiple of their denominators.
+    pub(crate) fn sum(parts: &[FPoly]) -> FPoly {
+        let d = parts.iter().fold(
+            BigInt::one(),
+            |l, p| if p.d.is_one() { l } else { l.lcm(&p.d) },
+        );
+        let mut z: BTreeMap<Monomial, BigInt> = BTreeMap::new();
+        for p in parts {
+            let f = &d / &p.d;
+            for (m, c) in &p.z {
+                let c = if f.is_one() { c.clone() } else { c * &f };
+                match z.get_mut(m) {
+                    Some(v) => *v += c,
+                    None => {
+                        z.insert(m.clone(), c);
+                    }
+                }
+            }
+        }
+        z.retain(|_, c| !c.is_zero());
+        FPoly { z, d }
+    }
+
+    /// False only when `f` certainly does not divide (see [`Poly::may_be_divisible_by`]).
+    pub(crate) fn may_be_divisible_by(&self, f: &Poly) -> bool {
+        let Some((_, mut point)) = zero_set_point(f) else {
+            return true;
+        };
+        let mut acc = 0u64;
+        for (m, c) in &self.z {
+            let mut n = int_mod(c);
+            for (i, e) in m.0.iter().enumerate() {
+                if *e > 0 {
+                    match point.pow(i, *e) {
+                        Some(v) => n = mulm(n, v),
+                        None => return true,
+                    }
+                }
+            }
+            acc = (acc + n) % P;
+        }
+        acc == 0
+    }
+
+    /// `self / f` when `f` divides it, else `None`. With `f = g F / fd` (`F` integer and
+    /// primitive), `F | Z` in Q[x] implies an integer quotient (Gauss's lemma), so the long
+    /// division runs in big integers and fails at the first leading coefficient that `F`'s does not
+    /// divide (or monomial its leading monomial does not divide; one polynomial is a Groebner basis
+    /// of its ideal, so a remainder decides).
+    pub(crate) fn div_exact(&self, f: &Poly) -> Option<FPoly> {
+        let (fz, fd) = f.integer_form();
+        let g = fz.iter().fold(BigInt::zero(), |g, (_, c)| g.gcd(c));
+        let fz: Vec<(&Monomial, BigInt)> = fz.into_iter().map(|(m, c)| (m, c / &g)).collect();
+        let (lm, lc) = fz
+            .iter()
+            .max_by(|a, b| a.0.cmp(b.0))
+            .map(|(m, c)| (*m, c.clone()))?;
+        let mut rem = self.z.clone();
+        let mut quot: BTreeMap<Monomial, BigInt> = BTreeMap::new();
+        while let Some((m, c)) = rem.pop_last() {
+            let qm = m.div(lm)?;
+            let (qc, r) = c.div_rem(&lc);
+            if !r.is_zero() {
+                return None;
+            }
+            for (fm, fc) in &fz {
+                if *fm == lm {
+                    continue;
+                }
+                let key = fm.mul(&qm);
+                let sub = fc * &qc;
+                match rem.get_mut(&key) {
+                    Some(v) => {
+                        *v -= sub;
+                        if v.is_zero() {
+                            rem.remove(&key);
+                        }
+                    }
+                    None => {
+                        rem.insert(key, -sub);
+                    }
+                }
+            }
+            quot.insert(qm, qc);
+        }
+        // self / f = (Z/d) / (g F / fd) = (Z/F) fd / (d g)
+        let quot = if fd.is_one() {
+            quot
+        } else {
+            quot.into_iter().map(|(m, c)| (m, c * &fd)).collect()
+        };
+        Some(FPoly {
+            z: quot,
+            d: &self.d * g,
+        })
+    }
+
+    /// Back to rational coefficients, each reduced once.
+    pub(crate) fn to_poly(&self) -> Poly {
+        use num_traits::ToPrimitive;
+        let small = self.d.to_u64();
+        Poly {
+            terms: self
+                .z
+                .iter()
+                .map(|(m, c)| (m.clone(), q_over(c, &self.d, small)))
+                .collect(),
+        }
+    }
+}
+
+/// `c / d` in lowest terms for `d > 0`, the gcd taken as that of `d` and `c mod d` (in machine
+/// integers when `d` fits one, `small`): a big-integer gcd of `c` and `d` directly shifts the whole
+/// of `c`, which is much the larger.
+fn q_over(c: &BigInt, d: &BigInt, small: Option<u64>) -> Q {
+    use num_traits::ToPrimitive;
+    let g = match small {
+        Some(1) => return Q::from_integer(c.clone()),
+        Some(ds) => BigInt::from(num_integer::gcd(ds, (c % d).abs().to_u64().unwrap_or(0))),
+        None => d.gcd(&(c % d)),
+    };
+    if g.is_one() {
+        Q::new_raw(c.clone(), d.clone())
+    } else {
+        Q::new_raw(c / &g, d / &g)
+    }
+}
+
+/// A point of the zero set of `f` modulo [`P`] when `f` has a symbol of degree one with a
+/// constant coefficient (that symbol solved, the others at fixed residues), else `None`.
+fn zero_set_point(f: &Poly) -> Option<(Sym, ModPoint)> {
+    let (x, _) = f.terms.keys().find_map(|m| {
+        let fs: Vec<(Sym, u32)> = m.factors().collect();
+        let only_here = |s: Sym| f.terms.keys().filter(|k| k.exp(s) > 0).count() == 1;
+        (fs.len() == 1 && fs[0].1 == 1 && only_here(fs[0].0)).then(|| fs[0])
+    })?;
+    let mut point = ModPoint::new(x);
+    let (cn, cd) = point.q(f.terms.get(&Monomial::var(x, 1))?)?;
+    let mut rest = f.clone();
+    rest.terms.remove(&Monomial::var(x, 1));
+    let (rn, rd) = point.eval(&rest)?;
+    if cn == 0 || rd == 0 {
+        return None;
+    }
+    // x = -(rn/rd) / (cn/cd) = (P - rn) cd / (rd cn)
+    point.x = Some(mulm(mulm((P - rn) % P, cd), powm(mulm(rd, cn), P - 2)));
+    Some((x, point))
+}
+
 impl fmt::Display for Poly {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(&self.to_text())
@@ -584,14 +923,13 @@ impl std::ops::Neg for &Poly {
 
 impl std::ops::Mul for &Poly {
     type Output = Poly;
+    /// Fraction-free (see [`FPoly`]): a product of rationals reduces by a gcd at every step,
+    /// which is where exact series spend their time; here each coefficient is reduced once.
     fn mul(self, o: &Poly) -> Poly {
-        let mut r = Poly::zero();
-        for (m1, c1) in &self.terms {
-            for (m2, c2) in &o.terms {
-                r.add_term(m1.mul(m2), c1 * c2);
-            }
+        if self.is_zero() || o.is_zero() {
+            return Poly::zero();
         }
-        r
+        FPoly::from_poly(self).mul(&FPoly::from_poly(o)).to_poly()
     }
 }
 

@@ -8,9 +8,12 @@
 //!
 //! With every symbol replaced by a rational value the type degenerates to an exact rational.
 
-use super::poly::{Monomial, Poly, Q, Sym};
+use super::poly::{FPoly, Monomial, Poly, Q, Sym};
 use num_traits::{One, Zero};
 use std::fmt;
+
+/// A denominator factor and its power.
+type Factor = (Poly, u32);
 
 /// A rational function with a factored, monic denominator.
 #[derive(Clone, Debug)]
@@ -118,7 +121,9 @@ impl RatFunc {
 
     /// Multiplies `self` by `1 / prod(factors)` and by `1/unit`, then cancels.
     fn with_extra_den(mut self, unit: &Q, factors: Vec<(Poly, u32)>) -> Self {
-        self.num = self.num.scale(&(Q::one() / unit));
+        if !unit.is_one() {
+            self.num = self.num.scale(&(Q::one() / unit));
+        }
         for (f, e) in factors {
             match self.den.iter_mut().find(|(g, _)| *g == f) {
                 Some(slot) => slot.1 += e,
@@ -129,25 +134,86 @@ impl RatFunc {
     }
 
     /// Removes every denominator factor that divides the numerator exactly.
-    fn cancel(mut self) -> Self {
+    fn cancel(self) -> Self {
         if self.num.is_zero() {
-            self.den.clear();
+            return RatFunc::zero();
+        }
+        if self.den.is_empty() {
             return self;
         }
-        for (f, e) in self.den.iter_mut() {
-            while *e > 0 {
-                match self.num.div_exact(f) {
+        RatFunc::cancelled(FPoly::from_poly(&self.num), self.den)
+    }
+
+    /// `num / den` with every factor of `den` divided out of `num` while it divides, in
+    /// fraction-free form (a factor is tried only when a residue test cannot rule it out).
+    fn cancelled(mut num: FPoly, mut den: Vec<(Poly, u32)>) -> Self {
+        if num.is_zero() {
+            return RatFunc::zero();
+        }
+        for (f, e) in den.iter_mut() {
+            while *e > 0 && num.may_be_divisible_by(f) {
+                match num.div_exact(f) {
                     Some(qt) => {
-                        self.num = qt;
+                        num = qt;
                         *e -= 1;
                     }
                     None => break,
                 }
             }
         }
-        self.den.retain(|(_, e)| *e > 0);
-        self.den.sort();
-        self
+        den.retain(|(_, e)| *e > 0);
+        den.sort();
+        RatFunc {
+            num: num.to_poly(),
+            den,
+        }
+    }
+
+    /// The sum of many terms over their least common denominator, cancelled once (adding them
+    /// one by one would cancel after every addition, trial-dividing numerators that grow); the
+    /// numerators are added and multiplied fraction-free.
+    pub fn sum<'a>(terms: impl IntoIterator<Item = &'a RatFunc>) -> RatFunc {
+        // numerators of terms with the same denominator are grouped first
+        let mut by_den: Vec<(&[Factor], Vec<FPoly>)> = Vec::new();
+        for t in terms {
+            if t.is_zero() {
+                continue;
+            }
+            let n = FPoly::from_poly(&t.num);
+            match by_den.iter_mut().find(|(d, _)| *d == t.den.as_slice()) {
+                Some((_, ns)) => ns.push(n),
+                None => by_den.push((&t.den, vec![n])),
+            }
+        }
+        let mut lcm: Vec<(Poly, u32)> = Vec::new();
+        for (den, _) in &by_den {
+            for (f, e) in *den {
+                match lcm.iter_mut().find(|(g, _)| g == f) {
+                    Some(slot) => slot.1 = slot.1.max(*e),
+                    None => lcm.push((f.clone(), *e)),
+                }
+            }
+        }
+        let parts: Vec<FPoly> = by_den
+            .iter()
+            .map(|(den, nums)| {
+                let n = FPoly::sum(nums);
+                let cofactor = lcm.iter().fold(Poly::one(), |acc, (f, e)| {
+                    let have = den.iter().find(|(g, _)| g == f).map_or(0, |x| x.1);
+                    if *e > have {
+                        &acc * &f.pow(e - have)
+                    } else {
+                        acc
+                    }
+                });
+                if cofactor.as_constant().is_some() {
+                    n
+                } else {
+                    n.mul(&FPoly::from_poly(&cofactor))
+                }
+            })
+            .collect();
+        RatFunc::cancelled(FPoly::sum(&parts), lcm)
     }
 
     /// The reciprocal, or `None` for zero.
@@ -343,14 +409,45 @@ impl std::ops::Mul for &RatFunc {
         if self.is_zero() || o.is_zero() {
             return RatFunc::zero();
         }
-        let r = RatFunc {
-            num: &self.num * &o.num,
-            den: self.den.clone(),
-        };
-        if o.den.is_empty() {
-            return if self.den.is_empty() { r } else { r.cancel() };
+        self.fraction_free().mul(o)
+    }
+}
+
+/// A rational function whose numerator is held fraction-free, to multiply by many others without
+/// converting it again each time (the products of (19) and of the operator of (20)).
+pub(crate) struct FfRatFunc<'a> {
+    num: FPoly,
+    den: &'a [Factor],
+}
+
+impl RatFunc {
+    /// The fraction-free form of this function, for repeated products.
+    pub(crate) fn fraction_free(&self) -> FfRatFunc<'_> {
+        FfRatFunc {
+            num: FPoly::from_poly(&self.num),
+            den: &self.den,
         }
-        r.with_extra_den(&Q::one(), o.den.clone())
+    }
+}
+
+impl FfRatFunc<'_> {
+    /// The product with `o`, cancelled.
+    pub(crate) fn mul(&self, o: &RatFunc) -> RatFunc {
+        if self.num.is_zero() || o.is_zero() {
+            return RatFunc::zero();
+        }
+        let num = self.num.mul(&FPoly::from_poly(&o.num));
+        if self.den.is_empty() && o.den.is_empty() {
+            return RatFunc::from_poly(num.to_poly());
+        }
+        let mut den = self.den.to_vec();
+        for (f, e) in &o.den {
+            match den.iter_mut().find(|(g, _)| g == f) {
+                Some(slot) => slot.1 += e,
+                None => den.push((f.clone(), *e)),
+            }
+        }
+        RatFunc::cancelled(num, den)
     }
 }
 

@@ -18,10 +18,11 @@
 //! recursion that shares no code with the Adomian construction.
 
 use super::AlgebraError;
-use super::expo::Expo;
+use super::expo::{Acc, Expo};
 use super::poly::{Poly, Q, qi};
 use super::ratfunc::RatFunc;
 use num_traits::One;
+use std::collections::HashMap;
 
 /// How the viscous term of (18) is read.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -98,28 +99,99 @@ pub fn op_diff(g: &Expo, p: &SeriesParams) -> Expo {
     &g.op_l(&p.alpha) - &g.op_l(&p.gamma)
 }
 
+/// The right-hand side of (20) as one linear operator on $A_k$ (and $B_k$), applied part by part:
+/// with $T[g] = \iint [\tilde L(\alpha) - \tilde L(\gamma)][g]$, linear, and coefficients constant
+/// in $t$, $T[\sum_j c_j t^{k_j} e^{-r_j t}] = \sum_j c_j\, T[t^{k_j} e^{-r_j t}]$. The image of
+/// each unit part $(r, k)$ is built once (small rational functions of the rates) and kept for the
+/// later orders, where the same parts recur; a term's large coefficients are multiplied by it and
+/// summed once per part of the result, instead of being normalised after each of the three
+/// integrations. For $B = d(z^2)/dt$ the viscous part folds into the same image,
+/// $-A_8 T[p] - A_9 T[\dot p]$, so $B_k$ is never formed.
+struct OpT<'a> {
+    p: &'a SeriesParams,
+    memo: HashMap<(Poly, u32, bool), Expo>,
+}
+
+impl<'a> OpT<'a> {
+    fn new(p: &'a SeriesParams) -> Self {
+        OpT {
+            p,
+            memo: HashMap::new(),
+        }
+    }
+
+    /// Adds the image of `g` to `acc`: $-A_8 T[g] - A_9 T[\dot g]$ when `with_rate`, else
+    /// $c\,T[g]$.
+    fn apply_into(&mut self, g: &Expo, c: &RatFunc, with_rate: bool, acc: &mut Acc) {
+        let p = self.p;
+        for ((r, k), v) in g.parts() {
+            let unit = self
+                .memo
+                .entry((r.clone(), *k, with_rate))
+                .or_insert_with(|| {
+                    let part = Expo::part(RatFunc::one(), *k, r.clone());
+                    let t = op_diff(&part, p).double_integral();
+                    if with_rate {
+                        let a8 = SeriesParams::rf(&p.a8);
+                        let a9 = SeriesParams::rf(&p.a9);
+                        let visc = op_diff(&part.deriv(), p).double_integral();
+                        -&(&t.scale(&a8) + &visc.scale(&a9))
+                    } else {
+                        t
+                    }
+                });
+            let cv = if with_rate { v.clone() } else { v * c };
+            let cv = cv.fraction_free();
+            for ((ru, ku), w) in unit.parts() {
+                acc.push(ru.clone(), *ku, cv.mul(w));
+            }
+        }
+    }
+}
+
+/// $\sum_{i+j=k} f_i g_j$, each unordered pair once when `f` and `g` are the same sequence.
+fn cauchy_product(f: &[Expo], g: &[Expo], k: usize, same: bool) -> Expo {
+    if !same {
+        let pairs: Vec<(&Expo, &Expo)> = (0..=k).map(|i| (&f[i], &g[k - i])).collect();
+        return Expo::sum_of_products(&pairs);
+    }
+    // a_i a_{k-i} + a_{k-i} a_i = 2 a_i a_{k-i} for i < k - i, the middle one once
+    let pairs: Vec<(&Expo, &Expo)> = (0..=k / 2)
+        .filter(|i| 2 * i != k)
+        .map(|i| (&f[i], &g[k - i]))
+        .collect();
+    let twice = Expo::sum_of_products(&pairs).scale(&RatFunc::from_q(qi(2)));
+    if k.is_multiple_of(2) {
+        &twice + &(&f[k / 2] * &g[k / 2])
+    } else {
+        twice
+    }
+}
+
 /// The Adomian terms $a_0, \dots, a_N$ of (19)-(20).
 pub fn adomian_terms(p: &SeriesParams, order: usize, visc: Viscous) -> Vec<Expo> {
     let mut a: Vec<Expo> = vec![Expo::monomial(SeriesParams::rf(&p.v0), 1)];
     let mut da: Vec<Expo> = vec![a[0].deriv()];
-    let a8 = SeriesParams::rf(&p.a8);
-    let a9 = SeriesParams::rf(&p.a9);
+    let minus_a8 = -&SeriesParams::rf(&p.a8);
+    let minus_a9 = -&SeriesParams::rf(&p.a9);
+    let mut op = OpT::new(p);
     for k in 0..order {
-        let mut ak = Expo::zero();
-        let mut bk = Expo::zero();
-        for i in 0..=k {
-            ak = &ak + &(&a[i] * &a[k - i]);
-            if visc == Viscous::ZZ {
-                bk = &bk + &(&a[i] * &da[k - i]);
+        let ak = cauchy_product(&a, &a, k, true);
+        // a_{k+1} = -A8 T[A_k] - A9 T[B_k]
+        let mut next = Acc::default();
+        match visc {
+            // B_k = dA_k/dt: one image per part of A_k
+            Viscous::TwoZZ => op.apply_into(&ak, &minus_a8, true, &mut next),
+            Viscous::ZZ => {
+                let bk = cauchy_product(&a, &da, k, false);
+                op.apply_into(&ak, &minus_a8, false, &mut next);
+                op.apply_into(&bk, &minus_a9, false, &mut next);
             }
         }
-        if visc == Viscous::TwoZZ {
-            bk = ak.deriv();
+        let next = next.finish();
+        if visc == Viscous::ZZ {
+            da.push(next.deriv());
         }
-        let elastic = op_diff(&ak, p).double_integral().scale(&a8);
-        let viscous = op_diff(&bk, p).double_integral().scale(&a9);
-        let next = &(-&elastic) - &viscous;
-        da.push(next.deriv());
         a.push(next);
     }
     a
@@ -127,7 +199,7 @@ pub fn adomian_terms(p: &SeriesParams, order: usize, visc: Viscous) -> Vec<Expo>
 
 /// The sum $a_0 + \dots + a_N$.
 pub fn partial_sum(terms: &[Expo]) -> Expo {
-    terms.iter().fold(Expo::zero(), |acc, t| &acc + t)
+    Expo::sum_all(terms)
 }
 
 /// One part of a term-by-term comparison.
