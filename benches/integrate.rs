@@ -1,6 +1,9 @@
 //! Time per solve of each method on the Hertz impact z'' = -max(z,0)^1.5 from first touch to the
 //! end of contact, at rtol = atol = 1e-6, 1e-9, 1e-12; one solve with and without events; the
-//! sweep path in process (scene to CSV or JSON rows). The side-by-side comparison with SciPy is
+//! sweep path in process (scene to CSV or JSON rows); Radau5 on the stiff peer problems (the cone
+//! on a Kelvin-Voigt half-space and the pendulum on the wall with stiffness ratio 1e-6) at the
+//! same three tolerances (its workspace is allocated once per solve, nothing per step:
+//! tests/events_bare.rs asserts it). The side-by-side comparison with SciPy is
 //! benches/peers/run.sh (one script run, ratios in reports/performance.md).
 
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -81,5 +84,39 @@ fn sweep(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench, sweep);
+fn stiff(c: &mut Criterion) {
+    use impactcheck::models::pendulum_wall::{ClosedForm, PendulumWall};
+    use impactcheck::perf::{CONE_T_END, CONE_TAU, ConeKv, PENDULUM};
+    let (rho, sigma) = PENDULUM;
+    let pendulum = PendulumWall { rho, sigma };
+    let release = 0.9 * ClosedForm::new(rho, sigma).release();
+    let cone = ConeKv { tau: CONE_TAU };
+    let mut g = c.benchmark_group("radau5");
+    g.sample_size(20);
+    for tol in [1e-6, 1e-9, 1e-12] {
+        let o = Options {
+            rtol: tol,
+            atol: tol,
+            method: Method::Radau5,
+            ..Options::default()
+        };
+        g.bench_function(format!("cone {tol:e}"), |b| {
+            b.iter(|| solve(black_box(&cone), 0.0, &[0.0, 1.0], CONE_T_END, &o))
+        });
+        g.bench_function(format!("pendulum {tol:e}"), |b| {
+            b.iter(|| {
+                solve(
+                    black_box(&pendulum),
+                    0.0,
+                    &[0.0, 0.0, 0.0, 1.0],
+                    release,
+                    &o,
+                )
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, sweep, stiff);
 criterion_main!(benches);

@@ -155,9 +155,14 @@ impl Sym {
     }
 }
 
+/// The exponents of a monomial, inline for up to eight symbols (the series' five, the plate's
+/// few): monomials are made and compared in the inner loops of every product, and a heap vector
+/// per monomial was much of their cost.
+pub type Exponents = smallvec::SmallVec<[u32; 8]>;
+
 /// A monomial: exponent of symbol `i` at index `i`, trailing zeros trimmed.
 #[derive(Clone, PartialEq, Eq, PartialOrd, Ord, Hash, Debug, Default)]
-pub struct Monomial(pub Vec<u32>);
+pub struct Monomial(pub Exponents);
 
 impl Monomial {
     fn trim(mut self) -> Self {
@@ -169,7 +174,7 @@ impl Monomial {
 
     /// The monomial of one symbol to a power.
     pub fn var(s: Sym, e: u32) -> Self {
-        let mut v = vec![0; s.0 as usize + 1];
+        let mut v: Exponents = smallvec::smallvec![0; s.0 as usize + 1];
         v[s.0 as usize] = e;
         Monomial(v).trim()
     }
@@ -693,8 +698,35 @@ pub fn rat_text(a: &Q, latex: bool) -> String {
 /// coefficient reduced once) when the work is done.
 #[derive(Clone, Debug)]
 pub(crate) struct FPoly {
-    z: BTreeMap<Monomial, BigInt>,
+    /// Terms in ascending monomial order, no zero coefficient, no repeated monomial.
+    z: Vec<(Monomial, BigInt)>,
     d: BigInt,
+}
+
+/// Sorts terms by monomial and adds those with the same one, dropping zeros: products and sums
+/// are built as flat lists and merged once (a map insertion per term was most of their cost).
+///
+/// The lists come as concatenated sorted runs (a sorted polynomial times one monomial stays
+/// sorted: the order is a monomial order), which the standard library's stable sort detects and
+/// merges in O(n log runs).
+fn merge_terms(mut z: Vec<(Monomial, BigInt)>) -> Vec<(Monomial, BigInt)> {
+    z.sort_by(|a, b| a.0.cmp(&b.0));
+    let mut out: Vec<(Monomial, BigInt)> = Vec::with_capacity(z.len());
+    for (m, c) in z {
+        match out.last_mut() {
+            Some((lm, lc)) if *lm == m => *lc += c,
+            _ => {
+                if out.last().is_some_and(|(_, lc)| lc.is_zero()) {
+                    out.pop();
+                }
+                out.push((m, c));
+            }
+        }
+    }
+    if out.last().is_some_and(|(_, lc)| lc.is_zero()) {
+        out.pop();
+    }
+    out
 }
 
 impl FPoly {
@@ -712,21 +744,20 @@ impl FPoly {
 
     /// The product.
     pub(crate) fn mul(&self, o: &FPoly) -> FPoly {
-        let mut z: BTreeMap<Monomial, BigInt> = BTreeMap::new();
-        for (m1, c1) in &self.z {
-            for (m2, c2) in &o.z {
-                let c = c1 * c2;
-                match z.entry(m1.mul(m2)) {
-                    std::collections::btree_map::Entry::Occupied(mut e) => *e.get_mut() += c,
-                    std::collections::btree_map::Entry::Vacant(e) => {
-                        e.insert(c);
-                    }
-                }
+        // one sorted run per term of the shorter factor
+        let (long, short) = if self.z.len() >= o.z.len() {
+            (&self.z, &o.z)
+        } else {
+            (&o.z, &self.z)
+        };
+        let mut z = Vec::with_capacity(long.len() * short.len());
+        for (m2, c2) in short {
+            for (m1, c1) in long {
+                z.push((m1.mul(m2), c1 * c2));
             }
         }
-        z.retain(|_, c| !c.is_zero());
         FPoly {
-            z,
+            z: merge_terms(z),
             d: &self.d * &o.d,
         }
     }
@@ -737,21 +768,18 @@ impl FPoly {
             BigInt::one(),
             |l, p| if p.d.is_one() { l } else { l.lcm(&p.d) },
         );
-        let mut z: BTreeMap<Monomial, BigInt> = BTreeMap::new();
+        let mut z = Vec::with_capacity(parts.iter().map(|p| p.z.len()).sum());
         for p in parts {
             let f = &d / &p.d;
             for (m, c) in &p.z {
                 let c = if f.is_one() { c.clone() } else { c * &f };
-                match z.get_mut(m) {
-                    Some(v) => *v += c,
-                    None => {
-                        z.insert(m.clone(), c);
-                    }
-                }
+                z.push((m.clone(), c));
             }
         }
-        z.retain(|_, c| !c.is_zero());
-        FPoly { z, d }
+        FPoly {
+            z: merge_terms(z),
+            d,
+        }
     }
 
     /// False only when `f` certainly does not divide (see [`Poly::may_be_divisible_by`]).
@@ -788,8 +816,8 @@ impl FPoly {
             .iter()
             .max_by(|a, b| a.0.cmp(b.0))
             .map(|(m, c)| (*m, c.clone()))?;
-        let mut rem = self.z.clone();
-        let mut quot: BTreeMap<Monomial, BigInt> = BTreeMap::new();
+        let mut rem: BTreeMap<Monomial, BigInt> = self.z.iter().cloned().collect();
+        let mut quot: Vec<(Monomial, BigInt)> = Vec::new();
         while let Some((m, c)) = rem.pop_last() {
             let qm = m.div(lm)?;
             let (qc, r) = c.div_rem(&lc);
@@ -814,8 +842,10 @@ impl FPoly {
                     }
                 }
             }
-            quot.insert(qm, qc);
+            quot.push((qm, qc));
         }
+        // found from the largest monomial down
+        quot.reverse();
         // self / f = (Z/d) / (g F / fd) = (Z/F) fd / (d g)
         let quot = if fd.is_one() {
             quot
@@ -953,6 +983,65 @@ mod tests {
         let f = &(&x - &y) * &(&(&x * &x) + &y);
         assert_eq!(f.div_exact(&(&x - &y)), Some(&(&x * &x) + &y));
         assert_eq!(f.div_exact(&(&x + &y)), None);
+    }
+
+    #[test]
+    fn the_residue_test_never_rules_out_a_true_factor_and_rules_out_false_ones() {
+        // f | p is decided by exact division (the reference); the residue test may only say
+        // "no" when the division fails
+        let x = Poly::sym("alpha");
+        let y = Poly::sym("gamma");
+        let c = |n: i64, d: i64| Poly::constant(q(n, d));
+        let factors = [
+            &x - &y,
+            &(&x + &y.scale(&q(1, 2))) + &Poly::zero(),
+            &(&x.scale(&q(3, 1)) - &y) + &c(5, 3),
+            &x + &c(-2, 1),
+        ];
+        let other = &(&x * &x) + &(&y * &c(7, 5));
+        for f in &factors {
+            let multiple = &(&other * f) * &(&y + &c(1, 3));
+            assert!(multiple.may_be_divisible_by(f));
+            assert!(FPoly::from_poly(&multiple).may_be_divisible_by(f));
+            let back = multiple.div_exact(f).expect("a multiple divides");
+            assert_eq!(&back * f, multiple);
+            // a non-multiple: the test must say no (it is exact for these linear factors at the
+            // fixed point unless p vanishes there by accident, which these do not)
+            let not = &multiple + &c(1, 1);
+            assert_eq!(not.div_exact(f), None);
+            assert!(!not.may_be_divisible_by(f));
+            assert!(!FPoly::from_poly(&not).may_be_divisible_by(f));
+        }
+        // a factor with no symbol of degree one cannot be tested: the division decides
+        let square = &(&x * &x) + &(&y * &y);
+        assert!(other.may_be_divisible_by(&square));
+        assert_eq!(other.div_exact(&square), None);
+    }
+
+    #[test]
+    fn fraction_free_products_and_sums_equal_the_rational_ones() {
+        // Reference: the term-by-term definition with rational arithmetic
+        let x = Poly::sym("alpha");
+        let y = Poly::sym("gamma");
+        let a = &(&x.scale(&q(2, 3)) + &y.scale(&q(-5, 4))) + &Poly::constant(q(1, 6));
+        let b = &(&x * &y).scale(&q(7, 10)) - &Poly::constant(q(3, 8));
+        let mut direct = Poly::zero();
+        for (m1, c1) in a.terms() {
+            for (m2, c2) in b.terms() {
+                direct.add_term(m1.mul(m2), c1 * c2);
+            }
+        }
+        assert_eq!(&a * &b, direct);
+        let mut s = a.clone();
+        s.add_assign_ref(&b);
+        s.add_assign_ref(&-&a);
+        assert_eq!(s, b);
+        assert_eq!(Poly::sum_many([&a, &b, &-&a]), b);
+        assert_eq!(
+            q_over(&BigInt::from(-6), &BigInt::from(4), Some(4)),
+            q(-3, 2)
+        );
+        assert_eq!(q_over(&BigInt::from(9), &BigInt::from(3), None), qi(3));
     }
 
     #[test]

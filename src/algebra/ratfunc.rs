@@ -468,6 +468,35 @@ mod tests {
     }
 
     #[test]
+    fn a_sum_of_many_equals_the_sum_two_at_a_time() {
+        // Reference: pairwise addition (cross-multiplication with its own cancellation); the
+        // terms share and cancel the factors alpha - gamma and 2 alpha + gamma
+        let a = RatFunc::sym("alpha");
+        let g = RatFunc::sym("gamma");
+        let d1 = &a - &g;
+        let d2 = &(&a + &a) + &g;
+        let terms = vec![
+            (&a * &a).div(&d1).expect("nz"),
+            (-&(&g * &g)).div(&d1).expect("nz"),
+            RatFunc::from_q(qi(3)).div(&(&d1 * &d2)).expect("nz"),
+            (&a * &RatFunc::from_q(crate::algebra::poly::q(1, 7)))
+                .div(&d2)
+                .expect("nz"),
+            RatFunc::zero(),
+        ];
+        let pairwise = terms.iter().fold(RatFunc::zero(), |s, t| &s + t);
+        let once = RatFunc::sum(&terms);
+        assert_eq!(once, pairwise);
+        // the same canonical form, not only the same function: (a^2 - g^2)/(a - g) cancelled
+        assert_eq!(once.denom_factors(), pairwise.denom_factors());
+        assert_eq!(
+            RatFunc::sum(&terms[..2]).denom_factors(),
+            &[] as &[(Poly, u32)]
+        );
+        assert!(RatFunc::sum(&[]).is_zero());
+    }
+
+    #[test]
     fn partial_fraction_identity() {
         // 1/alpha - 1/gamma == (gamma - alpha)/(alpha*gamma)
         let a = RatFunc::sym("alpha");
