@@ -50,19 +50,28 @@ impl Acc {
     }
 
     /// The sum, each coefficient added once.
+    ///
+    /// The parts are independent, so their sums run in parallel (rayon); the result does not
+    /// depend on the order they finish in.
     pub fn finish(self) -> Expo {
-        let mut out = Expo::zero();
-        for (key, terms) in self.parts {
-            let c = if terms.len() == 1 {
+        use rayon::prelude::*;
+        let sum = |terms: Vec<RatFunc>| {
+            if terms.len() == 1 {
                 terms.into_iter().next().expect("one term")
             } else {
                 RatFunc::sum(&terms)
-            };
-            if !c.is_zero() {
-                out.parts.insert(key, c);
             }
+        };
+        let parts: Vec<(PartKey, Vec<RatFunc>)> = self.parts.into_iter().collect();
+        // a few parts per task: small sums are not worth a thread each
+        let parts: Vec<(PartKey, RatFunc)> = parts
+            .into_par_iter()
+            .with_min_len(4)
+            .map(|(k, t)| (k, sum(t)))
+            .collect();
+        Expo {
+            parts: parts.into_iter().filter(|(_, c)| !c.is_zero()).collect(),
         }
-        out
     }
 }
 

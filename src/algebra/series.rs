@@ -18,7 +18,7 @@
 //! recursion that shares no code with the Adomian construction.
 
 use super::AlgebraError;
-use super::expo::{Acc, Expo};
+use super::expo::{Acc, Expo, PartKey};
 use super::poly::{Poly, Q, qi};
 use super::ratfunc::RatFunc;
 use num_traits::One;
@@ -202,18 +202,34 @@ impl<'a> OpT<'a> {
 
     /// Adds the image of `g` to `acc`: $-A_8 T[g] - A_9 T[\dot g]$ when `with_rate`, else
     /// $c\,T[g]$.
+    ///
+    /// The images are built first (in order: they are kept); the products of the coefficients
+    /// with them, independent of each other, run in parallel (rayon).
     fn apply_into(&mut self, g: &Expo, c: &RatFunc, with_rate: bool, acc: &mut Acc) {
-        for ((r, k), v) in g.parts() {
-            let unit = if with_rate {
-                self.with_rate(r, *k)
-            } else {
-                self.t(r, *k)
-            };
-            let cv = if with_rate { v.clone() } else { v * c };
-            let cv = cv.fraction_free();
-            for ((ru, ku), w) in unit.parts() {
-                acc.push(ru.clone(), *ku, cv.mul(w));
-            }
+        use rayon::prelude::*;
+        let units: Vec<Expo> = g
+            .parts()
+            .map(|((r, k), _)| {
+                if with_rate {
+                    self.with_rate(r, *k)
+                } else {
+                    self.t(r, *k)
+                }
+            })
+            .collect();
+        let parts: Vec<(&RatFunc, &Expo)> = g.parts().map(|(_, v)| v).zip(&units).collect();
+        let products: Vec<Vec<(PartKey, RatFunc)>> = parts
+            .par_iter()
+            .map(|(v, unit)| {
+                let cv = if with_rate { (*v).clone() } else { *v * c };
+                let cv = cv.fraction_free();
+                unit.parts()
+                    .map(|(key, w)| (key.clone(), cv.mul(w)))
+                    .collect()
+            })
+            .collect();
+        for ((ru, ku), p) in products.into_iter().flatten() {
+            acc.push(ru, ku, p);
         }
     }
 }
