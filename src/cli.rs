@@ -588,31 +588,76 @@ fn csv_header(param: &str, cols: &[String]) -> String {
     )
 }
 
+/// The cells of one outcome by column: its numeric and boolean leaves, walked once in the order
+/// [`flatten_row`] made the columns (a leaf matches the next column, or is looked for among
+/// them); the path of a leaf is built in one reused buffer.
+fn csv_cells<'v>(
+    v: &'v Value,
+    path: &mut String,
+    cols: &[String],
+    cursor: &mut usize,
+    cells: &mut [Option<&'v Value>],
+) {
+    use std::fmt::Write as _;
+    match v {
+        Value::Number(_) | Value::Bool(_) => {
+            let at = if cols.get(*cursor).is_some_and(|c| c == path) {
+                Some(*cursor)
+            } else {
+                cols.iter().position(|c| c == path)
+            };
+            if let Some(i) = at {
+                cells[i] = Some(v);
+                *cursor = i + 1;
+            }
+        }
+        Value::Object(m) => {
+            for (k, x) in m {
+                let len = path.len();
+                if len > 0 {
+                    path.push('.');
+                }
+                path.push_str(k);
+                csv_cells(x, path, cols, cursor, cells);
+                path.truncate(len);
+            }
+        }
+        Value::Array(a) => {
+            for (i, x) in a.iter().enumerate() {
+                let len = path.len();
+                let _ = write!(path, ".{i}");
+                csv_cells(x, path, cols, cursor, cells);
+                path.truncate(len);
+            }
+        }
+        _ => {}
+    }
+}
+
 fn csv_row(v: f64, index: usize, r: &Result<Value, String>, cols: &[String]) -> String {
     use std::fmt::Write as _;
     let mut out = String::with_capacity(24 * (cols.len() + 3));
-    let _ = write!(out, "{}", json!(v));
-    for c in cols {
+    out.push_str(&serde_json::to_string(&v).unwrap_or_default());
+    let mut cells = vec![None; cols.len()];
+    if let Ok(res) = r {
+        csv_cells(
+            res,
+            &mut String::with_capacity(64),
+            cols,
+            &mut 0,
+            &mut cells,
+        );
+    }
+    for cell in cells {
         out.push(',');
-        if let Ok(res) = r {
-            // the column's dotted path, array parts by index
-            let mut cur = Some(res);
-            for part in c.split('.') {
-                cur = cur.and_then(|x| match x {
-                    Value::Object(m) => m.get(part),
-                    Value::Array(a) => part.parse::<usize>().ok().and_then(|i| a.get(i)),
-                    _ => None,
-                });
+        match cell {
+            Some(Value::Number(n)) => {
+                let _ = write!(out, "{n}");
             }
-            match cur {
-                Some(Value::Number(n)) => {
-                    let _ = write!(out, "{n}");
-                }
-                Some(Value::Bool(b)) => {
-                    let _ = write!(out, "{b}");
-                }
-                _ => {}
+            Some(Value::Bool(b)) => {
+                let _ = write!(out, "{b}");
             }
+            _ => {}
         }
     }
     // what the run says beside its numbers: its warnings (joined by "; ") and its error

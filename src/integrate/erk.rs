@@ -54,7 +54,7 @@ pub(crate) trait Tableau: Sized {
     /// The controller's memory at the start ([`Tableau::factor`]).
     const MEMORY0: f64;
     /// Whether event location may use the step's cubic Hermite interpolant
-    /// ([`Stepper::hermite`]) before the dense output.
+    /// ([`Stepper::hermite_parts`]) before the dense output.
     const HERMITE: bool;
     /// One attempt: the stages, the new solution and the scaled error (NaN if the new solution
     /// is not finite). `N` as in [`Erk`].
@@ -344,17 +344,18 @@ impl<T: Tableau, const N: usize> Stepper for Erk<T, N> {
         T::HERMITE
     }
 
-    fn hermite(&self, t: f64, out: &mut [f64], quad: &mut [f64]) {
+    fn hermite_parts(&self, parts: &mut [f64]) -> f64 {
         let (n, h, b) = (self.dim(), self.h_old, &self.b);
-        let s = (t - self.t_old) / h;
-        let s1 = 1.0 - s;
-        for (m, (o, q)) in out.iter_mut().zip(quad.iter_mut()).enumerate() {
-            let dy = b.y[m] - b.y_old[m];
-            let c1 = h * b.k[m] - dy;
-            let c2 = dy - h * b.k[T::FSAL * n + m] - c1;
-            *q = b.y_old[m] + s * (dy + s1 * c1);
-            *o = *q + s * s1 * s * c2;
+        let (y0, rest) = parts.split_at_mut(n);
+        let (dy, rest) = rest.split_at_mut(n);
+        let (c1, c2) = rest.split_at_mut(n);
+        for m in 0..n {
+            y0[m] = b.y_old[m];
+            dy[m] = b.y[m] - b.y_old[m];
+            c1[m] = h * b.k[m] - dy[m];
+            c2[m] = dy[m] - h * b.k[T::FSAL * n + m] - c1[m];
         }
+        h
     }
 
     fn dense(&self, t: f64, out: &mut [f64]) {

@@ -79,7 +79,8 @@ pub(crate) struct Tracker<'e, 'a> {
     g_prev: Vec<f64>,
     hits: Vec<EventHit>,
     g_now: Vec<f64>,
-    /// Scratch for the quadratic interpolant of [`Tracker::may_cross`] and the end values of g.
+    /// Scratch for [`Tracker::may_cross`]: the Hermite interpolant's four parts and its
+    /// quadratic part at a sample.
     quad: Vec<f64>,
     g_end: Vec<f64>,
     /// The sign each event's g keeps over a step judged free of crossings.
@@ -119,7 +120,7 @@ impl<'e, 'a> Tracker<'e, 'a> {
             g_end: g_prev.clone(),
             g_prev,
             hits: Vec::new(),
-            quad: vec![0.0; n],
+            quad: vec![0.0; 5 * n],
         })
     }
 
@@ -160,14 +161,16 @@ impl<'e, 'a> Tracker<'e, 'a> {
                 return Ok(Some(true));
             }
         }
-        let quad = &mut self.quad;
+        let n = buf.len();
+        let (parts, quad) = self.quad.split_at_mut(4 * n);
+        let h = st.hermite_parts(parts);
         for j in 1..SAMPLES {
             let frac = j as f64 / SAMPLES as f64;
             let t = ta + (tb - ta) * frac;
-            st.hermite(t, buf, quad);
-            for (index, e) in self.events.iter().enumerate() {
+            super::hermite_at(parts, (t - ta) / h, buf, quad);
+            for (e, &s_ref) in self.events.iter().zip(&self.ref_sign) {
                 let v = (e.g)(t, buf);
-                if !v.is_finite() || sign(v) != self.ref_sign[index] {
+                if !v.is_finite() || sign(v) != s_ref {
                     return Ok(Some(true));
                 }
                 // the cubic term's share of g bounds the higher terms the interpolant leaves out
@@ -303,4 +306,75 @@ fn locate<St: Stepper>(
         }
     }
     Ok(tb)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrate::{OdeSystem, Options, dop853::Dop853};
+
+    /// $y_1' = 3t^2$, $y_2' = 1 - 2t$: the solution $(t^3, t - t^2)$ is a cubic, which the
+    /// cubic Hermite interpolant of an exact step reproduces.
+    struct Cubic;
+    impl OdeSystem for Cubic {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&self, t: f64, _y: &[f64], dy: &mut [f64]) {
+            dy[0] = 3.0 * t * t;
+            dy[1] = 1.0 - 2.0 * t;
+        }
+    }
+
+    /// One DOP853 step of `Cubic` over [0, 1] (exact to rounding: the right-hand side is a
+    /// polynomial of degree 2 in t).
+    fn one_step() -> Dop853 {
+        let opts = Options {
+            h0: Some(1.0),
+            ..Options::default()
+        };
+        let mut st = Dop853::new(&Cubic, 0.0, &[0.0, 0.0], 1.0, &opts);
+        st.step(&Cubic, 1.0).expect("one step");
+        assert!(st.t_old().abs() < 1e-15 && (st.t() - 1.0).abs() < 1e-15);
+        st
+    }
+
+    #[test]
+    fn hermite_parts_give_the_cubic_and_its_quadratic_part() {
+        let st = one_step();
+        let mut parts = [0.0; 8];
+        let h = st.hermite_parts(&mut parts);
+        assert!((h - 1.0).abs() < 1e-15, "{h}");
+        let (mut out, mut quad) = ([0.0; 2], [0.0; 2]);
+        for s in [0.125, 0.3, 0.5, 0.875] {
+            super::super::hermite_at(&parts, s, &mut out, &mut quad);
+            // reference: the exact solution, and the quadratic through y(0), y(1) with the slope
+            // y'(0), written out independently: q(s) = y0 + y'(0) s + (y1 - y0 - y'(0)) s^2
+            let exact = [s * s * s, s - s * s];
+            let q = [s * s, s - s * s];
+            for m in 0..2 {
+                assert!((out[m] - exact[m]).abs() < 1e-14, "s = {s}: {out:?}");
+                assert!((quad[m] - q[m]).abs() < 1e-14, "s = {s}: {quad:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn may_cross_tells_a_step_with_a_crossing_from_one_without() {
+        let st = one_step();
+        let far = |_t: f64, y: &[f64]| y[0] + 1.0;
+        // t - t^2 - 0.2: negative at both ends, positive in the middle (two roots inside)
+        let hump = |_t: f64, y: &[f64]| y[1] - 0.2;
+        // t^3 - 0.5: one root inside, the end's sign differs
+        let rises = |_t: f64, y: &[f64]| y[0] - 0.5;
+        let mut buf = [0.0; 2];
+        type G<'a> = &'a dyn Fn(f64, &[f64]) -> f64;
+        let cases: [(G, bool); 3] = [(&far, false), (&hump, true), (&rises, true)];
+        for (g, expect) in cases {
+            let events = [Event::new("g", g, Direction::Both, false)];
+            let mut tr = Tracker::new(&events, 0.0, &[0.0, 0.0], 2).expect("finite");
+            let got = tr.may_cross(&st, 0.0, 1.0, &mut buf).expect("finite");
+            assert_eq!(got, Some(expect), "g(0) = {}", g(0.0, &[0.0, 0.0]));
+        }
+    }
 }

@@ -237,19 +237,40 @@ pub(crate) trait Stepper {
     fn prepare_dense<S: OdeSystem>(&mut self, sys: &S);
     /// Dense output at `t` in the last step.
     fn dense(&self, t: f64, out: &mut [f64]);
-    /// Whether [`Stepper::hermite`] is available.
+    /// Whether [`Stepper::hermite_parts`] is available.
     fn has_hermite(&self) -> bool {
         false
     }
-    /// The cubic Hermite interpolant of the last step at `t` (end values and derivatives, no
-    /// evaluation) in `out`, and in `quad` the same without its cubic term; only called when
+    /// The cubic Hermite interpolant of the last step (end values and derivatives, no
+    /// evaluation) as four vectors of the state's length in `parts`: $y_0$, $\Delta y$, $c_1$,
+    /// $c_2$, so that at $s = (t - t_0)/h$ its quadratic part is
+    /// $q = y_0 + s(\Delta y + (1 - s) c_1)$ and the interpolant $q + s^2 (1 - s) c_2$ (see
+    /// [`hermite_at`]); returns the step $h$ that defines $s$. Only called when
     /// [`Stepper::has_hermite`].
-    fn hermite(&self, _t: f64, _out: &mut [f64], _quad: &mut [f64]) {}
+    fn hermite_parts(&self, _parts: &mut [f64]) -> f64 {
+        f64::NAN
+    }
     /// Work done.
     fn stats(&self) -> Stats;
     /// True if the stiffness test has fired.
     fn stiff(&self) -> bool {
         false
+    }
+}
+
+/// The cubic Hermite interpolant of [`Stepper::hermite_parts`] at the fraction `s` of the step
+/// in `out`, and in `quad` the same without its cubic term.
+#[inline(always)]
+pub(crate) fn hermite_at(parts: &[f64], s: f64, out: &mut [f64], quad: &mut [f64]) {
+    let n = out.len();
+    let (y0, rest) = parts.split_at(n);
+    let (dy, rest) = rest.split_at(n);
+    let (c1, c2) = rest.split_at(n);
+    let s1 = 1.0 - s;
+    for m in 0..n.min(quad.len()).min(c2.len()) {
+        let q = y0[m] + s * (dy[m] + s1 * c1[m]);
+        quad[m] = q;
+        out[m] = q + s * s1 * s * c2[m];
     }
 }
 
