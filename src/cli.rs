@@ -10,6 +10,7 @@ use crate::algebra::galerkin;
 use crate::algebra::poly::{Q, parse_q};
 use crate::algebra::ratfunc::RatFunc;
 use crate::algebra::series::{self, SeriesParams, Viscous};
+use crate::scene::row::Node;
 use serde_json::{Value, json};
 use std::collections::BTreeMap;
 
@@ -357,10 +358,10 @@ pub fn merge(paths: &[std::path::PathBuf], format: Format) -> Result<String, Run
     let param = param.unwrap_or_default();
     Ok(match format {
         Format::Csv => {
-            let results: Vec<Result<Value, String>> = runs
+            let results: Vec<Result<Node, String>> = runs
                 .iter()
                 .map(|r| match r.get("result") {
-                    Some(v) => Ok(v.clone()),
+                    Some(v) => Ok(Node::from_value(v)),
                     None => Err(r["error"].as_str().unwrap_or_default().to_string()),
                 })
                 .collect();
@@ -433,8 +434,7 @@ pub fn sweep(
     let columns = if format == Format::Csv {
         let first = sv.values.first().map(|&v| {
             scene_at(v)
-                .and_then(|scene| run_validated(&scene))
-                .map(|(v, _)| v)
+                .and_then(|scene| scene.run_node())
                 .map_err(|e| e.to_string())
         });
         csv_columns(first.as_slice())
@@ -443,35 +443,48 @@ pub fn sweep(
     };
     // one point, formatted where it ran (in parallel); `None` marks a failed point
     let row = |v: f64, i: usize| -> (String, bool) {
-        let r = scene_at(v)
-            .and_then(|scene| run_validated(&scene))
-            .map(|(v, _)| v)
-            .map_err(|e| e.to_string());
         let text = match format {
             Format::Json => {
-                // one run per line (compact): a sweep of 10^7 runs stays greppable and small; written
-                // around the outcome's own serialization (no copy of its tree)
-                match &r {
-                    Ok(res) => format!(
-                        "{{\"index\":{i},\"value\":{},\"result\":{}}}",
-                        json!(v),
-                        serde_json::to_string(res).unwrap_or_default()
+                // one run per line (compact): a sweep of 10^7 runs stays greppable and small;
+                // the outcome written from its light tree, as its `Value` would be
+                match scene_at(v).and_then(|scene| scene.run_node()) {
+                    Ok(res) => {
+                        let mut line = Vec::with_capacity(512);
+                        line.extend_from_slice(b"{\"index\":");
+                        let _ = serde_json::to_writer(&mut line, &i);
+                        line.extend_from_slice(b",\"value\":");
+                        let _ = serde_json::to_writer(&mut line, &v);
+                        line.extend_from_slice(b",\"result\":");
+                        res.write_json(&mut line);
+                        line.push(b'}');
+                        (String::from_utf8(line).unwrap_or_default(), false)
+                    }
+                    Err(e) => (
+                        json!({"index": i, "value": v, "error": e.to_string()}).to_string(),
+                        true,
                     ),
-                    Err(e) => json!({"index": i, "value": v, "error": e}).to_string(),
                 }
             }
-            Format::Csv => csv_row(v, i, &r, &columns),
-            _ => match &r {
-                Ok(res) => format!(
-                    "{param} = {}\n{}\n",
-                    json!(v),
-                    render_run(res, Format::Text)
+            Format::Csv => {
+                let r = scene_at(v)
+                    .and_then(|scene| scene.run_node())
+                    .map_err(|e| e.to_string());
+                (csv_row(v, i, &r, &columns), r.is_err())
+            }
+            _ => match scene_at(v).and_then(|scene| run_validated(&scene)) {
+                Ok((res, _)) => (
+                    format!(
+                        "{param} = {}\n{}\n",
+                        json!(v),
+                        render_run(&res, Format::Text)
+                    ),
+                    false,
                 ),
-                Err(e) => format!("{param} = {}\nerror: {e}\n", json!(v)),
+                Err(e) => (format!("{param} = {}\nerror: {e}\n", json!(v)), true),
             },
         };
         bar.inc(1);
-        (text, r.is_err())
+        text
     };
     let mut failed = 0;
     let mut first = true;
@@ -529,23 +542,22 @@ pub fn sweep(
     Ok(())
 }
 
-/// Flattens an outcome into (column, cell) pairs: nested objects as `a.b`, numeric arrays as
-/// `a.0`, `a.1`; strings and other arrays are left out of the CSV.
-fn flatten_row(prefix: &str, v: &Value, out: &mut Vec<(String, String)>) {
+/// The columns of an outcome: nested objects as `a.b`, numeric arrays as `a.0`, `a.1`;
+/// strings and other arrays are left out of the CSV.
+fn flatten_row(prefix: &str, v: &Node, out: &mut Vec<String>) {
     match v {
-        Value::Number(n) => out.push((prefix.to_string(), n.to_string())),
-        Value::Bool(b) => out.push((prefix.to_string(), b.to_string())),
-        Value::Object(m) => {
+        Node::F64(_) | Node::U64(_) | Node::I64(_) | Node::Bool(_) => out.push(prefix.to_string()),
+        Node::Obj(m) => {
             for (k, x) in m {
                 let key = if prefix.is_empty() {
-                    k.clone()
+                    k.to_string()
                 } else {
                     format!("{prefix}.{k}")
                 };
                 flatten_row(&key, x, out);
             }
         }
-        Value::Array(a) if a.iter().all(|x| x.is_number()) => {
+        Node::Arr(a) if a.iter().all(Node::is_number) => {
             for (i, x) in a.iter().enumerate() {
                 flatten_row(&format!("{prefix}.{i}"), x, out);
             }
@@ -555,12 +567,12 @@ fn flatten_row(prefix: &str, v: &Value, out: &mut Vec<(String, String)>) {
 }
 
 /// The CSV columns of some outcomes, in order of first appearance.
-fn csv_columns(results: &[Result<Value, String>]) -> Vec<String> {
+fn csv_columns(results: &[Result<Node, String>]) -> Vec<String> {
     let mut cols: Vec<String> = Vec::new();
     for res in results.iter().flatten() {
         let mut row = Vec::new();
         flatten_row("", res, &mut row);
-        for (k, _) in row {
+        for k in row {
             if !cols.contains(&k) {
                 cols.push(k);
             }
@@ -592,15 +604,15 @@ fn csv_header(param: &str, cols: &[String]) -> String {
 /// [`flatten_row`] made the columns (a leaf matches the next column, or is looked for among
 /// them); the path of a leaf is built in one reused buffer.
 fn csv_cells<'v>(
-    v: &'v Value,
+    v: &'v Node,
     path: &mut String,
     cols: &[String],
     cursor: &mut usize,
-    cells: &mut [Option<&'v Value>],
+    cells: &mut [Option<&'v Node>],
 ) {
     use std::fmt::Write as _;
     match v {
-        Value::Number(_) | Value::Bool(_) => {
+        Node::F64(_) | Node::U64(_) | Node::I64(_) | Node::Bool(_) => {
             let at = if cols.get(*cursor).is_some_and(|c| c == path) {
                 Some(*cursor)
             } else {
@@ -611,7 +623,7 @@ fn csv_cells<'v>(
                 *cursor = i + 1;
             }
         }
-        Value::Object(m) => {
+        Node::Obj(m) => {
             for (k, x) in m {
                 let len = path.len();
                 if len > 0 {
@@ -622,7 +634,7 @@ fn csv_cells<'v>(
                 path.truncate(len);
             }
         }
-        Value::Array(a) => {
+        Node::Arr(a) => {
             for (i, x) in a.iter().enumerate() {
                 let len = path.len();
                 let _ = write!(path, ".{i}");
@@ -634,7 +646,7 @@ fn csv_cells<'v>(
     }
 }
 
-fn csv_row(v: f64, index: usize, r: &Result<Value, String>, cols: &[String]) -> String {
+fn csv_row(v: f64, index: usize, r: &Result<Node, String>, cols: &[String]) -> String {
     use std::fmt::Write as _;
     let mut out = String::with_capacity(24 * (cols.len() + 3));
     out.push_str(&serde_json::to_string(&v).unwrap_or_default());
@@ -650,30 +662,53 @@ fn csv_row(v: f64, index: usize, r: &Result<Value, String>, cols: &[String]) -> 
     }
     for cell in cells {
         out.push(',');
-        match cell {
-            Some(Value::Number(n)) => {
-                let _ = write!(out, "{n}");
-            }
-            Some(Value::Bool(b)) => {
-                let _ = write!(out, "{b}");
-            }
-            _ => {}
+        if let Some(c) = cell {
+            c.cell(&mut out);
         }
     }
     // what the run says beside its numbers: its warnings (joined by "; ") and its error
-    let warnings = r
-        .as_ref()
-        .ok()
-        .and_then(|res| res.get("warnings"))
-        .and_then(Value::as_array)
-        .map(|w| {
-            w.iter()
-                .filter_map(Value::as_str)
-                .collect::<Vec<_>>()
-                .join("; ")
-        })
-        .unwrap_or_default();
+    let warnings = match r.as_ref().ok().and_then(|res| res.get("warnings")) {
+        Some(Node::Arr(w)) => w
+            .iter()
+            .filter_map(|x| match x {
+                Node::Str(s) => Some(s.as_str()),
+                _ => None,
+            })
+            .collect::<Vec<_>>()
+            .join("; "),
+        _ => String::new(),
+    };
     let err = r.as_ref().err().map(String::as_str).unwrap_or("");
     let _ = writeln!(out, ",{},{},{index}", csv_quote(&warnings), csv_quote(err));
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The expected rows are written out by hand from the outcome's fields.
+    #[test]
+    fn csv_rows_put_each_leaf_under_its_column() {
+        let first = Node::from_value(&json!({
+            "b": {"x": 1.5, "y": true}, "a": [1, 2], "warnings": ["w1", "w,2"], "s": "text"
+        }));
+        let cols = csv_columns(&[Ok(first.clone())]);
+        assert_eq!(cols, ["a.0", "a.1", "b.x", "b.y"]);
+        assert_eq!(
+            csv_header("v", &cols),
+            "v,a.0,a.1,b.x,b.y,warnings,error,index\n"
+        );
+        assert_eq!(
+            csv_row(0.5, 3, &Ok(first), &cols),
+            "0.5,1,2,1.5,true,\"w1; w,2\",,3\n"
+        );
+        // a later point without b.x, with a leaf no column has, and a non-number in the array
+        let other = Node::from_value(&json!({"a": [null, -4], "b": {"y": false, "z": 9}}));
+        assert_eq!(csv_row(2.0, 4, &Ok(other), &cols), "2.0,,-4,,false,,,4\n");
+        assert_eq!(
+            csv_row(1e-16, 5, &Err("bad, \"one\"".into()), &cols),
+            "1e-16,,,,,,\"bad, \"\"one\"\"\",5\n"
+        );
+    }
 }

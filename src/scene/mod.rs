@@ -6,6 +6,7 @@
 //! files. Errors name the file, the field and what is allowed; unknown keys get a near-miss
 //! suggestion.
 
+pub mod row;
 pub mod sweep;
 
 use crate::models::balls_wall::BallsWallScene;
@@ -72,6 +73,7 @@ pub fn model_names() -> String {
 trait AnyModel: Send + Sync {
     fn name(&self) -> &'static str;
     fn run_value(&self) -> Result<(serde_json::Value, Curves), RunError>;
+    fn run_node(&self) -> Result<row::Node, RunError>;
     fn as_any(&self) -> &dyn Any;
     fn with_number(&self, field: &str, v: f64, path: &str) -> Option<Result<Scene, SceneError>>;
 }
@@ -87,6 +89,13 @@ impl<M: Model> AnyModel for M {
             message: format!("the outcome does not serialize: {e}"),
         })?;
         Ok((v, curves))
+    }
+    fn run_node(&self) -> Result<row::Node, RunError> {
+        let (out, _) = self.run()?;
+        row::Node::of(&out).map_err(|e| RunError::BadArgument {
+            arg: M::NAME.into(),
+            message: format!("the outcome does not serialize: {e}"),
+        })
     }
     fn as_any(&self) -> &dyn Any {
         self
@@ -109,6 +118,12 @@ impl Scene {
     /// Runs it: the outcome as JSON (the `impact run` contract) and the curves for `--plot`.
     pub fn run(&self) -> Result<(serde_json::Value, Curves), RunError> {
         self.0.run_value()
+    }
+
+    /// Runs it: the outcome as a light tree written as its JSON would be (the rows of
+    /// `impact sweep`).
+    pub fn run_node(&self) -> Result<row::Node, RunError> {
+        self.0.run_node()
     }
 
     /// A copy with a numeric field set on the typed parameters (checked as when read from a
