@@ -161,6 +161,10 @@ impl<'e, 'a> Tracker<'e, 'a> {
                 return Ok(Some(true));
             }
         }
+        // g zero at both ends: any sample would differ in sign or lie within its share
+        if self.ref_sign.contains(&0) {
+            return Ok(Some(true));
+        }
         let n = buf.len();
         let (parts, quad) = self.quad.split_at_mut(4 * n);
         let h = st.hermite_parts(parts);
@@ -169,14 +173,13 @@ impl<'e, 'a> Tracker<'e, 'a> {
             let t = ta + (tb - ta) * frac;
             super::hermite_at(parts, (t - ta) / h, buf, quad);
             for (e, &s_ref) in self.events.iter().zip(&self.ref_sign) {
+                // |g| when g keeps the sign s_ref; not above zero when it does not (or is NaN)
                 let v = (e.g)(t, buf);
-                if !v.is_finite() || sign(v) != s_ref {
-                    return Ok(Some(true));
-                }
+                let kept = v * f64::from(s_ref);
                 // the cubic term's share of g bounds the higher terms the interpolant leaves out
-                // (each smaller by about h |lambda| on a resolved step)
-                let cubic = (v - (e.g)(t, quad)).abs();
-                if v.abs() <= 2.0 * cubic {
+                // (each smaller by about h |lambda| on a resolved step); an infinite g is
+                // within any share
+                if kept.is_nan() || kept <= 0.0 || kept <= 2.0 * (v - (e.g)(t, quad)).abs() {
                     return Ok(Some(true));
                 }
             }
@@ -369,7 +372,9 @@ mod tests {
         let rises = |_t: f64, y: &[f64]| y[0] - 0.5;
         let mut buf = [0.0; 2];
         type G<'a> = &'a dyn Fn(f64, &[f64]) -> f64;
-        let cases: [(G, bool); 3] = [(&far, false), (&hump, true), (&rises, true)];
+        // zero throughout: every sample lies within its share
+        let zero = |_t: f64, _y: &[f64]| 0.0;
+        let cases: [(G, bool); 4] = [(&far, false), (&hump, true), (&rises, true), (&zero, true)];
         for (g, expect) in cases {
             let events = [Event::new("g", g, Direction::Both, false)];
             let mut tr = Tracker::new(&events, 0.0, &[0.0, 0.0], 2).expect("finite");
