@@ -75,15 +75,19 @@ impl Hertz {
         if z <= 0.0 {
             return 0.0;
         }
-        let acc = -self.force(z, v) / self.mass;
+        let f = self.force(z, v);
         match self.law {
-            ContactLaw::Hertz if self.force(z, v) <= 0.0 => 0.0,
+            ContactLaw::Hertz if f <= 0.0 => 0.0,
             ContactLaw::Hertz => {
-                self.k
-                    * (1.5 * z.sqrt() * v * (1.0 + self.damping * v)
-                        + z * z.sqrt() * self.damping * acc)
+                let elastic = 1.5 * z.sqrt() * v * (1.0 + self.damping * v);
+                if self.damping == 0.0 {
+                    // the viscous term z^1.5 c z'' is then a zero, which leaves the sum as it
+                    // is (and the division for z'' is spared: the event runs on every sample)
+                    return self.k * elastic;
+                }
+                self.k * (elastic + z * z.sqrt() * self.damping * (-f / self.mass))
             }
-            ContactLaw::Linear => self.k * v + self.damping * acc,
+            ContactLaw::Linear => self.k * v + self.damping * (-f / self.mass),
         }
     }
 
@@ -518,6 +522,37 @@ mod tests {
         let zmax = (5.0 * h.mass * v0 * v0 / (4.0 * h.k)).powf(0.4);
         assert!((r.max_indentation - zmax).abs() < 1e-10 * zmax);
         assert!((r.peak_force - h.k * zmax.powf(1.5)).abs() < 1e-8 * r.peak_force);
+    }
+
+    /// dF/dt along the motion against a central difference of F along (z', z'') = (v, -F/m)
+    /// (an independent second way), for each law, damped and undamped.
+    #[test]
+    fn force_rate_is_the_derivative_of_the_force_along_the_motion() {
+        for (law, k, c) in [
+            (ContactLaw::Hertz, 3e8, 0.0),
+            (ContactLaw::Hertz, 3e8, 0.4),
+            (ContactLaw::Linear, 1e6, 0.0),
+            (ContactLaw::Linear, 1e6, 30.0),
+        ] {
+            let h = Hertz {
+                mass: 0.05,
+                k,
+                damping: c,
+                law,
+            };
+            for (z, v) in [(1e-4, 0.7), (5e-5, -0.3), (2e-6, 1.5)] {
+                let acc = -h.force(z, v) / h.mass;
+                let dt = 1e-9;
+                let fd = (h.force(z + v * dt, v + acc * dt) - h.force(z - v * dt, v - acc * dt))
+                    / (2.0 * dt);
+                let rate = h.force_rate(z, v);
+                assert!(
+                    (rate - fd).abs() <= 1e-5 * rate.abs().max(1.0),
+                    "{law:?} c = {c}, z = {z}, v = {v}: {rate} against {fd}"
+                );
+            }
+            assert!(h.force_rate(-1e-6, 1.0).abs() < f64::MIN_POSITIVE);
+        }
     }
 
     #[test]
