@@ -647,9 +647,9 @@ fn csv_cells<'v>(
 }
 
 fn csv_row(v: f64, index: usize, r: &Result<Node, String>, cols: &[String]) -> String {
-    use std::fmt::Write as _;
-    let mut out = String::with_capacity(24 * (cols.len() + 3));
-    out.push_str(&serde_json::to_string(&v).unwrap_or_default());
+    // the row as bytes: numbers written by serde_json's own formatter, no `fmt` machinery
+    let mut out = Vec::with_capacity(24 * (cols.len() + 3));
+    let _ = serde_json::to_writer(&mut out, &v);
     let mut cells = vec![None; cols.len()];
     if let Ok(res) = r {
         csv_cells(
@@ -661,7 +661,7 @@ fn csv_row(v: f64, index: usize, r: &Result<Node, String>, cols: &[String]) -> S
         );
     }
     for cell in cells {
-        out.push(',');
+        out.push(b',');
         if let Some(c) = cell {
             c.cell(&mut out);
         }
@@ -679,6 +679,8 @@ fn csv_row(v: f64, index: usize, r: &Result<Node, String>, cols: &[String]) -> S
         _ => String::new(),
     };
     let err = r.as_ref().err().map(String::as_str).unwrap_or("");
+    let mut out = String::from_utf8(out).unwrap_or_default();
+    use std::fmt::Write as _;
     let _ = writeln!(out, ",{},{},{index}", csv_quote(&warnings), csv_quote(err));
     out
 }

@@ -127,20 +127,17 @@ impl Node {
         }
     }
 
-    /// A number or boolean as a CSV cell (as `serde_json` displays it); `None` otherwise.
-    pub fn cell(&self, out: &mut String) -> bool {
-        use std::fmt::Write as _;
-        let _ = match self {
-            Node::F64(x) => match serde_json::Number::from_f64(*x) {
-                Some(n) => write!(out, "{n}"),
-                None => return false,
-            },
-            Node::U64(x) => write!(out, "{x}"),
-            Node::I64(x) => write!(out, "{x}"),
-            Node::Bool(b) => write!(out, "{b}"),
-            _ => return false,
-        };
-        true
+    /// Writes a number or boolean as a CSV cell: the text `serde_json` displays for it (its
+    /// serializer and its `Display` format a number alike); false, writing nothing, for
+    /// anything else.
+    pub fn cell(&self, out: &mut Vec<u8>) -> bool {
+        match self {
+            Node::F64(_) | Node::U64(_) | Node::I64(_) | Node::Bool(_) => {
+                self.write_json(out);
+                true
+            }
+            _ => false,
+        }
     }
 }
 
@@ -523,14 +520,15 @@ mod tests {
     #[test]
     fn cells_are_the_values_display() {
         for x in [0.1, -2.5e-17, 1e21, 3.0, f64::MAX, 5e-324] {
-            let mut cell = String::new();
+            let mut cell = Vec::new();
             assert!(Node::F64(x).cell(&mut cell));
-            assert_eq!(cell, serde_json::json!(x).to_string());
+            assert_eq!(cell, serde_json::json!(x).to_string().as_bytes());
         }
-        let mut cell = String::new();
+        let mut cell = Vec::new();
         assert!(!Node::Null.cell(&mut cell) && !Node::Str("x".into()).cell(&mut cell));
         assert!(Node::I64(-7).cell(&mut cell) && Node::Bool(false).cell(&mut cell));
-        assert_eq!(cell, "-7false");
+        assert!(Node::U64(12).cell(&mut cell));
+        assert_eq!(cell, b"-7false12");
     }
 
     #[test]
