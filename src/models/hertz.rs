@@ -65,7 +65,16 @@ impl Hertz {
             return 0.0;
         }
         match self.law {
-            ContactLaw::Hertz => (self.k * z * z.sqrt() * (1.0 + self.damping * v)).max(0.0),
+            ContactLaw::Hertz => {
+                let elastic = self.k * z * z.sqrt();
+                if self.damping == 0.0 {
+                    // the factor 1 + c v is then exactly 1 (for a finite v): the product is
+                    // the same without its multiplication, which sits on the step's longest
+                    // chain of dependent operations
+                    return elastic.max(0.0);
+                }
+                (elastic * (1.0 + self.damping * v)).max(0.0)
+            }
             ContactLaw::Linear => self.k * z + self.damping * v,
         }
     }
@@ -75,16 +84,18 @@ impl Hertz {
         if z <= 0.0 {
             return 0.0;
         }
+        if self.law == ContactLaw::Hertz && self.damping == 0.0 {
+            // undamped: F = k z^1.5 is positive for z > 0 (unless it underflows, for z below
+            // about 1e-200 m, where this rate is as small), the factor 1 + c v is exactly 1 and
+            // the viscous term z^1.5 c z'' a zero, which leave the sum as it is; the force
+            // itself is then not needed (the event runs on every sample)
+            return self.k * (1.5 * z.sqrt() * v);
+        }
         let f = self.force(z, v);
         match self.law {
             ContactLaw::Hertz if f <= 0.0 => 0.0,
             ContactLaw::Hertz => {
                 let elastic = 1.5 * z.sqrt() * v * (1.0 + self.damping * v);
-                if self.damping == 0.0 {
-                    // the viscous term z^1.5 c z'' is then a zero, which leaves the sum as it
-                    // is (and the division for z'' is spared: the event runs on every sample)
-                    return self.k * elastic;
-                }
                 self.k * (elastic + z * z.sqrt() * self.damping * (-f / self.mass))
             }
             ContactLaw::Linear => self.k * v + self.damping * (-f / self.mass),
@@ -154,8 +165,8 @@ pub fn run(
     let vel = |_t: f64, y: &[f64]| y[1];
     let rate = |_t: f64, y: &[f64]| model.force_rate(y[0], y[1]);
     let events = vec![
-        Event::new("contact end", &gap, Direction::Falling, ends),
-        Event::new("max indentation", &vel, Direction::Falling, false),
+        Event::new("contact end", &gap, Direction::Falling, ends).reading(0),
+        Event::new("max indentation", &vel, Direction::Falling, false).reading(1),
         Event::new("peak force", &rate, Direction::Falling, false),
     ];
     let opts = Options {
@@ -553,6 +564,44 @@ mod tests {
             }
             assert!(h.force_rate(-1e-6, 1.0).abs() < f64::MIN_POSITIVE);
         }
+    }
+
+    /// The undamped shortcuts of `force` and `force_rate` give the bits of the general
+    /// formulas with c = 0 (written out here as the damped law computes them), so that a sweep
+    /// of undamped impacts gives the numbers it gave before the shortcuts; and `force_rate`
+    /// stays zero for z <= 0.
+    #[test]
+    fn undamped_shortcuts_give_the_general_formulas_bits() {
+        let h = Hertz {
+            mass: 0.05,
+            k: 3e8,
+            damping: 0.0,
+            law: ContactLaw::Hertz,
+        };
+        let c = 0.0;
+        for z in [1e-12, 3.7e-9, 2e-6, 1.3e-4, 0.02] {
+            for v in [-2.5, -1e-7, 0.0, 3e-9, 0.7, 11.0] {
+                let general = (h.k * z * z.sqrt() * (1.0 + c * v)).max(0.0);
+                assert_eq!(
+                    h.force(z, v).to_bits(),
+                    general.to_bits(),
+                    "F at z = {z}, v = {v}"
+                );
+                let elastic = 1.5 * z.sqrt() * v * (1.0 + c * v);
+                let viscous = z * z.sqrt() * c * (-general / h.mass);
+                let rate = h.k * (elastic + viscous);
+                // the viscous term is a (signed) zero: the sum's bits are the elastic term's
+                // unless the elastic term is itself a zero
+                let shortcut = h.force_rate(z, v);
+                assert!(
+                    shortcut.to_bits() == rate.to_bits()
+                        || (shortcut.abs() < f64::MIN_POSITIVE && rate.abs() < f64::MIN_POSITIVE),
+                    "dF/dt at z = {z}, v = {v}: {shortcut} against {rate}"
+                );
+            }
+        }
+        assert_eq!(h.force_rate(0.0, 1.0).to_bits(), 0.0f64.to_bits());
+        assert_eq!(h.force_rate(-1e-9, -1.0).to_bits(), 0.0f64.to_bits());
     }
 
     #[test]
