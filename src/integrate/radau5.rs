@@ -13,8 +13,8 @@
 //! criterion is $\theta/(1-\theta)\,\|\Delta W\| \le \kappa$, the error estimate is
 //! $(\gamma/h - J)^{-1}[f(y_0) + (d_1 Z_1 + d_2 Z_2 + d_3 Z_3)/h]$ (re-filtered once after a
 //! rejection), and the step size follows Gustafsson's predictive controller. Jacobians are reused
-//! while Newton converges fast ($\theta \le 0.001$), and the LU is kept when the step barely
-//! changes. Dense output is the collocation polynomial.
+//! while Newton converges fast ($\theta \le 0.001$) and, as Hairer's `CALJAC` has it, by every
+//! retry of a step for which one was computed; the LU is kept when the step barely changes. Dense output is the collocation polynomial.
 
 use super::{IntegrateError, OdeSystem, Options, Stats, Stepper, rms};
 use nalgebra::{Complex, DMatrix};
@@ -202,7 +202,12 @@ pub struct Radau5 {
     /// Whether the factors are there (a first decomposition was made).
     factored: bool,
     rhs_cplx: Vec<Complex<f64>>,
+    /// Whether the next attempt may use the stored Jacobian as it is.
     jac_current: bool,
+    /// Whether a Jacobian was computed since the last accepted step (Hairer's `CALJAC`): a
+    /// rejected attempt, or a failed Newton iteration or factorisation, reuses the Jacobian
+    /// when it was, and computes a new one when the one it has is from an earlier step.
+    caljac: bool,
     lu_h: f64,
     first: bool,
     reject: bool,
@@ -261,6 +266,7 @@ impl Radau5 {
             factored: false,
             rhs_cplx: vec![Complex::new(0.0, 0.0); n],
             jac_current: false,
+            caljac: false,
             lu_h: f64::NAN,
             first: true,
             reject: false,
@@ -295,6 +301,7 @@ impl Radau5 {
             self.stats.rhs_evals += self.n;
         }
         self.jac_current = true;
+        self.caljac = true;
     }
 
     /// Factorises $\gamma/h - J$ and $(\alpha+i\beta)/h - J$; false if singular.
@@ -512,6 +519,7 @@ impl Stepper for Radau5 {
             }
             let needs_lu = fresh_jacobian || (self.lu_h - h).abs() > 0.0 || !self.factored;
             if needs_lu && !self.decompose(h) {
+                self.jac_current = self.caljac;
                 self.nsing += 1;
                 if self.nsing >= 5 {
                     return Err(IntegrateError::NewtonFailure { t: self.t, h });
@@ -527,7 +535,7 @@ impl Stepper for Radau5 {
                 }
                 None => {
                     // a Jacobian from an earlier step may be what failed: recompute it
-                    self.jac_current = fresh_jacobian;
+                    self.jac_current = self.caljac;
                     newt_failures += 1;
                     if newt_failures > 50 {
                         return Err(IntegrateError::NewtonFailure { t: self.t, h });
@@ -589,11 +597,12 @@ impl Stepper for Radau5 {
                 }
                 // reuse the Jacobian while Newton converges fast
                 self.jac_current = self.theta <= THET;
+                self.caljac = false;
                 return Ok(());
             }
             self.reject = true;
             last = false;
-            self.jac_current = fresh_jacobian;
+            self.jac_current = self.caljac;
             if self.first {
                 self.h = 0.1 * h;
             } else {
@@ -661,5 +670,48 @@ mod tests {
             nalgebra::Matrix3::new(k.u1, 0.0, 0.0, 0.0, k.alph, -k.beta, 0.0, k.beta, k.alph);
         assert!((m - expect).abs().max() < 1e-12, "{m}");
         assert!((ti * t - nalgebra::Matrix3::identity()).abs().max() < 1e-14);
+    }
+
+    /// Van der Pol's oscillator, $\mu y_2' = (1 - y_1^2) y_2 - y_1$, stiff for small $\mu$.
+    struct VanDerPol(f64);
+    impl OdeSystem for VanDerPol {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&self, _t: f64, y: &[f64], dy: &mut [f64]) {
+            dy[0] = y[1];
+            dy[1] = ((1.0 - y[0] * y[0]) * y[1] - y[0]) / self.0;
+        }
+    }
+
+    /// Hairer's CALJAC rule (radau5.f, RADCOR: a rejected step goes to label 20, the old
+    /// Jacobian, when one was computed since the last accepted step, else to label 10): a first
+    /// step that is far too large is rejected again and again, and every retry reuses the one
+    /// Jacobian computed at its start; after the step is accepted with slow Newton convergence
+    /// the next step computes a new one.
+    #[test]
+    fn retries_of_one_step_reuse_the_jacobian_computed_for_it() {
+        let sys = VanDerPol(1e-6);
+        let opts = Options {
+            rtol: 1e-8,
+            atol: 1e-8,
+            h0: Some(0.5),
+            ..Options::default()
+        };
+        let (t_end, y0) = (2.0, [2.0, -0.66]);
+        let mut st = Radau5::new(&sys, 0.0, &y0, t_end, &opts);
+        let evals0 = st.stats().rhs_evals;
+        st.step(&sys, t_end).expect("a first step");
+        let stats = st.stats();
+        // at least three attempts (a Newton iteration takes three evaluations), so at least
+        // two retries, each of which would have recomputed the Jacobian under a rule per attempt
+        assert!(
+            st.h_old < 0.5e-2,
+            "the first step was cut twice: h = {}",
+            st.h_old
+        );
+        assert!(stats.rhs_evals - evals0 >= 9, "{stats}");
+        assert_eq!(stats.jac_evals, 1, "{stats}");
+        assert!(!st.caljac, "an accepted step resets CALJAC");
     }
 }
