@@ -103,8 +103,8 @@ pub(crate) struct Tracker<'e, 'a> {
     g_prev: Vec<f64>,
     hits: Vec<EventHit>,
     g_now: Vec<f64>,
-    /// Scratch for [`Tracker::may_cross`]: the Hermite interpolant's four parts and its
-    /// quadratic part at a sample.
+    /// Scratch for [`Tracker::may_cross`]: the Hermite interpolant's four parts, then the
+    /// interpolant and its quadratic part at each of the `SAMPLES - 1` inner samples.
     quad: Vec<f64>,
     g_end: Vec<f64>,
     /// The sign each event's g keeps over a step judged free of crossings.
@@ -153,7 +153,7 @@ impl<'e, 'a> Tracker<'e, 'a> {
             g_end: g_prev.clone(),
             g_prev,
             hits: Vec::new(),
-            quad: vec![0.0; 5 * n],
+            quad: vec![0.0; (4 + 2 * (SAMPLES - 1)) * n],
         })
     }
 
@@ -199,22 +199,45 @@ impl<'e, 'a> Tracker<'e, 'a> {
             return Ok(Some(true));
         }
         let n = buf.len();
-        let (parts, quad) = self.quad.split_at_mut(4 * n);
+        let (parts, samples) = self.quad.split_at_mut(4 * n);
         let h = st.hermite_parts(parts);
-        for j in 1..SAMPLES {
-            let frac = j as f64 / SAMPLES as f64;
-            let t = ta + (tb - ta) * frac;
-            super::hermite_at(parts, (t - ta) / h, buf, quad);
-            for (e, &s_ref) in self.events.iter().zip(&self.ref_sign) {
-                // |g| when g keeps the sign s_ref; not above zero when it does not (or is NaN)
-                let v = e.eval(t, buf);
-                let kept = v * f64::from(s_ref);
-                // the cubic term's share of g bounds the higher terms the interpolant leaves out
-                // (each smaller by about h |lambda| on a resolved step); an infinite g is
-                // within any share
-                if kept.is_nan() || kept <= 0.0 || kept <= 2.0 * (v - e.eval(t, quad)).abs() {
-                    return Ok(Some(true));
-                }
+        // the interpolant and its quadratic part at every inner sample, once for all events
+        let mut times = [0.0; SAMPLES - 1];
+        for (j, (t, pair)) in times
+            .iter_mut()
+            .zip(samples.chunks_exact_mut(2 * n))
+            .enumerate()
+        {
+            let frac = (j + 1) as f64 / SAMPLES as f64;
+            *t = ta + (tb - ta) * frac;
+            let (out, quad) = pair.split_at_mut(n);
+            super::hermite_at(parts, (*t - ta) / h, out, quad);
+        }
+        // |g| when g keeps the sign s_ref; not above zero when it does not (or is NaN); the
+        // cubic term's share of g bounds the higher terms the interpolant leaves out (each
+        // smaller by about h |lambda| on a resolved step); an infinite g is within any share.
+        // The answer is the same in any order of samples and events: nothing is kept until
+        // every pair has passed.
+        let within = |v: f64, at_quad: f64, s_ref: i8| {
+            let kept = v * f64::from(s_ref);
+            kept.is_nan() || kept <= 0.0 || kept <= 2.0 * (v - at_quad).abs()
+        };
+        for (e, &s_ref) in self.events.iter().zip(&self.ref_sign) {
+            let pairs = samples.chunks_exact(2 * n).zip(times);
+            let may = match e.component {
+                // a component: the samples' own entries, no call
+                Some(i) => pairs
+                    .into_iter()
+                    .any(|(pair, _)| within(pair[i], pair[n + i], s_ref)),
+                None => pairs.into_iter().any(|(pair, t)| {
+                    let (out, quad) = pair.split_at(n);
+                    let v = (e.g)(t, out);
+                    let kept = v * f64::from(s_ref);
+                    kept.is_nan() || kept <= 0.0 || within(v, (e.g)(t, quad), s_ref)
+                }),
+            };
+            if may {
+                return Ok(Some(true));
             }
         }
         self.g_now.copy_from_slice(&self.g_end);
