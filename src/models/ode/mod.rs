@@ -898,12 +898,17 @@ impl Model for OdeScene {
             .iter()
             .zip(&gs)
             .map(|(e, g)| {
-                Event::new(
+                let event = Event::new(
                     &e.name,
                     g.as_ref(),
                     e.direction,
                     e.stop || !e.jump.is_empty(),
-                )
+                );
+                // a bare state (`when = "z"`, slot 1 + i after t) is read without a call
+                match e.when.variable() {
+                    Some(slot) if (1..=y.len()).contains(&slot) => event.reading(slot - 1),
+                    _ => event,
+                }
             })
             .collect();
         let opts = Options {

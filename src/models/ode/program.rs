@@ -270,6 +270,14 @@ impl Program {
         }
     }
 
+    /// The variable's slot, if the formula is a bare variable (an event `when = "z"`).
+    pub fn variable(&self) -> Option<usize> {
+        match self.code.as_slice() {
+            [Ins::Var(i)] => usize::try_from(*i).ok(),
+            _ => None,
+        }
+    }
+
     /// A program that is the constant `c`.
     pub fn from_constant(c: f64) -> Program {
         Program {
@@ -355,6 +363,21 @@ mod tests {
         let e = parse(text).expect("parses");
         let p = Program::compile(&e, &|s| names.iter().position(|n| *n == s)).expect("compiles");
         p.eval(vars)
+    }
+
+    /// A bare variable is one (the event tracker then reads the state itself); a formula
+    /// that reduces to it after folding, a constant or anything more is not.
+    #[test]
+    fn a_bare_variable_names_its_slot_and_nothing_else_does() {
+        let names = ["t", "z", "v"];
+        let slot = |s: &str| names.iter().position(|n| *n == s);
+        let prog =
+            |text: &str| Program::compile(&parse(text).expect("parses"), &slot).expect("compiles");
+        assert_eq!(prog("z").variable(), Some(1));
+        assert_eq!(prog("v").variable(), Some(2));
+        for text in ["-z", "z - 0.5", "2*v", "1.5", "max(z, 0)", "z + v"] {
+            assert_eq!(prog(text).variable(), None, "{text}");
+        }
     }
 
     #[test]
