@@ -291,6 +291,12 @@ impl Program {
     /// clear for a short formula).
     #[inline]
     pub fn eval(&self, vars: &[f64]) -> f64 {
+        // a bare variable or constant (`z' = v`) without the stack machine
+        match self.code.as_slice() {
+            [Ins::Var(i)] => return vars[*i as usize],
+            [Ins::Const(c)] => return *c,
+            _ => {}
+        }
         match self.depth {
             0..=8 => self.run::<8>(vars),
             9..=16 => self.run::<16>(vars),
@@ -378,6 +384,12 @@ mod tests {
         for text in ["-z", "z - 0.5", "2*v", "1.5", "max(z, 0)", "z + v"] {
             assert_eq!(prog(text).variable(), None, "{text}");
         }
+        // a bare variable and a constant evaluate without the stack machine, to the same bits
+        let vars = [0.25, -3.5e-17, 7.0];
+        assert_eq!(prog("v").eval(&vars).to_bits(), 7.0f64.to_bits());
+        assert_eq!(prog("z").eval(&vars).to_bits(), (-3.5e-17f64).to_bits());
+        assert_eq!(prog("1.5").eval(&vars).to_bits(), 1.5f64.to_bits());
+        assert_eq!(prog("t*2").eval(&vars).to_bits(), 0.5f64.to_bits());
     }
 
     #[test]
