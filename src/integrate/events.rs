@@ -218,22 +218,20 @@ impl<'e, 'a> Tracker<'e, 'a> {
         // smaller by about h |lambda| on a resolved step); an infinite g is within any share.
         // The answer is the same in any order of samples and events: nothing is kept until
         // every pair has passed.
-        let within = |v: f64, at_quad: f64, s_ref: i8| {
+        // (g at the quadratic part is asked for only when the sign is kept)
+        #[inline(always)]
+        fn within(v: f64, s_ref: i8, at_quad: impl FnOnce() -> f64) -> bool {
             let kept = v * f64::from(s_ref);
-            kept.is_nan() || kept <= 0.0 || kept <= 2.0 * (v - at_quad).abs()
-        };
+            kept.is_nan() || kept <= 0.0 || kept <= 2.0 * (v - at_quad()).abs()
+        }
         for (e, &s_ref) in self.events.iter().zip(&self.ref_sign) {
-            let pairs = samples.chunks_exact(2 * n).zip(times);
+            let mut pairs = samples.chunks_exact(2 * n).zip(times);
             let may = match e.component {
                 // a component: the samples' own entries, no call
-                Some(i) => pairs
-                    .into_iter()
-                    .any(|(pair, _)| within(pair[i], pair[n + i], s_ref)),
-                None => pairs.into_iter().any(|(pair, t)| {
+                Some(i) => pairs.any(|(pair, _)| within(pair[i], s_ref, || pair[n + i])),
+                None => pairs.any(|(pair, t)| {
                     let (out, quad) = pair.split_at(n);
-                    let v = (e.g)(t, out);
-                    let kept = v * f64::from(s_ref);
-                    kept.is_nan() || kept <= 0.0 || within(v, (e.g)(t, quad), s_ref)
+                    within((e.g)(t, out), s_ref, || (e.g)(t, quad))
                 }),
             };
             if may {

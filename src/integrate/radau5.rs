@@ -14,7 +14,8 @@
 //! $(\gamma/h - J)^{-1}[f(y_0) + (d_1 Z_1 + d_2 Z_2 + d_3 Z_3)/h]$ (re-filtered once after a
 //! rejection), and the step size follows Gustafsson's predictive controller. Jacobians are reused
 //! while Newton converges fast ($\theta \le 0.001$) and, as Hairer's `CALJAC` has it, by every
-//! retry of a step for which one was computed; the LU is kept when the step barely changes. Dense output is the collocation polynomial.
+//! retry of a step for which one was computed; the LU is kept when the step barely changes.
+//! Dense output is the collocation polynomial.
 
 use super::{IntegrateError, OdeSystem, Options, Stats, Stepper, rms};
 use nalgebra::{Complex, DMatrix};

@@ -371,8 +371,8 @@ mod tests {
         p.eval(vars)
     }
 
-    /// A bare variable is one (the event tracker then reads the state itself); a formula
-    /// that reduces to it after folding, a constant or anything more is not.
+    /// A bare variable is one (the event tracker then reads the state itself); a constant or
+    /// a formula with any operation on the variable is not.
     #[test]
     fn a_bare_variable_names_its_slot_and_nothing_else_does() {
         let names = ["t", "z", "v"];
