@@ -1,17 +1,17 @@
-//! Seeded random constrained impacts (002 sections 2-4, [`impactcheck::perf::constrained_scene_tagged`]):
+//! Seeded random constrained impacts (002 sections 2-4, [`impactcheck::models::samples::constrained_scene_tagged`]):
 //! two free bodies, one with a fixed point or a fixed axis, or a support (smooth or rough) under
 //! the second, the three restitution laws in turn; one in three with the textbook degeneracies
 //! (planar motion, symmetric bodies, the contact point on a principal axis, zero slip, mu at or
 //! next to the critical value, e = 0 or 1). Every case is integrated (`[solve] method =
 //! "integrate"`). A failure is an error, or a wrong answer: without a support, an impact that is
-//! planar and differs from the exact planar solution with B or B* ([`impactcheck::perf::wrong_answer`]),
+//! planar and differs from the exact planar solution with B or B* ([`impactcheck::models::samples::wrong_answer`]),
 //! or energy gained under a law that dissipates there; with a support, energy gained under the
 //! energetic law. Failures are listed with their seeds; cases only classified (Painleve-type, said
 //! so) are counted apart (`CLASSIFIED=1` lists them). Usage: `constrained_fail [COUNT]` (default
 //! 20000), or `constrained_fail --case I` to print case I's scene and result.
 use impactcheck::models::constrained::{ImpactMethod, scene_matrix, solve_scene, solve_scene_all};
 use impactcheck::models::rigid_impact::{Contact, Law};
-use impactcheck::perf::{AGREE, constrained_scene_tagged, wrong_answer};
+use impactcheck::models::samples::{AGREE, constrained_scene_tagged, wrong_answer};
 use std::collections::BTreeMap;
 
 fn main() {

@@ -5,14 +5,14 @@ fn main() {
         .nth(1)
         .and_then(|s| s.parse().ok())
         .unwrap_or(0);
-    let (b, v, mu, e) = impactcheck::perf::rigid_inputs(i);
+    let (b, v, mu, e) = impactcheck::models::samples::rigid_inputs(i);
     println!("case {i}: B = {b:?}\nV- = {v:?}, mu = {mu}, e = {e}");
     let btt = nalgebra::Matrix2::new(b[(0, 0)], b[(0, 1)], b[(1, 0)], b[(1, 1)]);
     let btn = nalgebra::Vector2::new(b[(0, 2)], b[(1, 2)]);
     if let Some(inv) = btt.try_inverse() {
         println!("mu* = {}", (inv * btn).norm());
     }
-    match impactcheck::perf::rigid_case(i) {
+    match impactcheck::models::samples::rigid_case(i) {
         Ok(r) => println!(
             "impulse {:?}; {} phases: {:?}; stats {}",
             r.impulse,

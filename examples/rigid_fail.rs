@@ -1,13 +1,13 @@
-//! Seeded random rigid impacts of two free bodies ([`impactcheck::perf::rigid_sample`]: a random
+//! Seeded random rigid impacts of two free bodies ([`impactcheck::models::samples::rigid_sample`]: a random
 //! B, V-, mu in [0, 1.5) and e; one in three with the textbook degeneracies: planar motion, B
 //! diagonal, a symmetric body, the contact point on a principal axis, zero slip, mu at or next to
 //! the critical value, e = 0 or 1), the restitution law `i % 3` (Poisson, Newton, energetic),
 //! integrated at rtol 1e-10. A failure is an error, or a wrong answer
-//! ([`impactcheck::perf::wrong_answer`]: a planar impact that differs from the exact planar
+//! ([`impactcheck::models::samples::wrong_answer`]: a planar impact that differs from the exact planar
 //! solution, or energy gained under a law that dissipates there); each is listed with its seed.
 //! Usage: `rigid_fail [COUNT]` (default 20000).
 use impactcheck::models::rigid_impact::{Contact, impact_with_matrix};
-use impactcheck::perf::{rigid_sample, wrong_answer};
+use impactcheck::models::samples::{rigid_sample, wrong_answer};
 use std::collections::BTreeMap;
 
 fn main() {

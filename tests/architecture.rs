@@ -40,22 +40,64 @@ const FLOORS: &[(&str, &[&str])] = &[
     ("interrupt", &["interrupt"]),
     ("models", &["algebra", "integrate", "rng", "models"]),
     ("scene", &["algebra", "integrate", "rng", "models", "scene"]),
-    ("report", &["algebra", "integrate", "rng", "models", "scene", "report"]),
+    (
+        "report",
+        &["algebra", "integrate", "rng", "models", "scene", "report"],
+    ),
     (
         "verify",
-        &["algebra", "integrate", "rng", "models", "scene", "report", "verify"],
+        &[
+            "algebra",
+            "integrate",
+            "rng",
+            "models",
+            "scene",
+            "report",
+            "verify",
+        ],
     ),
     (
         "cli",
-        &["algebra", "integrate", "rng", "interrupt", "models", "scene", "report", "verify", "cli", "perf"],
+        &[
+            "algebra",
+            "integrate",
+            "rng",
+            "interrupt",
+            "models",
+            "scene",
+            "report",
+            "verify",
+            "cli",
+            "perf",
+        ],
     ),
     (
         "perf",
-        &["algebra", "integrate", "rng", "models", "scene", "report", "verify", "perf"],
+        &[
+            "algebra",
+            "integrate",
+            "rng",
+            "models",
+            "scene",
+            "report",
+            "verify",
+            "perf",
+        ],
     ),
     (
         "lib",
-        &["algebra", "integrate", "rng", "interrupt", "models", "scene", "report", "verify", "cli", "perf"],
+        &[
+            "algebra",
+            "integrate",
+            "rng",
+            "interrupt",
+            "models",
+            "scene",
+            "report",
+            "verify",
+            "cli",
+            "perf",
+        ],
     ),
 ];
 
@@ -102,7 +144,10 @@ fn lex(src: &str) -> Vec<(Tok, usize)> {
         let x = c[i];
         let next = c.get(i + 1).copied();
         if x == '/' && next == Some('/') {
-            let end = c[i..].iter().position(|&y| y == '\n').map_or(c.len(), |p| i + p);
+            let end = c[i..]
+                .iter()
+                .position(|&y| y == '\n')
+                .map_or(c.len(), |p| i + p);
             skip(&mut i, end, &mut line);
         } else if x == '/' && next == Some('*') {
             // block comments nest
@@ -365,7 +410,11 @@ fn crate_paths(toks: &[(Tok, usize)], path: &[String]) -> Vec<(String, usize)> {
 
 /// Every rule broken by the file `rel` (its path under `src/`) with text `src`.
 fn check_file(rel: &str, src: &str) -> Vec<Violation> {
-    let v = |line: usize, rule: String| Violation { file: format!("src/{rel}"), line, rule };
+    let v = |line: usize, rule: String| Violation {
+        file: format!("src/{rel}"),
+        line,
+        rule,
+    };
     let mut out = Vec::new();
     let lines = src.lines().count();
     if lines > MAX_FILE_LINES {
@@ -380,7 +429,9 @@ fn check_file(rel: &str, src: &str) -> Vec<Violation> {
         if n > MAX_FN_LINES {
             out.push(v(
                 start,
-                format!("function length: `{name}` is {n} lines (to line {end}), over {MAX_FN_LINES}"),
+                format!(
+                    "function length: `{name}` is {n} lines (to line {end}), over {MAX_FN_LINES}"
+                ),
             ));
         }
     }
@@ -391,14 +442,20 @@ fn check_file(rel: &str, src: &str) -> Vec<Violation> {
         return out;
     }
     let Some((_, allowed)) = FLOORS.iter().find(|(m, _)| *m == top) else {
-        out.push(v(1, format!("floors: module `{top}` has no floor in tests/architecture.rs's FLOORS")));
+        out.push(v(
+            1,
+            format!("floors: module `{top}` has no floor in tests/architecture.rs's FLOORS"),
+        ));
         return out;
     };
     for (m, line) in crate_paths(&toks, &path) {
         if !allowed.contains(&m.as_str()) {
             out.push(v(
                 line,
-                format!("floors: `{top}` imports `crate::{m}` (it may import only {})", allowed.join(", ")),
+                format!(
+                    "floors: `{top}` imports `crate::{m}` (it may import only {})",
+                    allowed.join(", ")
+                ),
             ));
         }
     }
@@ -426,15 +483,28 @@ fn the_source_keeps_its_shape() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let mut files = Vec::new();
     rust_files(&root, &mut files);
-    assert!(files.len() > 50, "src/ should hold the crate ({} files found)", files.len());
+    assert!(
+        files.len() > 50,
+        "src/ should hold the crate ({} files found)",
+        files.len()
+    );
     let mut all = Vec::new();
     for f in &files {
-        let rel = f.strip_prefix(&root).unwrap().to_string_lossy().replace('\\', "/");
+        let rel = f
+            .strip_prefix(&root)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
         let text = std::fs::read_to_string(f).unwrap();
         all.extend(check_file(&rel, &text));
     }
     let list: Vec<String> = all.iter().map(ToString::to_string).collect();
-    assert!(list.is_empty(), "{} broken rule(s):\n{}", list.len(), list.join("\n"));
+    assert!(
+        list.is_empty(),
+        "{} broken rule(s):\n{}",
+        list.len(),
+        list.join("\n")
+    );
 }
 
 /// Every top-level module under `src/` has a floor, and every floor is a module (a renamed module
@@ -464,7 +534,10 @@ mod planted {
     use super::*;
 
     fn rules(rel: &str, src: &str) -> Vec<String> {
-        check_file(rel, src).iter().map(ToString::to_string).collect()
+        check_file(rel, src)
+            .iter()
+            .map(ToString::to_string)
+            .collect()
     }
 
     #[test]
@@ -503,25 +576,75 @@ mod planted {
         );
         let got = rules("models/f.rs", &nested);
         assert_eq!(got.len(), 2, "{got:?}");
-        assert!(got[0].contains("src/models/f.rs:2: function length: `outer` is 210 lines (to line 211)"));
-        assert!(got[1].contains("src/models/f.rs:9: function length: `long` is 201 lines (to line 209)"));
+        assert!(
+            got[0]
+                .contains("src/models/f.rs:2: function length: `outer` is 210 lines (to line 211)")
+        );
+        assert!(
+            got[1]
+                .contains("src/models/f.rs:9: function length: `long` is 201 lines (to line 209)")
+        );
     }
 
     #[test]
     fn imports_above_the_floor() {
         let cases: &[(&str, &str, &str)] = &[
-            ("models/hertz.rs", "use crate::scene::Scene;\n", "`models` imports `crate::scene`"),
-            ("models/a/b.rs", "\n\nfn f() { crate::perf::x(); }\n", "`models` imports `crate::perf`"),
-            ("algebra/poly.rs", "use crate::integrate::Method;\n", "`algebra` imports `crate::integrate`"),
-            ("integrate/erk.rs", "use crate::models::Model;\n", "`integrate` imports `crate::models`"),
-            ("report/mod.rs", "use crate::verify::Claim;\n", "`report` imports `crate::verify`"),
-            ("verify/hard_cases.rs", "use crate::{algebra::expr, perf::rigid};\n", "`verify` imports `crate::perf`"),
-            ("verify/kinds/mod.rs", "use crate::{\n    cli::{a, b},\n};\n", "`verify` imports `crate::cli`"),
-            ("verify/x.rs", "use crate::bin::verify;\n", "`verify` imports `crate::bin`"),
+            (
+                "models/hertz.rs",
+                "use crate::scene::Scene;\n",
+                "`models` imports `crate::scene`",
+            ),
+            (
+                "models/a/b.rs",
+                "\n\nfn f() { crate::perf::x(); }\n",
+                "`models` imports `crate::perf`",
+            ),
+            (
+                "algebra/poly.rs",
+                "use crate::integrate::Method;\n",
+                "`algebra` imports `crate::integrate`",
+            ),
+            (
+                "integrate/erk.rs",
+                "use crate::models::Model;\n",
+                "`integrate` imports `crate::models`",
+            ),
+            (
+                "report/mod.rs",
+                "use crate::verify::Claim;\n",
+                "`report` imports `crate::verify`",
+            ),
+            (
+                "verify/hard_cases.rs",
+                "use crate::{algebra::expr, perf::rigid};\n",
+                "`verify` imports `crate::perf`",
+            ),
+            (
+                "verify/kinds/mod.rs",
+                "use crate::{\n    cli::{a, b},\n};\n",
+                "`verify` imports `crate::cli`",
+            ),
+            (
+                "verify/x.rs",
+                "use crate::bin::verify;\n",
+                "`verify` imports `crate::bin`",
+            ),
             // three supers from models/a/b.rs climb to the root, and one more from a module in it
-            ("models/a/b.rs", "use super::super::super::scene::Registry;\n", "`models` imports `crate::scene`"),
-            ("models/a/b.rs", "mod t {\n    use super::super::super::super::cli;\n}\n", "`models` imports `crate::cli`"),
-            ("models/a/mod.rs", "use super::super::report;\n", "`models` imports `crate::report`"),
+            (
+                "models/a/b.rs",
+                "use super::super::super::scene::Registry;\n",
+                "`models` imports `crate::scene`",
+            ),
+            (
+                "models/a/b.rs",
+                "mod t {\n    use super::super::super::super::cli;\n}\n",
+                "`models` imports `crate::cli`",
+            ),
+            (
+                "models/a/mod.rs",
+                "use super::super::report;\n",
+                "`models` imports `crate::report`",
+            ),
             ("newfloor/mod.rs", "\n", "module `newfloor` has no floor"),
         ];
         for (rel, src, want) in cases {
@@ -532,29 +655,60 @@ mod planted {
         }
         // the line is the path's
         assert!(rules("models/a/b.rs", "\n\nfn f() { crate::perf::x(); }\n")[0].contains(":3: "));
-        assert!(rules("verify/kinds/mod.rs", "use crate::{\n    cli::{a, b},\n};\n")[0].contains(":2: "));
+        assert!(
+            rules(
+                "verify/kinds/mod.rs",
+                "use crate::{\n    cli::{a, b},\n};\n"
+            )[0]
+            .contains(":2: ")
+        );
     }
 
     #[test]
     fn look_alikes_pass() {
         let fine: &[(&str, &str)] = &[
             // comments, docs and strings that name a higher floor
-            ("models/mod.rs", "//! the registry is `crate::scene`\n/* crate::verify */ fn f() {}\n"),
-            ("models/x.rs", "fn f() -> &'static str { \"crate::scene::x\" }\n"),
-            ("models/x.rs", "fn f() -> &'static str { r#\"crate::cli\"# }\n"),
+            (
+                "models/mod.rs",
+                "//! the registry is `crate::scene`\n/* crate::verify */ fn f() {}\n",
+            ),
+            (
+                "models/x.rs",
+                "fn f() -> &'static str { \"crate::scene::x\" }\n",
+            ),
+            (
+                "models/x.rs",
+                "fn f() -> &'static str { r#\"crate::cli\"# }\n",
+            ),
             // the module's own floor and those below it
-            ("verify/x.rs", "use crate::{algebra::expr::{parse, Expr}, models::hertz, report};\n"),
-            ("models/a/b.rs", "use super::super::super::integrate::Method;\nuse super::super::scene;\n"),
+            (
+                "verify/x.rs",
+                "use crate::{algebra::expr::{parse, Expr}, models::hertz, report};\n",
+            ),
+            (
+                "models/a/b.rs",
+                "use super::super::super::integrate::Method;\nuse super::super::scene;\n",
+            ),
             // `super` in an inline module climbs out of it first: here to models::scene
-            ("models/x.rs", "mod tests {\n    fn f() {}\n    use super::super::scene;\n}\nuse super::integrate;\n"),
+            (
+                "models/x.rs",
+                "mod tests {\n    fn f() {}\n    use super::super::scene;\n}\nuse super::integrate;\n",
+            ),
             ("scene/mod.rs", "use crate::models::registry;\n"),
             // a path that only ends in `crate`/`super` words
-            ("algebra/x.rs", "fn f() { my::crate_like::scene(); let _ = a::super_x; }\n"),
+            (
+                "algebra/x.rs",
+                "fn f() { my::crate_like::scene(); let _ = a::super_x; }\n",
+            ),
             // the binaries are the top floor
             ("bin/verify.rs", "use impactcheck::cli;\nfn main() {}\n"),
         ];
         for (rel, src) in fine {
-            assert!(rules(rel, src).is_empty(), "{rel}: {src:?} gave {:?}", rules(rel, src));
+            assert!(
+                rules(rel, src).is_empty(),
+                "{rel}: {src:?} gave {:?}",
+                rules(rel, src)
+            );
         }
     }
 }

@@ -79,14 +79,14 @@ fn two_solution_start_integrates_both_branches() {
     assert!(es < ed && ed < 0.0, "{es} {ed}");
 }
 
-/// Seeded constrained impact 6783 (`impactcheck::perf::constrained_scene_generic`): (3.6) admits detach,
+/// Seeded constrained impact 6783 (`impactcheck::models::samples::constrained_scene_generic`): (3.6) admits detach,
 /// roll and slide at the start, but the detaching branch ends in a Painleve-type instant. The
 /// result must then be a branch that ends (the roll one, the first), the same impulse as that
 /// branch's entry in `alternatives`, and the warning must say which (it said "the detaching
 /// one" for every two-solution start). Seed 3723: no branch ends, no result, and it says so.
 #[test]
 fn the_result_names_the_branch_it_is() {
-    let s = impactcheck::perf::constrained_scene_generic(6783);
+    let s = impactcheck::models::samples::constrained_scene_generic(6783);
     let mut alts = Vec::new();
     let (r, _, warnings) = solve_scene_all(&s, &mut alts).expect("classified");
     let r = r.expect("a branch ends");
@@ -101,7 +101,7 @@ fn the_result_names_the_branch_it_is() {
         "{warnings:?}"
     );
 
-    let s = impactcheck::perf::constrained_scene_generic(3723);
+    let s = impactcheck::models::samples::constrained_scene_generic(3723);
     let mut alts = Vec::new();
     let (r, _, warnings) = solve_scene_all(&s, &mut alts).expect("classified");
     assert!(r.is_none());

@@ -67,7 +67,7 @@ fn degenerate(
             v.y = 0.0;
         }
         7 => {
-            let critical = impactcheck::perf::critical_mu(&b);
+            let critical = impactcheck::models::samples::critical_mu(&b);
             if critical.is_finite() && critical < 10.0 {
                 mu = critical
                     * [1.0, 1.0 - 1e-9, 1.0 + 1e-9, 1.0 - 1e-3, 1.0 + 1e-3][(pick * 5.0) as usize];

@@ -1,5 +1,5 @@
 //! Regression: the seeded constrained impacts of `examples/constrained_fail`
-//! ([`impactcheck::perf::constrained_scene_generic`]) that failed in the run of 10^6 on 2026-11-23, one
+//! ([`impactcheck::models::samples::constrained_scene_generic`]) that failed in the run of 10^6 on 2026-11-23, one
 //! test per mechanism, each named by what ended it. What must hold for each: the impact ends with
 //! a result (or, where stated, is classified as a Painleve-type case with its reason); the kinetic
 //! energy, from the bodies' velocities under both impulses, does not grow; and the result at
@@ -9,7 +9,7 @@
 
 use impactcheck::models::constrained::{RigidImpactScene, solve_scene};
 use impactcheck::models::rigid_impact::ImpactResult;
-use impactcheck::perf::constrained_scene_generic as constrained_scene;
+use impactcheck::models::samples::constrained_scene_generic as constrained_scene;
 use nalgebra::Vector3;
 
 /// Solves case `i`, checks the above, and returns the result.
@@ -205,7 +205,7 @@ fn support_with_no_slip_at_c_decides_both_together() {
 fn slip_dying_on_its_ray_near_the_critical_friction_stops() {
     let mut s = constrained_scene(899_244);
     let b = impactcheck::models::constrained::scene_matrix(&s).expect("B");
-    s.mu = impactcheck::perf::critical_mu(&b) * (1.0 - 1e-9);
+    s.mu = impactcheck::models::samples::critical_mu(&b) * (1.0 - 1e-9);
     let r = solve_scene(&s).expect("ends").0.expect("result");
     let fine = solve_scene(&RigidImpactScene { rtol: 1e-12, ..s })
         .expect("ends")

@@ -2,7 +2,7 @@
 //! at a rate near zero; left free, its direction turned ever faster near zero slip (the turning
 //! rate grows like 1/|V_t|) and the integrator stopped after 1e5 steps ("more than 100000 steps
 //! needed"), in about one in ten of the degenerate samples with zero slip and mu = mu* (1 - 1e-9)
-//! (`perf::rigid_sample`, first seen at seeds 144, 632, 1370). Fixed: without a support the slip
+//! (`models::samples::rigid_sample`, first seen at seeds 144, 632, 1370). Fixed: without a support the slip
 //! from rest is held on the ray it starts along (it grows along that ray exactly, B being
 //! constant).
 //!
@@ -17,7 +17,7 @@
 //! a run at rtol 1e-12 otherwise; tolerance 1e-8 of the impulse.
 use impactcheck::models::planar_impact::impact_planar;
 use impactcheck::models::rigid_impact::{Contact, Law, impact_with_matrix};
-use impactcheck::perf::critical_mu;
+use impactcheck::models::samples::critical_mu;
 use nalgebra::{Matrix3, Vector3};
 
 fn check(b: Matrix3<f64>, v: Vector3<f64>, factor: f64, law: Law, e: f64) {

@@ -20,6 +20,7 @@ pub mod pendulum_wall;
 pub mod planar_impact;
 pub mod relaxation;
 pub mod rigid_impact;
+pub mod samples;
 pub mod support;
 
 pub use params::{SceneError, SolveSpec};

@@ -328,7 +328,7 @@ fn stick_slip_threshold() -> HardCase {
 /// slip direction relaxes at a rate that grows like 1/|V_t|, so the Keller equations turn stiff.
 fn stiff_slip_stop() -> HardCase {
     use crate::models::rigid_impact::{Law, impact_with_matrix};
-    let (b, v, mu, e) = crate::perf::rigid_inputs_generic(448);
+    let (b, v, mu, e) = crate::models::samples::rigid_inputs_generic(448);
     let what = format!(
         "rigid impact #448 of the sweep benchmark: random SPD B, mu = {mu:.4} just above the stick threshold mu* = 1.3710, e = {e:.3} (Poisson), rtol 1e-10"
     );

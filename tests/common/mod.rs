@@ -2,9 +2,9 @@
 //! through, Poisson's normal impulse (1 + e) times the compression impulse (independent of the
 //! stick/slip history), energy never gained, and Proposition 1's bound |I| <= 2|V-|/lambda_min.
 
-/// Runs generic seeded impact `case` (`perf::rigid_inputs_generic`, Poisson's law) and checks the above; `phases` as expected.
+/// Runs generic seeded impact `case` (`models::samples::rigid_inputs_generic`, Poisson's law) and checks the above; `phases` as expected.
 pub fn check_case(case: u64, phases: &[&str]) -> impactcheck::models::rigid_impact::ImpactResult {
-    let (b, v, mu, e) = impactcheck::perf::rigid_inputs_generic(case);
+    let (b, v, mu, e) = impactcheck::models::samples::rigid_inputs_generic(case);
     let r = impactcheck::models::rigid_impact::impact_with_matrix(
         &b,
         impactcheck::models::rigid_impact::Contact::new(

@@ -13,7 +13,7 @@ use nalgebra::{Matrix3, SymmetricEigen, Vector3};
 /// Without a support the matrix is constant and the slip grows along that ray exactly, so its
 /// friction direction is held there: left free, a slip that grows slowly (mu just below the
 /// critical value, kappa near 0) stays near zero for long, where its direction's turning rate
-/// grows like $1/|\mathbf V_t|$, and the steps collapse (`perf::rigid_sample`'s degenerate cases,
+/// grows like $1/|\mathbf V_t|$, and the steps collapse (`models::samples::rigid_sample`'s degenerate cases,
 /// tests/regression_slip_from_rest_near_critical.rs). With a support the matrix turns with the
 /// support's motion and the slip is left free.
 pub(super) fn from_rest(sys: &Keller) -> Mode {
@@ -816,7 +816,7 @@ impl Run {
 /// stage began with, has stopped: it passed through zero along a curve (the integration's error
 /// about a straight one, or a slip bending onto a nearly neutral ray when mu is just below the
 /// critical value, where it would otherwise creep about zero with stiff turning for the rest of
-/// the impact: `perf::rigid_sample` seed 865738). The velocities change by at most that slip.
+/// the impact: `models::samples::rigid_sample` seed 865738). The velocities change by at most that slip.
 pub(super) const TURNED_ABOVE: f64 = 1e4;
 
 /// How many times `rtol x |V-| x |I|` an energy balance may miss by before it is a solver

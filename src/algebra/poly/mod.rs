@@ -11,14 +11,25 @@
 //!
 //! Written by hand: the registry's symbolic crates either pull in a CAS runtime or lack exact
 //! multivariate rationals with a sound equality; this module is ~300 lines and has no floats.
+//!
+//! Here the symbols, monomials and the arithmetic of [`Poly`]; apart: `fraction_free` (the
+//! big-integer working form of products, sums and exact divisions), `residue` (the test modulo
+//! 2^61 - 1 that rules a factor out before a division is tried) and `print` (text and LaTeX).
 
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{One, Signed, Zero};
+use num_traits::{One, Zero};
 use std::collections::BTreeMap;
-use std::fmt;
 use std::sync::{Mutex, OnceLock};
+
+mod fraction_free;
+mod print;
+mod residue;
+
+pub(crate) use fraction_free::FPoly;
+pub use print::{q_text, rat_text};
+use residue::zero_set_point;
 
 /// Exact rational number.
 pub type Q = BigRational;
@@ -132,27 +143,6 @@ impl Sym {
         let reg = registry().lock().unwrap_or_else(|e| e.into_inner());
         reg[self.0 as usize].clone()
     }
-
-    /// The symbol's name in LaTeX (`alpha` -> `\alpha`, `v0` -> `V_{0}`).
-    pub fn latex(self) -> String {
-        let n = self.name();
-        match n.as_str() {
-            "alpha" | "gamma" | "eta" | "nu" | "lambda" | "zeta" | "rho" | "pi" | "theta" => {
-                format!("\\{n}")
-            }
-            "v0" => "V_{0}".into(),
-            "a8" => "A_{8}".into(),
-            "a9" => "A_{9}".into(),
-            "m_s" => "m_{s}".into(),
-            "Kw" => "K_{w}".into(),
-            "KG" => "K_{G}".into(),
-            "CT" => "C_{T}".into(),
-            "p1" => "p_{1}".into(),
-            "p2" => "p_{2}".into(),
-            "tan_theta" => "\\tan\\theta".into(),
-            _ => n,
-        }
-    }
 }
 
 /// The exponents of a monomial, inline for up to eight symbols (the series' five, the plate's
@@ -229,103 +219,6 @@ impl Monomial {
 
     fn is_one(&self) -> bool {
         self.0.is_empty()
-    }
-}
-
-/// The Mersenne prime 2^61 - 1 of [`Poly::may_be_divisible_by`]'s residues.
-const P: u64 = (1 << 61) - 1;
-
-/// `a b mod P` by the Mersenne reduction (no 128-bit division).
-fn mulm(a: u64, b: u64) -> u64 {
-    let x = a as u128 * b as u128;
-    let r = ((x as u64) & P) + ((x >> 61) as u64);
-    let r = (r & P) + (r >> 61);
-    if r >= P { r - P } else { r }
-}
-
-fn powm(mut a: u64, mut e: u64) -> u64 {
-    let mut r = 1;
-    while e > 0 {
-        if e & 1 == 1 {
-            r = mulm(r, a);
-        }
-        a = mulm(a, a);
-        e >>= 1;
-    }
-    r
-}
-
-fn int_mod(n: &BigInt) -> u64 {
-    let (sign, digits) = n.to_u64_digits();
-    // 2^64 = 8 mod P
-    let mut r: u64 = 0;
-    for d in digits.iter().rev() {
-        r = (mulm(r, 8) + (d & P) + (d >> 61)) % P;
-    }
-    if sign == num_bigint::Sign::Minus && r != 0 {
-        P - r
-    } else {
-        r
-    }
-}
-
-/// A point modulo [`P`]: symbol `i` at `1_000_003 + 2 i` but `x` at its own value, with the powers
-/// each symbol needs cached; values of polynomials come out as fractions `(num, den)` so that no
-/// coefficient needs an inverse.
-struct ModPoint {
-    xs: Sym,
-    x: Option<u64>,
-    powers: Vec<Vec<u64>>,
-}
-
-impl ModPoint {
-    fn new(xs: Sym) -> Self {
-        ModPoint {
-            xs,
-            x: None,
-            powers: Vec::new(),
-        }
-    }
-
-    fn q(&self, c: &Q) -> Option<(u64, u64)> {
-        let d = int_mod(c.denom());
-        (d != 0).then(|| (int_mod(c.numer()), d))
-    }
-
-    fn pow(&mut self, i: usize, e: u32) -> Option<u64> {
-        let base = if i == self.xs.0 as usize {
-            self.x?
-        } else {
-            1_000_003 + 2 * i as u64
-        };
-        if self.powers.len() <= i {
-            self.powers.resize(i + 1, Vec::new());
-        }
-        let table = &mut self.powers[i];
-        if table.is_empty() {
-            table.push(1);
-        }
-        while table.len() <= e as usize {
-            let next = mulm(*table.last().expect("non-empty"), base);
-            table.push(next);
-        }
-        Some(table[e as usize])
-    }
-
-    fn eval(&mut self, p: &Poly) -> Option<(u64, u64)> {
-        let (mut an, mut ad) = (0u64, 1u64);
-        for (m, c) in &p.terms {
-            let (mut n, d) = self.q(c)?;
-            for (i, e) in m.0.iter().enumerate() {
-                if *e > 0 {
-                    n = mulm(n, self.pow(i, *e)?);
-                }
-            }
-            // an/ad + n/d
-            an = (mulm(an, d) + mulm(n, ad)) % P;
-            ad = mulm(ad, d);
-        }
-        Some((an, ad))
     }
 }
 
@@ -621,299 +514,6 @@ impl Poly {
         v.dedup();
         v
     }
-
-    /// Plain-text rendering, largest monomial first (`3*alpha^2*gamma - v0`).
-    pub fn to_text(&self) -> String {
-        render(self, false)
-    }
-
-    /// LaTeX rendering.
-    pub fn to_latex(&self) -> String {
-        render(self, true)
-    }
-}
-
-fn render(p: &Poly, latex: bool) -> String {
-    if p.is_zero() {
-        return "0".into();
-    }
-    let mut out = String::new();
-    for (i, (m, c)) in p.terms.iter().rev().enumerate() {
-        let neg = c.is_negative();
-        let a = c.abs();
-        if i == 0 {
-            if neg {
-                out.push('-');
-            }
-        } else {
-            out.push_str(if neg { " - " } else { " + " });
-        }
-        let factors: Vec<String> = m
-            .factors()
-            .map(|(s, e)| {
-                let name = if latex { s.latex() } else { s.name() };
-                match (e, latex) {
-                    (1, _) => name,
-                    (_, true) => format!("{name}^{{{e}}}"),
-                    (_, false) => format!("{name}^{e}"),
-                }
-            })
-            .collect();
-        let coef = rat_text(&a, latex);
-        if factors.is_empty() {
-            out.push_str(&coef);
-        } else {
-            let sep = if latex { " " } else { "*" };
-            if !a.is_one() {
-                out.push_str(&coef);
-                out.push_str(sep);
-            }
-            out.push_str(&factors.join(sep));
-        }
-    }
-    out
-}
-
-/// A non-negative rational as text: `3/2`, or `\frac{3}{2}` in LaTeX.
-/// An exact rational as `"-135232/2187"` or `"7"`.
-pub fn q_text(c: &Q) -> String {
-    use num_traits::Signed;
-    let s = rat_text(&c.abs(), false);
-    if c.is_negative() { format!("-{s}") } else { s }
-}
-
-pub fn rat_text(a: &Q, latex: bool) -> String {
-    if a.is_integer() {
-        a.numer().to_string()
-    } else if latex {
-        format!("\\frac{{{}}}{{{}}}", a.numer(), a.denom())
-    } else {
-        format!("{}/{}", a.numer(), a.denom())
-    }
-}
-
-/// A polynomial kept fraction-free, `(1/d) * sum z_m m` with big-integer `z_m`: the working form
-/// of sums and exact divisions in [`crate::algebra::ratfunc::RatFunc`], where rational
-/// coefficients would reduce by a gcd at every operation. Converted back to [`Poly`] (each
-/// coefficient reduced once) when the work is done.
-#[derive(Clone, Debug)]
-pub(crate) struct FPoly {
-    /// Terms in ascending monomial order, no zero coefficient, no repeated monomial.
-    z: Vec<(Monomial, BigInt)>,
-    d: BigInt,
-}
-
-/// Sorts terms by monomial and adds those with the same one, dropping zeros: products and sums
-/// are built as flat lists and merged once (a map insertion per term was most of their cost).
-///
-/// The lists come as concatenated sorted runs (a sorted polynomial times one monomial stays
-/// sorted: the order is a monomial order), which the standard library's stable sort detects and
-/// merges in O(n log runs).
-fn merge_terms(mut z: Vec<(Monomial, BigInt)>) -> Vec<(Monomial, BigInt)> {
-    z.sort_by(|a, b| a.0.cmp(&b.0));
-    let mut out: Vec<(Monomial, BigInt)> = Vec::with_capacity(z.len());
-    for (m, c) in z {
-        match out.last_mut() {
-            Some((lm, lc)) if *lm == m => *lc += c,
-            _ => {
-                if out.last().is_some_and(|(_, lc)| lc.is_zero()) {
-                    out.pop();
-                }
-                out.push((m, c));
-            }
-        }
-    }
-    if out.last().is_some_and(|(_, lc)| lc.is_zero()) {
-        out.pop();
-    }
-    out
-}
-
-impl FPoly {
-    pub(crate) fn from_poly(p: &Poly) -> FPoly {
-        let (ints, d) = p.integer_form();
-        FPoly {
-            z: ints.into_iter().map(|(m, c)| (m.clone(), c)).collect(),
-            d,
-        }
-    }
-
-    pub(crate) fn is_zero(&self) -> bool {
-        self.z.is_empty()
-    }
-
-    /// The product.
-    pub(crate) fn mul(&self, o: &FPoly) -> FPoly {
-        // one sorted run per term of the shorter factor
-        let (long, short) = if self.z.len() >= o.z.len() {
-            (&self.z, &o.z)
-        } else {
-            (&o.z, &self.z)
-        };
-        let mut z = Vec::with_capacity(long.len() * short.len());
-        for (m2, c2) in short {
-            for (m1, c1) in long {
-                z.push((m1.mul(m2), c1 * c2));
-            }
-        }
-        FPoly {
-            z: merge_terms(z),
-            d: &self.d * &o.d,
-        }
-    }
-
-    /// The sum of many, over the least common multiple of their denominators.
-    pub(crate) fn sum(parts: &[FPoly]) -> FPoly {
-        let d = parts.iter().fold(
-            BigInt::one(),
-            |l, p| if p.d.is_one() { l } else { l.lcm(&p.d) },
-        );
-        let mut z = Vec::with_capacity(parts.iter().map(|p| p.z.len()).sum());
-        for p in parts {
-            let f = &d / &p.d;
-            for (m, c) in &p.z {
-                let c = if f.is_one() { c.clone() } else { c * &f };
-                z.push((m.clone(), c));
-            }
-        }
-        FPoly {
-            z: merge_terms(z),
-            d,
-        }
-    }
-
-    /// False only when `f` certainly does not divide (see [`Poly::may_be_divisible_by`]).
-    pub(crate) fn may_be_divisible_by(&self, f: &Poly) -> bool {
-        let Some((_, mut point)) = zero_set_point(f) else {
-            return true;
-        };
-        let mut acc = 0u64;
-        for (m, c) in &self.z {
-            let mut n = int_mod(c);
-            for (i, e) in m.0.iter().enumerate() {
-                if *e > 0 {
-                    match point.pow(i, *e) {
-                        Some(v) => n = mulm(n, v),
-                        None => return true,
-                    }
-                }
-            }
-            acc = (acc + n) % P;
-        }
-        acc == 0
-    }
-
-    /// `self / f` when `f` divides it, else `None`. With `f = g F / fd` (`F` integer and
-    /// primitive), `F | Z` in Q[x] implies an integer quotient (Gauss's lemma), so the long
-    /// division runs in big integers and fails at the first leading coefficient that `F`'s does not
-    /// divide (or monomial its leading monomial does not divide; one polynomial is a Groebner basis
-    /// of its ideal, so a remainder decides).
-    pub(crate) fn div_exact(&self, f: &Poly) -> Option<FPoly> {
-        let (fz, fd) = f.integer_form();
-        let g = fz.iter().fold(BigInt::zero(), |g, (_, c)| g.gcd(c));
-        let fz: Vec<(&Monomial, BigInt)> = fz.into_iter().map(|(m, c)| (m, c / &g)).collect();
-        let (lm, lc) = fz
-            .iter()
-            .max_by(|a, b| a.0.cmp(b.0))
-            .map(|(m, c)| (*m, c.clone()))?;
-        let mut rem: BTreeMap<Monomial, BigInt> = self.z.iter().cloned().collect();
-        let mut quot: Vec<(Monomial, BigInt)> = Vec::new();
-        while let Some((m, c)) = rem.pop_last() {
-            let qm = m.div(lm)?;
-            let (qc, r) = c.div_rem(&lc);
-            if !r.is_zero() {
-                return None;
-            }
-            for (fm, fc) in &fz {
-                if *fm == lm {
-                    continue;
-                }
-                let key = fm.mul(&qm);
-                let sub = fc * &qc;
-                match rem.get_mut(&key) {
-                    Some(v) => {
-                        *v -= sub;
-                        if v.is_zero() {
-                            rem.remove(&key);
-                        }
-                    }
-                    None => {
-                        rem.insert(key, -sub);
-                    }
-                }
-            }
-            quot.push((qm, qc));
-        }
-        // found from the largest monomial down
-        quot.reverse();
-        // self / f = (Z/d) / (g F / fd) = (Z/F) fd / (d g)
-        let quot = if fd.is_one() {
-            quot
-        } else {
-            quot.into_iter().map(|(m, c)| (m, c * &fd)).collect()
-        };
-        Some(FPoly {
-            z: quot,
-            d: &self.d * g,
-        })
-    }
-
-    /// Back to rational coefficients, each reduced once.
-    pub(crate) fn to_poly(&self) -> Poly {
-        use num_traits::ToPrimitive;
-        let small = self.d.to_u64();
-        Poly {
-            terms: self
-                .z
-                .iter()
-                .map(|(m, c)| (m.clone(), q_over(c, &self.d, small)))
-                .collect(),
-        }
-    }
-}
-
-/// `c / d` in lowest terms for `d > 0`, the gcd taken as that of `d` and `c mod d` (in machine
-/// integers when `d` fits one, `small`): a big-integer gcd of `c` and `d` directly shifts the whole
-/// of `c`, which is much the larger.
-fn q_over(c: &BigInt, d: &BigInt, small: Option<u64>) -> Q {
-    use num_traits::ToPrimitive;
-    let g = match small {
-        Some(1) => return Q::from_integer(c.clone()),
-        Some(ds) => BigInt::from(num_integer::gcd(ds, (c % d).abs().to_u64().unwrap_or(0))),
-        None => d.gcd(&(c % d)),
-    };
-    if g.is_one() {
-        Q::new_raw(c.clone(), d.clone())
-    } else {
-        Q::new_raw(c / &g, d / &g)
-    }
-}
-
-/// A point of the zero set of `f` modulo [`P`] when `f` has a symbol of degree one with a
-/// constant coefficient (that symbol solved, the others at fixed residues), else `None`.
-fn zero_set_point(f: &Poly) -> Option<(Sym, ModPoint)> {
-    let (x, _) = f.terms.keys().find_map(|m| {
-        let fs: Vec<(Sym, u32)> = m.factors().collect();
-        let only_here = |s: Sym| f.terms.keys().filter(|k| k.exp(s) > 0).count() == 1;
-        (fs.len() == 1 && fs[0].1 == 1 && only_here(fs[0].0)).then(|| fs[0])
-    })?;
-    let mut point = ModPoint::new(x);
-    let (cn, cd) = point.q(f.terms.get(&Monomial::var(x, 1))?)?;
-    let mut rest = f.clone();
-    rest.terms.remove(&Monomial::var(x, 1));
-    let (rn, rd) = point.eval(&rest)?;
-    if cn == 0 || rd == 0 {
-        return None;
-    }
-    // x = -(rn/rd) / (cn/cd) = (P - rn) cd / (rd cn)
-    point.x = Some(mulm(mulm((P - rn) % P, cd), powm(mulm(rd, cn), P - 2)));
-    Some((x, point))
-}
-
-impl fmt::Display for Poly {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.to_text())
-    }
 }
 
 impl std::ops::Add for &Poly {
@@ -965,6 +565,7 @@ impl std::ops::Mul for &Poly {
 
 #[cfg(test)]
 mod tests {
+    use super::fraction_free::q_over;
     use super::*;
 
     #[test]
