@@ -1,442 +1,11 @@
-//! Constrained impact from a scene: a fixed point or axis (section 2 of 002_b53e4779673eb6ed.txt)
-//! or a support under the second body (sections 3-4), on top of [`super::rigid_impact`].
-//!
-//! A smooth support switches between $\mathbf B$ and $\mathbf B^*$ along the impact (3.8). A
-//! rough support is classified at the start (section 4) and integrated with its switches between
-//! rolling (4.2), sliding (4.3)-(4.4) and letting go ([`impact_rough`]); a Painleve-type start
-//! with no consistent motion is reported as such, one with two is integrated along both.
+//! The `rigid-impact` scene: its raw tables, their validation into a [`RigidImpactScene`], its
+//! outcome and its documentation.
+
+use super::{Alternative, ImpactMethod, RigidImpactScene, solve_scene_all};
 use crate::models::doc as d;
-
-use super::fixed_points::{Hold, b_star};
-use super::planar_impact::{PlanarError, impact_planar};
-use super::rigid_impact::{
-    Body, ImpactError, ImpactResult, Law, RoughSupport, SmoothSupport, SupportMode, b_matrix,
-    impact, impact_general, impact_rough, kinetic_change,
-};
-use super::support::{Classification, classify_at_rest, classify_sliding, matrices};
+use crate::models::rigid_impact::{Body, Law};
+use crate::models::support::Classification;
 use nalgebra::{Matrix3, Vector3};
-
-fn hold(body: &Body, go: &Vector3<f64>, axis: Option<Vector3<f64>>) -> Hold {
-    let m = body.mass.unwrap_or(f64::INFINITY);
-    // inertia about O by the parallel-axis theorem; O->C = G->C - G->O
-    let j_o = body.inertia + (Matrix3::identity() * go.norm_squared() - go * go.transpose()) * m;
-    let oc = body.offset - go;
-    match axis {
-        Some(e) => Hold::Axis {
-            j_axis: e.dot(&(j_o * e)),
-            e,
-            oc,
-        },
-        None => Hold::Point { inertia_o: j_o, oc },
-    }
-}
-
-fn free(body: &Body) -> Hold {
-    match body.mass {
-        Some(mass) => Hold::Free {
-            mass,
-            inertia: body.inertia,
-            gc: body.offset,
-        },
-        None => Hold::Fixed,
-    }
-}
-
-/// $\mathbf B^*$ of (2.1) with body `k` held at the point `go` (from its G) or about the axis
-/// through it.
-fn held_matrix(
-    s: &RigidImpactScene,
-    k: usize,
-    go: &Vector3<f64>,
-    axis: Option<Vector3<f64>>,
-) -> Matrix3<f64> {
-    let h = [0, 1].map(|j| {
-        if j == k {
-            hold(&s.bodies[j], go, axis)
-        } else {
-            free(&s.bodies[j])
-        }
-    });
-    b_star(&h[0], &h[1])
-}
-
-/// The matrix of the scene's impact where it is fixed along it: $\mathbf B$ of (1.7) for free
-/// bodies, $\mathbf B^*$ of (2.1) with a fixed point or axis; `None` with a support (its matrix
-/// switches along the impact) or an inertia that cannot be inverted.
-pub fn scene_matrix(s: &RigidImpactScene) -> Option<Matrix3<f64>> {
-    match (&s.fixed, &s.support) {
-        (Some((k, go, axis)), _) => Some(held_matrix(s, *k, go, *axis)),
-        (None, None) => b_matrix(&s.bodies[0], &s.bodies[1]),
-        (None, Some(_)) => None,
-    }
-}
-
-/// `(result, support classification, warnings)`; no result when the case is only classified.
-pub type SceneOutcome = (Option<ImpactResult>, Option<Classification>, Vec<String>);
-
-/// The two bodies as if no support or fixed point held them: exactly where the impact is
-/// planar (and the method allows), else integrated.
-fn free_impact(s: &RigidImpactScene) -> Result<ImpactResult, ImpactError> {
-    if let Some(b) = b_matrix(&s.bodies[0], &s.bodies[1])
-        && let Some(mut r) = planar_or_none(s, &b)?
-    {
-        r.energy_change = kinetic_change(
-            &s.bodies[0],
-            &s.bodies[1],
-            &s.v_rel,
-            &Vector3::from(r.impulse),
-        );
-        return Ok(r);
-    }
-    impact(
-        &s.bodies[0],
-        &s.bodies[1],
-        crate::models::rigid_impact::Contact::new(s.normal, s.v_rel, s.mu, s.law, s.e),
-        s.rtol,
-    )
-}
-
-/// Body `k` held at the point `go` (from its G) or about the axis through it (002 sec. 2): the
-/// relative velocity at C must be one the held body can have (when the other cannot move); then
-/// B* of (2.1), solved exactly where planar.
-fn held_impact(
-    s: &RigidImpactScene,
-    k: usize,
-    go: &Vector3<f64>,
-    axis: Option<Vector3<f64>>,
-) -> Result<ImpactResult, ImpactError> {
-    let oc = s.bodies[k].offset - go;
-    let sign = if k == 0 { 1.0 } else { -1.0 };
-    let v_body = s.v_rel * sign;
-    let off = match axis {
-        Some(e) => {
-            let es = e.cross(&oc);
-            (v_body - es * (v_body.dot(&es) / es.norm_squared().max(f64::MIN_POSITIVE))).norm()
-        }
-        None => v_body.dot(&oc).abs() / oc.norm().max(f64::MIN_POSITIVE),
-    };
-    let other_free = s.bodies[1 - k].mass.is_some();
-    if !other_free && off > 1e-9 * s.v_rel.norm() {
-        return Err(ImpactError::OutOfRange {
-            field: "initial.v_rel".into(),
-            value: format!("[{}, {}, {}]", s.v_rel.x, s.v_rel.y, s.v_rel.z),
-            allowed: match axis {
-                Some(e) => format!(
-                    "a velocity of C turning about the axis: parallel to e x OC = {:?}",
-                    e.cross(&oc).as_slice()
-                ),
-                None => format!(
-                    "a velocity of C turning about O: orthogonal to OC = {:?}",
-                    oc.as_slice()
-                ),
-            },
-        });
-    }
-    let b = held_matrix(s, k, go, axis);
-    match planar_or_none(s, &b)? {
-        Some(r) => Ok(r),
-        None => impact_general(
-            &b,
-            None,
-            crate::models::rigid_impact::Contact::new(s.normal, s.v_rel, s.mu, s.law, s.e),
-            s.rtol,
-        ),
-    }
-}
-
-/// Solves the scene.
-pub fn solve_scene(s: &RigidImpactScene) -> Result<SceneOutcome, ImpactError> {
-    solve_scene_all(s, &mut Vec::new())
-}
-
-/// As [`solve_scene`], with the branches of a Painleve-type case with two solutions at the
-/// support pushed to `alternatives`.
-pub fn solve_scene_all(
-    s: &RigidImpactScene,
-    alternatives: &mut Vec<Alternative>,
-) -> Result<SceneOutcome, ImpactError> {
-    let mut warnings = Vec::new();
-    if let Some((k, go, axis)) = &s.fixed {
-        let r = held_impact(s, *k, go, *axis)?;
-        if r.cut_off {
-            warnings.push("cut-off impact: the relative velocity vanished while the contact stresses persist (the bodies are wedged)".into());
-        }
-        return Ok((Some(r), None, warnings));
-    }
-    let bad = |m: String| ImpactError::OutOfRange {
-        field: "body".into(),
-        value: m,
-        allowed: "symmetric positive-definite inertia".into(),
-    };
-    let Some(sup) = &s.support else {
-        return Ok((Some(free_impact(s)?), None, warnings));
-    };
-    let b = b_matrix(&s.bodies[0], &s.bodies[1]).ok_or_else(|| bad("singular".into()))?;
-    let sm = matrices(&s.bodies[1], sup).ok_or_else(|| bad("singular".into()))?;
-    let n = s.normal.normalize();
-    // the contact force direction at the start: n - mu u (sliding at C) or n
-    let vt = s.v_rel - n * s.v_rel.dot(&n);
-    let f = if vt.norm() > 0.0 {
-        n - vt.normalize() * s.mu
-    } else {
-        n
-    };
-    let nn = sup.normal;
-    let va_t = s.v_support - nn * s.v_support.dot(&nn);
-    let cl = if sup.mu > 0.0 && va_t.norm() > 0.0 {
-        classify_sliding(&f, &sm, sup, &va_t.normalize())
-    } else if sup.mu > 0.0 {
-        classify_at_rest(&f, &sm, sup)
-    } else {
-        // smooth support: beta > 0, the solution (3.7) is unique
-        let alpha = -(sm.b_tilde * f).dot(&nn);
-        let beta = (sm.b_a * nn).dot(&nn);
-        Classification {
-            kind: "unique".into(),
-            admissible: vec![if alpha >= 0.0 {
-                "detach".into()
-            } else {
-                "slide".into()
-            }],
-            alpha,
-            beta,
-        }
-    };
-    // the kinetic energy change from the bodies' velocities (the second moving with A's velocity
-    // before the impact), support impulse included
-    let energy_of = |r: &ImpactResult| {
-        super::rigid_impact::kinetic_change_moving(
-            &s.bodies[0],
-            &s.bodies[1],
-            &s.v_rel,
-            &s.v_support,
-            &Vector3::from(r.impulse),
-            Some((sup.offset, Vector3::from(r.support_impulse))),
-        )
-    };
-    if sup.mu == 0.0 {
-        let beta = (sm.b_a * nn).dot(&nn);
-        let support = SmoothSupport {
-            b_tilde: sm.b_tilde,
-            normal: nn,
-            beta,
-        };
-        let mut r = impact_general(
-            &b,
-            Some(support),
-            crate::models::rigid_impact::Contact::new(s.normal, s.v_rel, s.mu, s.law, s.e),
-            s.rtol,
-        )?;
-        r.energy_change = energy_of(&r);
-        let gap = r.energy_change - r.kelvin_energy_change;
-        if gap.abs() > 1e-9 * r.energy_change.abs().max(1e-300) {
-            warnings.push(format!(
-                "with the support, Kelvin's (1.10) over the contact at C misses the support's term (V_A- + V_A+, I*)/2 = {gap:.6e} J (the second body leaves the table with a normal velocity at A)"
-            ));
-        }
-        return Ok((Some(r), Some(cl), warnings));
-    }
-    // a rough support: integrated with its roll/slide/let-go switches (section 4); a Painleve
-    // case with no consistent start is said so, one with two is integrated along each branch
-    let rough = RoughSupport {
-        b_tilde: sm.b_tilde,
-        b_a: sm.b_a,
-        normal: nn,
-        mu: sup.mu,
-        v_a: s.v_support,
-    };
-    let run = |start: Option<SupportMode>| -> Result<ImpactResult, ImpactError> {
-        let mut r = impact_rough(
-            &b,
-            rough.clone(),
-            start,
-            crate::models::rigid_impact::Contact::new(s.normal, s.v_rel, s.mu, s.law, s.e),
-            s.rtol,
-        )?;
-        r.energy_change = energy_of(&r);
-        Ok(r)
-    };
-    match cl.kind.as_str() {
-        "none" => {
-            warnings.push(format!(
-                "Painleve-type case at the support: (3.6) with (3.2)/(3.3) has no solution at the start (alpha = {:.6e}, beta = {:.6e}); classical impact theory cannot resolve it, deformations at A must be modelled",
-                cl.alpha, cl.beta
-            ));
-            Ok((None, Some(cl), warnings))
-        }
-        "two" => {
-            let mode_of = |name: &str| match name {
-                "detach" => SupportMode::Free,
-                "roll" => SupportMode::Roll,
-                _ => SupportMode::Slide,
-            };
-            let mut main = None;
-            let mut main_name = "";
-            for name in &cl.admissible {
-                match run(Some(mode_of(name))) {
-                    Ok(r) => {
-                        if name == "detach" || main.is_none() {
-                            main = Some(r.clone());
-                            main_name = name;
-                        }
-                        alternatives.push(Alternative {
-                            start: name.clone(),
-                            impulse: Some(r.impulse),
-                            support_impulse: Some(r.support_impulse),
-                            energy_change: Some(r.energy_change),
-                            error: None,
-                        });
-                    }
-                    Err(e) => alternatives.push(Alternative {
-                        start: name.clone(),
-                        impulse: None,
-                        support_impulse: None,
-                        energy_change: None,
-                        error: Some(e.to_string()),
-                    }),
-                }
-            }
-            // the result: the detaching branch where it is admissible and ends (section 4: with
-            // deformable elements the body leaves the support), else the first that ends
-            let result = match main_name {
-                "detach" => "the result is the detaching one (section 4: with deformable elements the body leaves the support)".to_string(),
-                "" => "no branch ends as a classical impact (each says why in `alternatives`)".to_string(),
-                name => format!("the result is the {name} one (the first that ends; no detaching branch ends)"),
-            };
-            warnings.push(format!(
-                "Painleve-type case at the support: (3.6) admits {:?} at the start; each branch is integrated (`alternatives`), {result}",
-                cl.admissible
-            ));
-            Ok((main, Some(cl), warnings))
-        }
-        _ => match run(None) {
-            Ok(r) => Ok((Some(r), Some(cl), warnings)),
-            // a Painleve-type instant later in the impact: said, with the classification
-            Err(e @ ImpactError::Painleve { .. }) => {
-                warnings.push(e.to_string());
-                Ok((None, Some(cl), warnings))
-            }
-            Err(e) => Err(e),
-        },
-    }
-}
-
-/// The exact planar solution of the scene's impact with matrix `b` ($\mathbf B$ of (1.7) or
-/// $\mathbf B^*$ of (2.1)) where the scene's method takes it; `Ok(None)` to integrate (a scene
-/// that is not planar under "auto", or "integrate").
-fn planar_or_none(
-    s: &RigidImpactScene,
-    b: &Matrix3<f64>,
-) -> Result<Option<ImpactResult>, ImpactError> {
-    if s.method == ImpactMethod::Integrate {
-        return Ok(None);
-    }
-    let r = impact_planar(b, s.normal, s.v_rel, s.mu, s.law, s.e).map_err(|e| match e {
-        PlanarError::OutOfRange {
-            field,
-            value,
-            allowed,
-        } => ImpactError::OutOfRange {
-            field: field.into(),
-            value,
-            allowed: allowed.into(),
-        },
-        PlanarError::NoEnd { law, p } => ImpactError::NoEnd {
-            law: law.into(),
-            chi_max: p,
-        },
-    })?;
-    if r.is_none() && s.method == ImpactMethod::PlanarExact {
-        return Err(ImpactError::OutOfRange {
-            field: "solve.method".into(),
-            value: "\"planar-exact\" for an impact that is not planar".into(),
-            allowed: "a planar impact (the plane of the contact normal and the slip invariant under B, to 1e-12 of |B|, and no relative velocity across it), or \"auto\" / \"integrate\"".into(),
-        });
-    }
-    Ok(r)
-}
-
-/// One branch of a Painleve-type case with two solutions at the support.
-#[derive(Clone, Debug, serde::Serialize)]
-pub struct Alternative {
-    /// The support's motion at the start: "detach", "roll" or "slide".
-    pub start: String,
-    /// The impulse on the first body (N s).
-    pub impulse: Option<[f64; 3]>,
-    /// The support's impulse on the second body (N s).
-    pub support_impulse: Option<[f64; 3]>,
-    /// Kinetic energy change (J).
-    pub energy_change: Option<f64>,
-    /// Why the branch could not be integrated.
-    pub error: Option<String>,
-}
-
-/// The `rigid-impact` scene of 002_b53e4779673eb6ed.txt: two bodies, one contact, Coulomb
-/// friction; optionally a fixed point or axis of one body, or a support under the second.
-#[derive(Clone, Debug)]
-pub struct RigidImpactScene {
-    /// The two bodies.
-    pub bodies: [Body; 2],
-    /// Contact normal, into the first body.
-    pub normal: Vector3<f64>,
-    /// Friction coefficient.
-    pub mu: f64,
-    /// Restitution law.
-    pub law: Law,
-    /// Coefficient of restitution.
-    pub e: f64,
-    /// Relative velocity at C before impact (m/s).
-    pub v_rel: Vector3<f64>,
-    /// Relative tolerance.
-    pub rtol: f64,
-    /// The second body's support, if any.
-    pub support: Option<super::support::Support>,
-    /// Velocity of the support point A before impact (m/s).
-    pub v_support: Vector3<f64>,
-    /// A fixed point or axis: (body index 0|1, G->O, optional axis).
-    pub fixed: Option<(usize, Vector3<f64>, Option<Vector3<f64>>)>,
-    /// How to solve it (`[solve] method`).
-    pub method: ImpactMethod,
-}
-
-/// How a `rigid-impact` scene is solved (`[solve] method`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum ImpactMethod {
-    /// The exact planar solution where the impact is planar (free bodies, or one held by a
-    /// fixed point or axis), else the integrator.
-    #[default]
-    Auto,
-    /// The exact planar solution ([`super::planar_impact`]); a scene that is not planar, or
-    /// has a support, is an error.
-    PlanarExact,
-    /// The Darboux-Keller equations integrated in the normal impulse, planar or not.
-    Integrate,
-}
-
-impl ImpactMethod {
-    /// The values `[solve] method` takes.
-    pub const ALLOWED: &'static str = "\"auto\" (the exact planar solution where the impact is planar, else integrated), \"planar-exact\", \"integrate\"";
-
-    /// The scene's name for it.
-    pub fn name(self) -> &'static str {
-        match self {
-            ImpactMethod::Auto => "auto",
-            ImpactMethod::PlanarExact => super::planar_impact::METHOD,
-            ImpactMethod::Integrate => "integrate",
-        }
-    }
-
-    /// The method a scene names.
-    pub fn parse(name: &str) -> Option<Self> {
-        [
-            ImpactMethod::Auto,
-            ImpactMethod::PlanarExact,
-            ImpactMethod::Integrate,
-        ]
-        .into_iter()
-        .find(|m| m.name() == name)
-    }
-}
 
 type Value = toml::Value;
 
@@ -530,7 +99,7 @@ pub struct RigidImpactOutcome {
     pub bound_lower: Option<f64>,
     /// Stick/slip phases.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub phases: Option<Vec<super::rigid_impact::Phase>>,
+    pub phases: Option<Vec<crate::models::rigid_impact::Phase>>,
     /// Whether the impact was cut off (a fixed point).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cut_off: Option<bool>,
@@ -544,7 +113,7 @@ pub struct RigidImpactOutcome {
     /// A rough support's phases: "roll", "slide" or "detached", each with the normal impulse at
     /// C where it starts.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub support_phases: Option<Vec<super::rigid_impact::Phase>>,
+    pub support_phases: Option<Vec<crate::models::rigid_impact::Phase>>,
     /// Tangential velocity of A after the impact (m/s), with a rough support.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub v_support_after: Option<[f64; 3]>,
@@ -563,7 +132,10 @@ pub struct RigidImpactOutcome {
 }
 
 /// The two `[[body]]` tables: mass (or "inf"), inertia, contact offset.
-fn read_bodies(f: &super::params::Fields, raw: &RawScene) -> Result<Vec<Body>, super::SceneError> {
+fn read_bodies(
+    f: &crate::models::params::Fields,
+    raw: &RawScene,
+) -> Result<Vec<Body>, crate::models::SceneError> {
     let bodies = match &raw.body {
         Some(Value::Array(a)) if a.len() == 2 => a,
         other => {
@@ -655,15 +227,15 @@ fn read_bodies(f: &super::params::Fields, raw: &RawScene) -> Result<Vec<Body>, s
 /// The `[support]` and `[fixed]` tables (at most one of them), given the bodies.
 #[allow(clippy::type_complexity)]
 fn read_holds(
-    f: &super::params::Fields,
+    f: &crate::models::params::Fields,
     raw: &RawScene,
     out: &[Body],
 ) -> Result<
     (
-        Option<super::support::Support>,
+        Option<crate::models::support::Support>,
         Option<(usize, Vector3<f64>, Option<Vector3<f64>>)>,
     ),
-    super::SceneError,
+    crate::models::SceneError,
 > {
     let support = match &raw.support {
         None => None,
@@ -684,7 +256,7 @@ fn read_holds(
                     "a support under a second body of finite mass",
                 ));
             }
-            Some(super::support::Support {
+            Some(crate::models::support::Support {
                 offset: f.vec3(t.offset.as_ref(), "support.offset")?,
                 normal: normal.normalize(),
                 mu: f.num(
@@ -735,14 +307,14 @@ fn read_holds(
     Ok((support, fixed))
 }
 
-impl super::Model for RigidImpactScene {
+impl crate::models::Model for RigidImpactScene {
     const NAME: &'static str = "rigid-impact";
     const DOC: &'static d::ModelDoc = &DOC;
     type Outcome = RigidImpactOutcome;
 
-    fn from_table(root: &toml::Table, path: &str) -> Result<Self, super::SceneError> {
-        use super::SceneError;
-        let f = super::params::Fields { path };
+    fn from_table(root: &toml::Table, path: &str) -> Result<Self, crate::models::SceneError> {
+        use crate::models::SceneError;
+        let f = crate::models::params::Fields { path };
         let raw: RawScene = f.raw(root, "")?;
         let out = read_bodies(&f, &raw)?;
         let c: RawContact = f.raw(f.table(raw.contact.as_ref(), "contact")?, "contact")?;
@@ -848,13 +420,15 @@ impl super::Model for RigidImpactScene {
         })
     }
 
-    fn run(&self) -> Result<(RigidImpactOutcome, super::Curves), super::RunError> {
+    fn run(&self) -> Result<(RigidImpactOutcome, crate::models::Curves), crate::models::RunError> {
         let s = self;
         let mut alternatives = Vec::new();
         let (r, classification, mut warnings) =
-            solve_scene_all(s, &mut alternatives).map_err(|e| super::RunError::BadArgument {
-                arg: "impact".into(),
-                message: e.to_string(),
+            solve_scene_all(s, &mut alternatives).map_err(|e| {
+                crate::models::RunError::BadArgument {
+                    arg: "impact".into(),
+                    message: e.to_string(),
+                }
             })?;
         let mut out = RigidImpactOutcome {
             model: Self::NAME,
@@ -892,7 +466,7 @@ impl super::Model for RigidImpactScene {
                         r.energy_change
                     )),
                     Law::Energetic => {
-                        return Err(super::RunError::BadArgument {
+                        return Err(crate::models::RunError::BadArgument {
                             arg: "impact".into(),
                             message: format!(
                                 "solver inconsistency: the kinetic energy grew by {:.6e} J under the energetic law, which dissipates",
