@@ -1,0 +1,497 @@
+//! Reading an `ode` scene: its tables, in named steps, into a compiled [`OdeScene`].
+
+use super::compile::Program;
+use super::formulas::{Reader, table_of};
+use super::units::read_units;
+use super::{Compiled, EventSpec, Firing, MAX_VARS, OdeScene, OutcomeSpec};
+use crate::algebra::expr::Expr;
+use crate::algebra::units::Unit;
+use crate::integrate::{Direction, Method};
+use crate::models::params::{Fields, SceneError};
+use std::collections::BTreeMap;
+use toml::Value;
+
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawScene {
+    model: Option<Value>,
+    parameters: Option<Value>,
+    units: Option<Value>,
+    definitions: Option<Value>,
+    state: Option<Value>,
+    equations: Option<Value>,
+    event: Option<Value>,
+    outcome: Option<Value>,
+    solve: Option<Value>,
+}
+
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawEvent {
+    name: Option<Value>,
+    when: Option<Value>,
+    direction: Option<Value>,
+    action: Option<Value>,
+    jump: Option<Value>,
+}
+
+/// The tables of an `ode` scene; `[definitions]` and `[outcome]` may be absent (empty).
+struct Tables<'t> {
+    params: &'t toml::Table,
+    units: &'t toml::Table,
+    state: &'t toml::Table,
+    equations: &'t toml::Table,
+    definitions: &'t toml::Table,
+    outcome: &'t toml::Table,
+}
+
+static EMPTY: std::sync::LazyLock<toml::Table> = std::sync::LazyLock::new(toml::Table::new);
+
+impl<'t> Tables<'t> {
+    fn of(f: &Fields, raw: &'t RawScene) -> Result<Self, SceneError> {
+        let optional = |v: Option<&'t Value>, name: &str| match v {
+            None => Ok(&*EMPTY),
+            v => table_of(f, v, name),
+        };
+        Ok(Tables {
+            params: table_of(f, raw.parameters.as_ref(), "parameters")?,
+            units: table_of(f, raw.units.as_ref(), "units")?,
+            state: table_of(f, raw.state.as_ref(), "state")?,
+            equations: table_of(f, raw.equations.as_ref(), "equations")?,
+            definitions: optional(raw.definitions.as_ref(), "definitions")?,
+            outcome: optional(raw.outcome.as_ref(), "outcome")?,
+        })
+    }
+}
+
+/// Reads and compiles an `ode` scene: the tables, the parameters, the states with their
+/// equations, the units, the definitions, the initial values, the equations and their Jacobian,
+/// the events and the outcomes, each checked before the next is read.
+pub(super) fn read(root: &toml::Table, path: &str) -> Result<OdeScene, SceneError> {
+    let f = Fields { path };
+    let raw: RawScene = f.raw(root, "")?;
+    let _ = raw.model;
+    let t = Tables::of(&f, &raw)?;
+    let params = read_parameters(&f, t.params)?;
+    let states = read_states(&f, t.state, t.equations, &params)?;
+    let slots = slots(&f, &states, &params)?;
+    let units = read_units(&f, t.units, &slots)?;
+    let mut r = Reader {
+        f,
+        units,
+        def_units: BTreeMap::new(),
+        raw: Default::default(),
+        defs: BTreeMap::new(),
+        slots,
+    };
+    read_definitions(&mut r, t.definitions)?;
+    let (init, init_exprs) = read_initial(&r, t.state, &states, &params)?;
+    let rhs_exprs = read_equations(&r, t.equations, &states)?;
+    let rhs = rhs_exprs
+        .iter()
+        .zip(&states)
+        .map(|(e, s)| r.compile(e, &format!("equations.{s}")))
+        .collect::<Result<Vec<_>, _>>()?;
+    let solve = r.f.solve(raw.solve.as_ref(), "", false)?;
+    let t_end = solve.t_end.ok_or_else(|| SceneError::Missing {
+        path: path.into(),
+        field: "solve.t_end".into(),
+        allowed: "a time > 0 in s (an event with action = \"stop\" may end the run sooner)".into(),
+    })?;
+    let jac = if matches!(solve.method, Method::Radau5 | Method::Auto) {
+        Some(r.jacobian(&rhs_exprs, &states)?)
+    } else {
+        None
+    };
+    let events = read_events(&r, raw.event.as_ref(), &states)?;
+    let outcomes = read_outcomes(&r, t.outcome, &events)?;
+    let state_units = states.iter().map(|s| r.units[s].to_string()).collect();
+    let n = states.len();
+    Ok(OdeScene {
+        c: std::sync::Arc::new(Compiled {
+            states,
+            param_names: params.iter().map(|(p, _)| p.clone()).collect(),
+            init,
+            rhs,
+            jac,
+            events,
+            outcomes,
+            state_units,
+            t_end,
+            init_exprs,
+            rhs_exprs,
+        }),
+        params: params.iter().map(|(_, v)| *v).collect(),
+        init_set: vec![None; n],
+        solve,
+    })
+}
+
+/// Whether `n` may name a parameter, state or definition: letters, digits and _, not `t`, `pi`,
+/// `hits` or a function.
+fn name_ok(n: &str) -> bool {
+    n.chars()
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+        && n != "t"
+        && n != "pi"
+        && n != "hits"
+        && !crate::algebra::expr::FUNCTIONS.contains(&n)
+}
+
+/// `[parameters]`: each name with its value (SI).
+fn read_parameters(f: &Fields, table: &toml::Table) -> Result<Vec<(String, f64)>, SceneError> {
+    let mut params = Vec::new();
+    for (k, v) in table {
+        let field = format!("parameters.{k}");
+        if !name_ok(k) {
+            return Err(f.out_of_range(
+                &field,
+                k.clone(),
+                "a name of letters, digits and _ (not t, pi, hits or a function)",
+            ));
+        }
+        params.push((
+            k.clone(),
+            f.num(Some(v), &field, None, |_| true, "a finite number (SI)")?,
+        ));
+    }
+    Ok(params)
+}
+
+/// The states, in the order of `[state]`, each with its equation in `[equations]` and no
+/// equation for anything else.
+fn read_states(
+    f: &Fields,
+    state: &toml::Table,
+    equations: &toml::Table,
+    params: &[(String, f64)],
+) -> Result<Vec<String>, SceneError> {
+    let states: Vec<String> = state.keys().cloned().collect();
+    if states.is_empty() {
+        return Err(SceneError::Missing {
+            path: f.path.into(),
+            field: "state".into(),
+            allowed: "at least one state with its initial value".into(),
+        });
+    }
+    for s in &states {
+        if !name_ok(s) || params.iter().any(|(p, _)| p == s) {
+            return Err(f.out_of_range(
+                &format!("state.{s}"),
+                s.clone(),
+                "a name of letters, digits and _, not a parameter's, not t, pi, hits or a function",
+            ));
+        }
+        if !equations.contains_key(s) {
+            return Err(SceneError::Missing {
+                path: f.path.into(),
+                field: format!("equations.{s}"),
+                allowed: format!("the derivative of the state {s}, a formula"),
+            });
+        }
+    }
+    if let Some(k) = equations.keys().find(|k| !states.contains(k)) {
+        return Err(f.out_of_range(
+            &format!("equations.{k}"),
+            k.clone(),
+            &format!(
+                "an equation for each state of [state]: {}",
+                states.join(", ")
+            ),
+        ));
+    }
+    Ok(states)
+}
+
+/// The variables every program reads, in their order: `t`, the states, the parameters; at most
+/// [`MAX_VARS`].
+fn slots(
+    f: &Fields,
+    states: &[String],
+    params: &[(String, f64)],
+) -> Result<Vec<String>, SceneError> {
+    let mut slots = vec!["t".to_string()];
+    slots.extend(states.iter().cloned());
+    slots.extend(params.iter().map(|(p, _)| p.clone()));
+    if slots.len() > MAX_VARS {
+        return Err(f.out_of_range(
+            "parameters",
+            format!("{} states and parameters", slots.len() - 1),
+            &format!("at most {} states and parameters", MAX_VARS - 1),
+        ));
+    }
+    Ok(slots)
+}
+
+/// `[definitions]`, expanded in the order written; a definition may use earlier ones.
+fn read_definitions(r: &mut Reader, table: &toml::Table) -> Result<(), SceneError> {
+    for (k, v) in table {
+        let field = format!("definitions.{k}");
+        if !name_ok(k) || r.slots.contains(k) {
+            return Err(r.bad(
+                &field,
+                k,
+                "a new name (not a parameter, state, t or a function)",
+            ));
+        }
+        let (e, text) = r.formula_text(v, &field)?;
+        let u = r.unit_of(&e, &field, &text)?;
+        r.def_units.insert(k.clone(), u);
+        r.defs.insert(k.clone(), e);
+    }
+    Ok(())
+}
+
+/// `[state]`: each initial value, a formula of the parameters in its state's unit, compiled and
+/// as a formula.
+fn read_initial(
+    r: &Reader,
+    table: &toml::Table,
+    states: &[String],
+    params: &[(String, f64)],
+) -> Result<(Vec<Program>, Vec<Expr>), SceneError> {
+    let mut init = Vec::new();
+    let mut init_exprs = Vec::new();
+    for s in states {
+        let field = format!("state.{s}");
+        let (e, text) = r.formula_text(&table[s], &field)?;
+        if let Some(x) = e
+            .symbols()
+            .into_iter()
+            .find(|x| !params.iter().any(|(p, _)| p == x))
+        {
+            return Err(r.bad_formula(&field, &text, format!("an initial value is a number or a formula of the parameters; `{x}` is not a parameter")));
+        }
+        r.unit_is(
+            &e,
+            &field,
+            &text,
+            r.units[s],
+            &format!("the initial value of {s}"),
+        )?;
+        init.push(r.compile(&e, &field)?);
+        init_exprs.push(e);
+    }
+    Ok((init, init_exprs))
+}
+
+/// `[equations]`: each right side, in its state's unit per the unit of t.
+fn read_equations(
+    r: &Reader,
+    table: &toml::Table,
+    states: &[String],
+) -> Result<Vec<Expr>, SceneError> {
+    let ut = r.units["t"];
+    let mut rhs_exprs = Vec::new();
+    for s in states {
+        let field = format!("equations.{s}");
+        let (e, text) = r.formula_text(&table[s], &field)?;
+        let want = r.units[s].per(ut);
+        r.unit_is(
+            &e,
+            &field,
+            &text,
+            want,
+            &format!("d{s}/dt (the unit of {s} per the unit of t)"),
+        )?;
+        rhs_exprs.push(e);
+    }
+    Ok(rhs_exprs)
+}
+
+/// `[[event]]`: each event's name (unique), `when`, direction, action and jump, compiled.
+fn read_events(
+    r: &Reader,
+    v: Option<&Value>,
+    states: &[String],
+) -> Result<Vec<EventSpec>, SceneError> {
+    let mut events = Vec::new();
+    let Some(v) = v else {
+        return Ok(events);
+    };
+    let list = v
+        .as_array()
+        .ok_or_else(|| r.bad("event", &v.to_string(), "[[event]] tables"))?;
+    for (i, ev) in list.iter().enumerate() {
+        let event = read_event(r, &format!("event.{i}"), ev, states, &events)?;
+        events.push(event);
+    }
+    Ok(events)
+}
+
+/// One `[[event]]` table, at `at` (`event.3`), after the events `earlier`.
+fn read_event(
+    r: &Reader,
+    at: &str,
+    ev: &Value,
+    states: &[String],
+    earlier: &[EventSpec],
+) -> Result<EventSpec, SceneError> {
+    let path = r.f.path;
+    let t = ev
+        .as_table()
+        .ok_or_else(|| r.bad(at, &ev.to_string(), "a table"))?;
+    let re: RawEvent = r.f.raw(t, at)?;
+    let name = match &re.name {
+        Some(Value::String(s)) if !s.is_empty() && !s.contains(['@', '[', ']']) => s.clone(),
+        Some(other) => {
+            return Err(r.bad(
+                &format!("{at}.name"),
+                &other.to_string(),
+                "a name (no @, [ or ])",
+            ));
+        }
+        None => {
+            return Err(SceneError::Missing {
+                path: path.into(),
+                field: format!("{at}.name"),
+                allowed: "the event's name, e.g. \"contact-end\"".into(),
+            });
+        }
+    };
+    if earlier.iter().any(|e| e.name == name) {
+        return Err(r.bad(&format!("{at}.name"), &name, "a name no other event has"));
+    }
+    let when_v = re.when.as_ref().ok_or_else(|| SceneError::Missing {
+        path: path.into(),
+        field: format!("{at}.when"),
+        allowed: "a formula whose root is the event".into(),
+    })?;
+    let (when, text) = r.formula_text(when_v, &format!("{at}.when"))?;
+    r.unit_of(&when, &format!("{at}.when"), &text)?;
+    let dir = r.f.choice(
+        re.direction.as_ref(),
+        &format!("{at}.direction"),
+        &["up", "down", "any"],
+        "any",
+    )?;
+    let direction = match dir.as_str() {
+        "up" => Direction::Rising,
+        "down" => Direction::Falling,
+        _ => Direction::Both,
+    };
+    let action = r.f.choice(
+        re.action.as_ref(),
+        &format!("{at}.action"),
+        &["stop", "record"],
+        "record",
+    )?;
+    let mut jump = Vec::new();
+    if let Some(j) = &re.jump {
+        let jt = j.as_table().ok_or_else(|| {
+            r.bad(
+                &format!("{at}.jump"),
+                &j.to_string(),
+                "a table of state updates, { v = \"-e*v\" }",
+            )
+        })?;
+        for (s, formula) in jt {
+            let field = format!("{at}.jump.{s}");
+            let k = states
+                .iter()
+                .position(|x| x == s)
+                .ok_or_else(|| r.bad(&field, s, &format!("a state: {}", states.join(", "))))?;
+            let (e, text) = r.formula_text(formula, &field)?;
+            r.unit_is(
+                &e,
+                &field,
+                &text,
+                r.units[s],
+                &format!("the new value of {s}"),
+            )?;
+            jump.push((k, r.compile(&e, &field)?));
+        }
+    }
+    Ok(EventSpec {
+        name,
+        when: r.compile(&when, &format!("{at}.when"))?,
+        direction,
+        stop: action == "stop",
+        jump,
+    })
+}
+
+/// `[outcome]`: each named formula, at the end or at a firing of an event, with its unit.
+fn read_outcomes(
+    r: &Reader,
+    table: &toml::Table,
+    events: &[EventSpec],
+) -> Result<Vec<OutcomeSpec>, SceneError> {
+    let mut outcomes = Vec::new();
+    for (k, v) in table {
+        let field = format!("outcome.{k}");
+        let text = v
+            .as_str()
+            .ok_or_else(|| r.bad(&field, &v.to_string(), "a formula, or formula@event"))?;
+        let (body, at) = match text.rsplit_once('@') {
+            None => (text.to_string(), None),
+            Some((body, ev)) => {
+                let (i, firing) = read_firing(r, &field, text, ev, events)?;
+                let firing = if body.trim() == "hits" {
+                    Firing::Count
+                } else {
+                    firing
+                };
+                (body.to_string(), Some((i, firing)))
+            }
+        };
+        let (program, unit) = if matches!(at, Some((_, Firing::Count))) {
+            (Program::from_constant(0.0), Unit::one())
+        } else {
+            let (e, text) = r.formula_text(&Value::String(body.clone()), &field)?;
+            let u = r.unit_of(&e, &field, &text)?;
+            (r.compile(&e, &field)?, u)
+        };
+        outcomes.push(OutcomeSpec {
+            name: k.clone(),
+            text: text.to_string(),
+            program,
+            at,
+            unit_text: unit.to_string(),
+        });
+    }
+    Ok(outcomes)
+}
+
+/// The event and firing `ev` of an outcome `text` (`contact-end`, `impact[2]`, `impact[last]`):
+/// the event's index and which firing.
+fn read_firing(
+    r: &Reader,
+    field: &str,
+    text: &str,
+    ev: &str,
+    events: &[EventSpec],
+) -> Result<(usize, Firing), SceneError> {
+    let (ev_name, firing) = match ev.trim().split_once('[') {
+        None => (ev.trim().to_string(), Firing::Nth(0)),
+        Some((n, rest)) => {
+            let idx = rest.trim_end_matches(']').trim();
+            let firing = if idx == "last" {
+                Firing::Last
+            } else {
+                match idx.parse::<usize>() {
+                    Ok(k) if k >= 1 => Firing::Nth(k - 1),
+                    _ => return Err(r.bad_formula(field, text, "allowed: formula, formula@event, formula@event[k] (k >= 1), formula@event[last], hits@event".into())),
+                }
+            };
+            (n.trim().to_string(), firing)
+        }
+    };
+    let i = events
+        .iter()
+        .position(|e| e.name == ev_name)
+        .ok_or_else(|| {
+            let names: Vec<&str> = events.iter().map(|e| e.name.as_str()).collect();
+            r.bad_formula(
+                field,
+                text,
+                format!(
+                    "`{ev_name}` is not an event; the events of [[event]]: {}",
+                    names.join(", ")
+                ),
+            )
+        })?;
+    Ok((i, firing))
+}
