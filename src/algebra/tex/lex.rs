@@ -1,0 +1,152 @@
+//! The LaTeX reader's lexer: commands, characters, numbers, braces, and the spellings of a
+//! [`TexSymbols`] table as symbols; the Greek letters, functions and accents it knows.
+
+use super::TexSymbols;
+use crate::algebra::expr::Func;
+
+#[derive(Clone, Debug, PartialEq)]
+pub(super) enum Tok {
+    Cmd(String),
+    Ch(char),
+    Num(String),
+    Sym(String),
+    Open,
+    Close,
+    End,
+}
+
+pub(super) fn lex(src: &str, syms: &TexSymbols) -> Vec<(Tok, usize)> {
+    let chars: Vec<char> = src.chars().collect();
+    let mut out = Vec::new();
+    let mut i = 0;
+    'outer: while i < chars.len() {
+        let col = i + 1;
+        for (spelling, sym) in &syms.0 {
+            let sp: Vec<char> = spelling.chars().collect();
+            if !sp.is_empty() && chars[i..].starts_with(&sp) {
+                out.push((Tok::Sym(sym.clone()), col));
+                i += sp.len();
+                continue 'outer;
+            }
+        }
+        let c = chars[i];
+        if c.is_whitespace() {
+            i += 1;
+        } else if c == '\\' {
+            let start = i + 1;
+            let mut j = start;
+            while j < chars.len() && chars[j].is_ascii_alphabetic() {
+                j += 1;
+            }
+            if j == start && j < chars.len() {
+                j += 1;
+            }
+            out.push((Tok::Cmd(chars[start..j].iter().collect()), col));
+            i = j;
+        } else if c.is_ascii_digit()
+            || (c == '.' && chars.get(i + 1).is_some_and(char::is_ascii_digit))
+        {
+            let start = i;
+            while i < chars.len() && (chars[i].is_ascii_digit() || chars[i] == '.') {
+                i += 1;
+            }
+            out.push((Tok::Num(chars[start..i].iter().collect()), col));
+        } else if c == '{' {
+            out.push((Tok::Open, col));
+            i += 1;
+        } else if c == '}' {
+            out.push((Tok::Close, col));
+            i += 1;
+        } else {
+            out.push((Tok::Ch(c), col));
+            i += 1;
+        }
+    }
+    out.push((Tok::End, chars.len() + 1));
+    out
+}
+
+pub(super) const GREEK: &[&str] = &[
+    "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa",
+    "lambda", "mu", "nu", "xi", "omicron", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi",
+    "omega", "Gamma", "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Upsilon", "Phi", "Psi",
+    "Omega",
+];
+
+pub(super) fn greek(cmd: &str) -> Option<&str> {
+    Some(match cmd {
+        "varepsilon" => "epsilon",
+        "varphi" => "phi",
+        "vartheta" => "theta",
+        "varrho" => "rho",
+        "varsigma" => "sigma",
+        "varkappa" => "kappa",
+        "nabla" => "nabla",
+        "ell" => "l",
+        c => return GREEK.iter().copied().find(|g| *g == c),
+    })
+}
+
+pub(super) fn func(cmd: &str) -> Option<Func> {
+    Some(match cmd {
+        "sin" => Func::Sin,
+        "cos" => Func::Cos,
+        "tan" => Func::Tan,
+        "exp" => Func::Exp,
+        "ln" => Func::Ln,
+        "arcsin" => Func::Asin,
+        "arccos" => Func::Acos,
+        "arctan" => Func::Atan,
+        _ => return None,
+    })
+}
+
+/// Commands that only space or style: skipped.
+pub(super) fn is_space(t: &Tok) -> bool {
+    match t {
+        Tok::Cmd(c) => matches!(
+            c.as_str(),
+            "," | ";"
+                | ":"
+                | "!"
+                | " "
+                | "quad"
+                | "qquad"
+                | "displaystyle"
+                | "textstyle"
+                | "limits"
+                | "nolimits"
+                | "big"
+                | "Big"
+                | "bigg"
+                | "Bigg"
+        ),
+        Tok::Ch('~') => true,
+        _ => false,
+    }
+}
+
+pub(super) fn accent_suffix(cmd: &str) -> Option<&'static str> {
+    Some(match cmd {
+        "tilde" | "widetilde" => "t",
+        "hat" | "widehat" => "h",
+        "bar" | "overline" => "b",
+        "dot" => "d",
+        "ddot" => "dd",
+        "mathbf" | "boldsymbol" | "mathrm" | "mathit" | "vec" | "bm" | "operatorname" | "text" => {
+            ""
+        }
+        _ => return None,
+    })
+}
+pub(super) fn describe(t: &Tok) -> String {
+    match t {
+        Tok::Cmd(c) => format!("\\{c}"),
+        Tok::Ch(c) => c.to_string(),
+        Tok::Num(n) => n.clone(),
+        Tok::Sym(s) => s.clone(),
+        Tok::Open => "{".into(),
+        Tok::Close => "}".into(),
+        Tok::End => "the end".into(),
+    }
+}

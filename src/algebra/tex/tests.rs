@@ -1,0 +1,185 @@
+//! The LaTeX reader's unit tests.
+
+use super::*;
+use crate::algebra::expr::parse;
+
+/// A symbol's test value in [0.5, 2), from its name.
+fn value(name: &str) -> Option<f64> {
+    let h = name
+        .bytes()
+        .fold(7u64, |h, b| h.wrapping_mul(31).wrapping_add(u64::from(b)));
+    Some(0.5 + (h % 1000) as f64 / 666.0)
+}
+
+#[test]
+fn two_formulas_in_one_and_a_derivative_by_a_number_are_refused() {
+    let e = read_formula("a \\pm b", &TexSymbols::default()).unwrap_err();
+    assert!(e.construct.contains("\\pm"), "{e}");
+    let e = read_formula("c \\mp d", &TexSymbols::default()).unwrap_err();
+    assert!(e.construct.contains("\\pm"), "{e}");
+    assert!(read_formula("\\frac{\\partial f}{\\partial 1}", &TexSymbols::default()).is_err());
+    for bad in [
+        "\\frac{d f}{d ,}",
+        "\\frac{d f}{d +}",
+        "\\frac{\\partial f}{\\partial (}",
+    ] {
+        assert!(read_formula(bad, &TexSymbols::default()).is_err(), "{bad}");
+    }
+}
+
+/// The LaTeX read equals the reference typed by hand: the same value at a point where every
+/// symbol has its own value.
+fn same(tex: &str, text: &str) {
+    let a = read_formula(tex, &TexSymbols::default()).unwrap_or_else(|e| panic!("{tex}: {e}"));
+    let b = parse(text).expect("the reference parses");
+    assert_eq!(a.symbols(), b.symbols(), "{tex} read as {a}");
+    let (x, y) = (
+        a.eval(&value).expect("evaluates"),
+        b.eval(&value).expect("evaluates"),
+    );
+    assert!(
+        (x - y).abs() <= 1e-12 * y.abs().max(1.0),
+        "{tex} read as {a}, not {text}"
+    );
+}
+
+#[test]
+fn reads_the_math_of_papers() {
+    // references: the same formulas typed in the text language by hand
+    same(
+        r"\frac{E m^{2} n^{2} \pi^{4} b}{64 a^{3}}",
+        "E*m^2*n^2*pi^4*b/(64*a^3)",
+    );
+    same(r"\dfrac{1}{2} a b", "a*b/2");
+    same(r"\sqrt{x^{2}+y^{2}}", "sqrt(x^2 + y^2)");
+    same(r"\sqrt[3]{x}", "x^(1/3)");
+    same(r"2\left(\nu+1\right)\lambda", "2*(nu + 1)*lambda");
+    same(r"a \cdot b \times c", "a*b*c");
+    same(r"A_{5} + p_{1} + \rho_{0}", "A5 + p1 + rho0");
+    // an unbraced subscript ends at a power: A_5^2 is A5 squared
+    same(r"A_5^2 + p_1^{3}", "A5^2 + p1^3");
+    same(r"\tan \theta", "tan(theta)");
+    same(r"\sin^{2}\phi + \cos^{2}\phi", "sin(phi)^2 + cos(phi)^2");
+    same(
+        r"\sin \frac{m \pi x}{a} \sin \frac{n \pi y}{b}",
+        "sin(m*pi*x/a)*sin(n*pi*y/b)",
+    );
+    same(r"\exp (-\delta t)", "exp(-delta*t)");
+    same(r"e^{-\alpha t}", "exp(-alpha*t)");
+    same(r"\tilde{E} h^{3}", "Et*h^3");
+    same(r"\frac{k!}{(k-i)!}", "factorial(k)/factorial(k - i)");
+    same(r"\left|x\right| + |y|", "abs(x) + abs(y)");
+    same(r"t^{\prime} + t'", "tp + tp");
+    same(r"\mathrm{w} + \operatorname{sin} x", "w + sin(x)");
+    same(r"\cos \phi (a + b)", "cos(phi)*(a + b)");
+    // an integral over a region: opaque, named by its text; without its differential, an error
+    assert_eq!(
+        read_formula(r"\chi \int z x d \sigma", &TexSymbols::default())
+            .unwrap()
+            .to_string(),
+        r"chi*{\int z x d \sigma}"
+    );
+    let e = read_formula(r"\iint f \, \xi", &TexSymbols::default()).unwrap_err();
+    assert!(
+        e.construct.contains("closing an integral over a region"),
+        "{e}"
+    );
+    same(r"\sin 2\phi \left( a + b \right)", "sin(2*phi)*(a + b)");
+    same(r"x \, y \; z \quad", "x*y*z");
+}
+
+#[test]
+fn sums_integrals_and_derivatives() {
+    let s = TexSymbols::default();
+    let e = read_formula(r"\sum_{i=0}^{k} \frac{k!}{(k-i)!} t^{k-i}", &s).unwrap();
+    assert_eq!(
+        e.to_string(),
+        parse("sum(factorial(k)/factorial(k - i)*t^(k - i), i, 0, k)")
+            .unwrap()
+            .to_string()
+    );
+    let e = read_formula(r"\int_{0}^{t} e^{\alpha x} x^{k} d x", &s).unwrap();
+    assert_eq!(
+        e.to_string(),
+        parse("int(exp(alpha*x)*x^k, x, 0, t)").unwrap().to_string()
+    );
+    let e = read_formula(r"\frac{\partial w}{\partial t}", &s).unwrap();
+    assert_eq!(e.to_string(), "diff(w, t)");
+}
+
+#[test]
+fn applications_and_the_symbol_table() {
+    let s = TexSymbols::default();
+    assert_eq!(
+        read_formula("w(x, y, t)", &s).unwrap().to_string(),
+        "{w(x,y,t)}"
+    );
+    same("2(v+1)", "2*(v + 1)");
+    let t = TexSymbols::new([
+        ("z(t)".to_string(), "z".to_string()),
+        (r"\tilde{E}".to_string(), "Eop".to_string()),
+    ]);
+    assert_eq!(
+        read_formula(r"z(t)^{2} \tilde{E}", &t).unwrap().to_string(),
+        "z^2*Eop"
+    );
+}
+
+#[test]
+fn errors_name_the_column_and_the_construct() {
+    let s = TexSymbols::default();
+    let e = read_formula(r"a + \sum_{k=0}^{\infty} a_{k}", &s).unwrap_err();
+    assert!(e.construct.contains("infinity"), "{e}");
+    assert_eq!(e.column, 17, "{e}");
+    let e = read_formula(r"\frac{a}{b", &s).unwrap_err();
+    assert!(e.construct.contains('}'), "{e}");
+    // nesting from a file from anyone: an error, not a stack overflow
+    let deep = format!("{}x{}", "{".repeat(5000), "}".repeat(5000));
+    let e = read_formula(&deep, &s).unwrap_err();
+    assert!(e.construct.contains("nested"), "{e}");
+    let deep = format!("{}x", r"\sqrt".repeat(5000));
+    assert!(read_formula(&deep, &s).is_err());
+    let deep = format!("{}x", "-".repeat(5000));
+    assert!(read_formula(&deep, &s).is_err());
+    let e = read_formula(r"a \star b", &s).unwrap_err();
+    assert!(e.construct.contains("\\star"), "{e}");
+}
+
+#[test]
+fn displays_split_into_rows_tags_and_relations() {
+    let rows = read_display(
+        "\\begin{align*}\n& A_{1}=E \\zeta \\tag{16}\\\\\n& A_{7}=\\frac{2}{\\pi \\tan \\theta}, \\quad x = 1\n\\end{align*}",
+        &TexSymbols::default(),
+    );
+    assert_eq!(rows.len(), 2);
+    assert_eq!(rows[0].tag.as_deref(), Some("16"));
+    assert_eq!(rows[1].relations.len(), 2);
+    let r = rows[1].relations[0].as_ref().expect("reads");
+    assert_eq!(r.rels, vec!["="]);
+    assert_eq!(r.sides[0].to_string(), "A7");
+}
+
+#[test]
+fn a_relation_tagged_on_its_middle_row_keeps_its_continuations() {
+    // 000's (22): the tag printed on the middle row of a relation over three rows; a row
+    // after it that is a relation of its own stays apart
+    let rows = read_display(
+        "& x=1+2 \\\\ & +3 \\tag{22} \\\\ & -4 \\\\ & -y=2",
+        &TexSymbols::default(),
+    );
+    assert_eq!(rows.len(), 2, "{rows:?}");
+    assert_eq!(rows[0].tag.as_deref(), Some("22"));
+    let r = rows[0].relations[0].as_ref().expect("reads");
+    assert_eq!(r.sides[1].eval(&|_| None), Ok(2.0));
+    assert_eq!(rows[1].tag, None);
+}
+
+#[test]
+fn a_spelling_may_stand_for_a_formula() {
+    let syms = TexSymbols::new([
+        ("E(k)".to_string(), "ellipe(k)".to_string()),
+        ("\\tilde{E}".to_string(), "Et".to_string()),
+    ]);
+    let e = read_formula("\\tilde{E} E(k)", &syms).expect("reads");
+    assert_eq!(e.to_string(), "Et*ellipe(k)");
+}
