@@ -111,38 +111,10 @@ fn default_dir(name: &str) -> PathBuf {
     }
 }
 
-fn run(args: Args) -> Result<bool> {
-    // claims other than the project's own write a report only where --out says
-    let custom = args.claims.is_some();
-    let write_reports = !custom || args.out.is_some();
-    let claims_dir = args.claims.unwrap_or_else(|| default_dir("verify"));
-    let out_dir = args.out.unwrap_or_else(|| default_dir("reports"));
-    // an interrupt before the final write leaves the reports as they were, and says so
-    #[cfg(unix)]
-    if write_reports && !args.check {
-        impactcheck::interrupt::install(
-            &format!(
-                "verify: interrupted by a signal before writing; {} is as it was\n",
-                out_dir.display()
-            ),
-            None,
-        );
-    }
-    let all = verify::load_claims(&claims_dir)
-        .with_context(|| format!("reading claims from {}", claims_dir.display()))?;
-    let papers = verify::select(&all, args.only.as_deref());
-    if papers.is_empty() {
-        bail!(
-            "no claims match --only {}; papers: {}",
-            args.only.unwrap_or_default(),
-            all.iter()
-                .map(|p| p.paper.clone())
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
-    }
-    // `check` claims name scenes relative to the folder above the claims folder
-    let root = claims_dir
+/// The folder that `check` claims name scenes from: the one above the claims folder (or above
+/// the claims file's folder).
+fn claims_root(claims_dir: &std::path::Path) -> PathBuf {
+    claims_dir
         .canonicalize()
         .ok()
         .map(|p| {
@@ -153,56 +125,72 @@ fn run(args: Args) -> Result<bool> {
             }
         })
         .and_then(|p| p.parent().map(|x| x.to_path_buf()))
-        .unwrap_or_else(|| PathBuf::from("."));
-    let progress = std::io::stderr().is_terminal();
-    // every file checked before any claim runs: a bad claim exits 2 with nothing run or written
-    verify::validate_all(&papers)?;
-    for p in &papers {
-        verify::coverage::check_equations(p, args.papers.as_deref())?;
-        verify::coverage::check_quotes(p, args.papers.as_deref())?;
-    }
-    let bar = if progress {
-        let b = indicatif::ProgressBar::new(papers.iter().map(|p| p.claim.len() as u64).sum());
-        b.set_style(
-            indicatif::ProgressStyle::with_template("verify [{bar:40}] {pos}/{len} claims: {msg}")
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        b
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
+        .unwrap_or_else(|| PathBuf::from("."))
+}
+
+/// The claims whose power this run measures: a sample (--power-sample), every claim (--power,
+/// or the default run that writes the project's reports), or none.
+fn measured_claims(
+    args: &Args,
+    papers: &[verify::PaperClaims],
+    write_reports: bool,
+) -> std::collections::BTreeSet<String> {
     let ids: Vec<String> = papers
         .iter()
         .flat_map(|p| p.claim.iter().map(|c| c.id.clone()))
         .collect();
-    let measured = match args.power_sample {
+    let custom = args.claims.is_some();
+    match args.power_sample {
         Some(n) => verify::power::pick(&ids, n, &args.power_seed),
         // the default reports always carry the power of every claim
         None if args.power || (write_reports && !custom && !args.check && args.only.is_none()) => {
             ids.iter().cloned().collect()
         }
         None => Default::default(),
-    };
-    // one run over all papers: every verdict, then the power of the measured claims
+    }
+}
+
+/// A progress bar over `total` claims on a terminal, hidden elsewhere.
+fn progress_bar(total: u64, progress: bool) -> indicatif::ProgressBar {
+    if !progress {
+        return indicatif::ProgressBar::hidden();
+    }
+    let b = indicatif::ProgressBar::new(total);
+    b.set_style(
+        indicatif::ProgressStyle::with_template("verify [{bar:40}] {pos}/{len} claims: {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    b
+}
+
+/// Every verdict, then the power of the `measured` claims, in one run over all papers; sorted
+/// by claim id.
+fn check_claims(
+    papers: &[verify::PaperClaims],
+    root: &std::path::Path,
+    measured: &std::collections::BTreeSet<String>,
+    progress: bool,
+) -> Result<Vec<verify::Outcome>> {
+    let bar = progress_bar(papers.iter().map(|p| p.claim.len() as u64).sum(), progress);
     bar.set_message(if measured.is_empty() {
         "checking".to_string()
     } else {
         format!("checking, then the power of {} claims", measured.len())
     });
     bar.enable_steady_tick(std::time::Duration::from_millis(500));
-    let mut outcomes = verify::run_measured(&papers, &root, verify::kinds::BUILTIN, &|id| {
+    let mut outcomes = verify::run_measured(papers, root, verify::kinds::BUILTIN, &|id| {
         measured.contains(id)
     })?;
     bar.inc(outcomes.len() as u64);
     bar.finish_and_clear();
     outcomes.sort_by(|a, b| a.id.cmp(&b.id));
-    let fresh = report::summary(&outcomes);
-    let format = match args.format {
-        None if !write_reports && !args.check => Some(Fmt::Text),
-        f => f,
-    };
+    Ok(outcomes)
+}
+
+/// The summary on stdout, as --format asks (text when nothing is written and no format given).
+fn print_summary(format: Option<Fmt>, fresh: &report::Summary) -> Result<()> {
     match format {
-        Some(Fmt::Json) => println!("{}", serde_json::to_string_pretty(&fresh)?),
+        Some(Fmt::Json) => println!("{}", serde_json::to_string_pretty(fresh)?),
         Some(Fmt::Text) => {
             for c in &fresh.claims {
                 println!(
@@ -216,74 +204,77 @@ fn run(args: Args) -> Result<bool> {
         }
         None => {}
     }
-    // --fail-on fails: the run goes on as usual, and its exit says whether a claim failed
+    Ok(())
+}
+
+/// --fail-on: whether the run passes its gate (false, naming them, when it fails on failing
+/// claims and some fail).
+fn gate(fail_on: FailOn, outcomes: &[verify::Outcome]) -> bool {
     let failing: Vec<&str> = outcomes
         .iter()
         .filter(|o| o.verdict == report::Verdict::Fails)
         .map(|o| o.id.as_str())
         .collect();
-    let gate = || {
-        if args.fail_on == FailOn::Fails && !failing.is_empty() {
-            eprintln!(
-                "verify --fail-on fails: {} claim(s) fail: {}",
-                failing.len(),
-                failing.join(", ")
-            );
-            false
-        } else {
-            true
-        }
-    };
-    let partial = args.only.is_some();
-    if args.check {
-        let path = args
-            .baseline
-            .unwrap_or_else(|| out_dir.join("summary.json"));
-        let text = std::fs::read_to_string(&path)
-            .with_context(|| format!("reading baseline {}", path.display()))?;
-        let baseline: report::Summary = serde_json::from_str(&text)
-            .with_context(|| format!("parsing baseline {}", path.display()))?;
-        let changes = report::diff(&baseline, &fresh, partial);
-        if changes.is_empty() {
-            eprintln!(
-                "verify --check: {} claims, no verdict or value changed against {}",
-                fresh.claims.len(),
-                path.display()
-            );
-            return Ok(gate());
-        }
+    if fail_on == FailOn::Fails && !failing.is_empty() {
         eprintln!(
-            "verify --check: {} change(s) against {}:",
-            changes.len(),
+            "verify --fail-on fails: {} claim(s) fail: {}",
+            failing.len(),
+            failing.join(", ")
+        );
+        false
+    } else {
+        true
+    }
+}
+
+/// --check: the fresh summary against the baseline; false, naming each change, when one moved.
+fn compare_with_baseline(
+    path: &std::path::Path,
+    fresh: &report::Summary,
+    partial: bool,
+) -> Result<bool> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("reading baseline {}", path.display()))?;
+    let baseline: report::Summary = serde_json::from_str(&text)
+        .with_context(|| format!("parsing baseline {}", path.display()))?;
+    let changes = report::diff(&baseline, fresh, partial);
+    if changes.is_empty() {
+        eprintln!(
+            "verify --check: {} claims, no verdict or value changed against {}",
+            fresh.claims.len(),
             path.display()
         );
-        for (id, what) in &changes {
-            eprintln!("  {id}: {what}");
-        }
-        eprintln!(
-            "run `cargo run --release --bin verify` and commit reports/ if the change is intended"
-        );
-        return Ok(false);
+        return Ok(true);
     }
-    if partial {
-        eprintln!(
-            "verify: --only ran {} claims; reports are written only by a full run",
-            outcomes.len()
-        );
-        return Ok(gate());
+    eprintln!(
+        "verify --check: {} change(s) against {}:",
+        changes.len(),
+        path.display()
+    );
+    for (id, what) in &changes {
+        eprintln!("  {id}: {what}");
     }
-    if !write_reports {
-        eprintln!(
-            "verify: {} claims checked; give --out DIR to write their report",
-            outcomes.len()
-        );
-        return Ok(gate());
-    }
-    let mut files = report::render(&verify::paper_infos(&papers), &outcomes);
+    eprintln!(
+        "run `cargo run --release --bin verify` and commit reports/ if the change is intended"
+    );
+    Ok(false)
+}
+
+/// Renders the reports (the coverage table in the index; for the project's own claims the
+/// work-precision diagrams) and writes them to `out_dir` atomically.
+fn write_reports(
+    args: &Args,
+    papers: &[verify::PaperClaims],
+    outcomes: &[verify::Outcome],
+    out_dir: &std::path::Path,
+    progress: bool,
+) -> Result<()> {
+    let custom = args.claims.is_some();
+    let mut files = report::render(&verify::paper_infos(papers), outcomes);
     // the coverage table opens the index, after its first paragraphs
     let coverage = verify::coverage::table(
-        &verify::coverage::compute(&papers, args.papers.as_deref()),
-        &outcomes,
+        &verify::coverage::compute(papers, args.papers.as_deref()),
+        outcomes,
     );
     if let Some((_, readme)) = files.iter_mut().find(|(n, _)| n == "README.md") {
         let at = readme
@@ -303,7 +294,7 @@ fn run(args: Args) -> Result<bool> {
     let kept: Vec<String> = if custom {
         Vec::new()
     } else {
-        std::fs::read_dir(&out_dir)
+        std::fs::read_dir(out_dir)
             .into_iter()
             .flatten()
             .flatten()
@@ -312,14 +303,14 @@ fn run(args: Args) -> Result<bool> {
             .collect()
     };
     report::keep_written_links(&mut files, &kept);
-    let write = || report::write_atomically(&out_dir, &files);
+    let write = || report::write_atomically(out_dir, &files);
     #[cfg(unix)]
     let written = impactcheck::interrupt::while_writing("verify", write);
     #[cfg(not(unix))]
     let written = write();
     written.with_context(|| format!("writing {}", out_dir.display()))?;
     let mut counts = std::collections::BTreeMap::new();
-    for o in &outcomes {
+    for o in outcomes {
         *counts.entry(o.verdict.as_str()).or_insert(0) += 1;
     }
     eprintln!(
@@ -332,7 +323,86 @@ fn run(args: Args) -> Result<bool> {
             .join(", "),
         out_dir.display()
     );
-    Ok(gate())
+    Ok(())
+}
+
+/// The run, in its steps: read and select the claims, validate every file, check every claim
+/// (and the power of those measured), print the summary, then compare it with the baseline
+/// (--check), stop (--only, or custom claims without --out), or write the reports.
+fn run(args: Args) -> Result<bool> {
+    // claims other than the project's own write a report only where --out says
+    let custom = args.claims.is_some();
+    let write = !custom || args.out.is_some();
+    let claims_dir = args.claims.clone().unwrap_or_else(|| default_dir("verify"));
+    let out_dir = args.out.clone().unwrap_or_else(|| default_dir("reports"));
+    // an interrupt before the final write leaves the reports as they were, and says so
+    #[cfg(unix)]
+    if write && !args.check {
+        impactcheck::interrupt::install(
+            &format!(
+                "verify: interrupted by a signal before writing; {} is as it was\n",
+                out_dir.display()
+            ),
+            None,
+        );
+    }
+    let all = verify::load_claims(&claims_dir)
+        .with_context(|| format!("reading claims from {}", claims_dir.display()))?;
+    let papers = verify::select(&all, args.only.as_deref());
+    if papers.is_empty() {
+        bail!(
+            "no claims match --only {}; papers: {}",
+            args.only.clone().unwrap_or_default(),
+            all.iter()
+                .map(|p| p.paper.clone())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    // `check` claims name scenes relative to the folder above the claims folder
+    let root = claims_root(&claims_dir);
+    let progress = std::io::stderr().is_terminal();
+    // every file checked before any claim runs: a bad claim exits 2 with nothing run or written
+    verify::validate_all(&papers)?;
+    for p in &papers {
+        verify::coverage::check_equations(p, args.papers.as_deref())?;
+        verify::coverage::check_quotes(p, args.papers.as_deref())?;
+    }
+    let measured = measured_claims(&args, &papers, write);
+    let outcomes = check_claims(&papers, &root, &measured, progress)?;
+    let fresh = report::summary(&outcomes);
+    print_summary(
+        match args.format {
+            None if !write && !args.check => Some(Fmt::Text),
+            f => f,
+        },
+        &fresh,
+    )?;
+    // --fail-on fails: the run goes on as usual, and its exit says whether a claim failed
+    let partial = args.only.is_some();
+    if args.check {
+        let path = args
+            .baseline
+            .clone()
+            .unwrap_or_else(|| out_dir.join("summary.json"));
+        return Ok(compare_with_baseline(&path, &fresh, partial)? && gate(args.fail_on, &outcomes));
+    }
+    if partial {
+        eprintln!(
+            "verify: --only ran {} claims; reports are written only by a full run",
+            outcomes.len()
+        );
+        return Ok(gate(args.fail_on, &outcomes));
+    }
+    if !write {
+        eprintln!(
+            "verify: {} claims checked; give --out DIR to write their report",
+            outcomes.len()
+        );
+        return Ok(gate(args.fail_on, &outcomes));
+    }
+    write_reports(&args, &papers, &outcomes, &out_dir, progress)?;
+    Ok(gate(args.fail_on, &outcomes))
 }
 
 fn main() -> ExitCode {
