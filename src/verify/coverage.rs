@@ -52,6 +52,22 @@ pub fn tags(text: &str) -> Vec<String> {
     out
 }
 
+/// The numbers of a paper's text, in order, once each: as LaTeX numbers them for a `.tex`
+/// source ([`read_document`]: automatic numbers, `\tag`s and numbers printed after a block),
+/// the `\tag{...}` labels for any other text (the seeds).
+pub fn numbers(file: &str, text: &str) -> Vec<String> {
+    if !file.ends_with(".tex") {
+        return tags(text);
+    }
+    let mut out: Vec<String> = Vec::new();
+    for n in crate::algebra::tex::document::read_document(text).numbers {
+        if !out.contains(&n) {
+            out.push(n);
+        }
+    }
+    out
+}
+
 /// The labels an `equation` field names: every `(...)` in it.
 pub fn labels(equation: &str) -> Vec<String> {
     let mut out = Vec::new();
@@ -97,7 +113,7 @@ pub fn check_equations(
     let Ok(text) = std::fs::read_to_string(&path) else {
         return Ok(None);
     };
-    let tagged = tags(&text);
+    let tagged = numbers(&p.file, &text);
     if p.equations == tagged {
         return Ok(Some(path));
     }
@@ -106,7 +122,7 @@ pub fn check_equations(
     Err(super::VerifyError::BadClaims {
         path: p.source.clone(),
         message: format!(
-            "equations: the list differs from the \\tag labels of {} (in their order: {:?}); not listed: {missing:?}; not in the text: {extra:?}",
+            "equations: the list differs from the numbers of {} (in their order: {:?}); not listed: {missing:?}; not in the text: {extra:?}",
             path.display(),
             tagged
         ),
@@ -190,7 +206,7 @@ pub fn check_quotes(p: &PaperClaims, papers: Option<&Path>) -> Result<(), super:
 /// its text (`None`: not found).
 pub fn of_text(p: &PaperClaims, text: Option<&str>, where_: Option<String>) -> Coverage {
     let equations = if p.equations.is_empty() {
-        text.map(tags).unwrap_or_default()
+        text.map(|t| numbers(&p.file, t)).unwrap_or_default()
     } else {
         p.equations.clone()
     };

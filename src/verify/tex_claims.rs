@@ -11,6 +11,7 @@
 
 use super::{PaperClaims, VerifyError};
 use crate::algebra::expr::Expr;
+use crate::algebra::tex::document::{Document, read_document};
 use crate::algebra::tex::{TexSymbols, read_display, read_formula};
 use crate::algebra::tex_matrix::{TexMatrix, factor_of, matrix_value, read_matrix_display};
 
@@ -31,6 +32,32 @@ fn display_blocks(text: &str) -> Vec<(Option<String>, String)> {
         }
     }
     out
+}
+
+/// The displays a claims file's printed sides are read from: the paper's own LaTeX source when
+/// its `file` is a `.tex` beside the claims file (read as LaTeX numbers it, [`read_document`]),
+/// else the extract `tex/<paper>.tex` (the seeds' cache). With the document when there is one,
+/// and the path read.
+pub fn paper_displays(
+    file: &PaperClaims,
+) -> Result<(Vec<(Option<String>, String)>, Option<Document>, std::path::PathBuf), String> {
+    let dir = file.source.parent().unwrap_or(std::path::Path::new("."));
+    if file.file.ends_with(".tex") {
+        let path = dir.join(&file.file);
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| format!("the paper's source {}: {e}", path.display()))?;
+        let doc = read_document(&text);
+        let blocks = doc
+            .displays
+            .iter()
+            .map(|d| (d.after.clone(), d.latex.clone()))
+            .collect();
+        return Ok((blocks, Some(doc), path));
+    }
+    let path = dir.join("tex").join(format!("{}.tex", file.paper));
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| format!("the paper's displays {}: {e}", path.display()))?;
+    Ok((display_blocks(&text), None, path))
 }
 
 fn bad(file: &PaperClaims, id: &str, field: &str, message: String) -> VerifyError {
@@ -66,12 +93,39 @@ fn from_paper(
                 .ok_or_else(|| err(format!("`{key}` is the equation's label, \"(16)\"")))
         })
     };
-    let (tag, after) = match (label("tag").transpose()?, label("after").transpose()?) {
-        (Some(t), None) => (t, false),
-        (None, Some(a)) => (a, true),
+    let (blocks, doc, path) = paper_displays(file).map_err(&err)?;
+    let by_label = match spec.get("label") {
+        None => None,
+        Some(v) => {
+            let name = v
+                .as_str()
+                .ok_or_else(|| err("`label` is the name of a \\label{..}, \"eq:restitution\"".into()))?;
+            let doc = doc.as_ref().ok_or_else(|| {
+                err(format!(
+                    "label = \"{name}\" needs the paper's LaTeX source (`file = \"paper.tex\"` beside the claims file); {} holds displays only",
+                    path.display()
+                ))
+            })?;
+            let labels: Vec<&str> = doc.labels.iter().map(|(l, _)| l.as_str()).collect();
+            Some(
+                doc.number_of(name)
+                    .ok_or_else(|| {
+                        err(format!(
+                            "no numbered relation has \\label{{{name}}} in {}; its labels: {}",
+                            path.display(),
+                            if labels.is_empty() { "none".to_string() } else { labels.join(", ") }
+                        ))
+                    })?
+                    .to_string(),
+            )
+        }
+    };
+    let (tag, after) = match (label("tag").transpose()?, label("after").transpose()?, by_label) {
+        (Some(t), None, None) | (None, None, Some(t)) => (t, false),
+        (None, Some(a), None) => (a, true),
         _ => {
             return Err(err(
-                "needs `tag` (the equation's label, \"(16)\") or `after` (the untagged displays after it), not both".into(),
+                "needs one of `tag` (the equation's number, \"(16)\"), `label` (its \\label, \"eq:restitution\") or `after` (the untagged displays after it)".into(),
             ));
         }
     };
@@ -91,17 +145,12 @@ fn from_paper(
     };
     if let Some(k) = spec
         .keys()
-        .find(|k| !["tag", "after", "lhs", "at", "form"].contains(&k.as_str()))
+        .find(|k| !["tag", "label", "after", "lhs", "at", "form"].contains(&k.as_str()))
     {
         return Err(err(format!(
-            "unknown key `{k}`; allowed: tag, after, lhs, at, form"
+            "unknown key `{k}`; allowed: tag, label, after, lhs, at, form"
         )));
     }
-    let dir = file.source.parent().unwrap_or(std::path::Path::new("."));
-    let path = dir.join("tex").join(format!("{}.tex", file.paper));
-    let text = std::fs::read_to_string(&path)
-        .map_err(|e| err(format!("the paper's displays {}: {e}", path.display())))?;
-    let blocks = display_blocks(&text);
     let tagged = |tex: &str, after_tag: &Option<String>| {
         tex.contains(&format!("\\tag{{{tag}}}")) || after_tag.as_deref() == Some(tag.as_str())
     };

@@ -27,6 +27,7 @@
 //! expressions) and `display` (environments, rows and their tags).
 
 mod display;
+pub mod document;
 mod lex;
 mod reader;
 

@@ -1,0 +1,457 @@
+//! A paper's own source, read as LaTeX numbers it: every display of a `.tex` file (or of a text
+//! with display math) with the number its reader sees.
+//!
+//! Displays: `$$ ... $$`, `\[ ... \]`, and the environments `equation`, `multline`, `align`,
+//! `gather`, `eqnarray`, `alignat`, `flalign` (starred or not; `aligned`, `split`, `gathered`
+//! inside are rows of their display). Numbers, as LaTeX gives them: `equation` and `multline`
+//! take one number; each row of `align`, `gather`, `eqnarray`, `alignat` and `flalign` takes
+//! one unless it says `\nonumber` or `\notag`; `\tag{A1}` is the row's own label and takes no
+//! number; starred environments, `$$` and `\[` take none, but a plain `(2.10)` printed on the
+//! line after a `$$` or `\[` block (as the seeds print their labels) is that block's number.
+//! With `\numberwithin{equation}{section}` the numbers are `section.n`, `n` restarting at each
+//! `\section`. `\label{..}` names the number of its row (or of its `equation`).
+//!
+//! The result is a list of displays in the form the display reader takes: each automatic
+//! number written into its row as `\tag{n}`, labels and `\nonumber` taken out, so that a claim
+//! finds a relation by the number printed beside it. Comments (`%` to the end of a line, not
+//! `\%`) are dropped first.
+
+use super::display::split_top;
+
+/// One display of a document: its LaTeX with every number as a `\tag{..}`, and the label
+/// printed on the line after it (`(2.10)` after a `$$` block), if any.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DocDisplay {
+    /// The display's LaTeX, environment kept, numbers as `\tag{..}`, labels taken out.
+    pub latex: String,
+    /// A number printed after the block rather than in it.
+    pub after: Option<String>,
+    /// The environment (`"equation"`, `"align*"`, `"$$"`, `"\\["`).
+    pub environment: String,
+}
+
+/// A paper's displays and the numbers and labels found in them.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Document {
+    /// Every display, in order.
+    pub displays: Vec<DocDisplay>,
+    /// Every number a reader sees (automatic, `\tag{..}`, or printed after a block), in order.
+    pub numbers: Vec<String>,
+    /// `(label, number)` for every `\label{..}` of a numbered row, in order.
+    pub labels: Vec<(String, String)>,
+}
+
+impl Document {
+    /// The number a `\label{..}` names.
+    pub fn number_of(&self, label: &str) -> Option<&str> {
+        self.labels
+            .iter()
+            .find(|(l, _)| l == label)
+            .map(|(_, n)| n.as_str())
+    }
+
+    /// The label of a number, if its row has one.
+    pub fn label_of(&self, number: &str) -> Option<&str> {
+        self.labels
+            .iter()
+            .find(|(_, n)| n == number)
+            .map(|(l, _)| l.as_str())
+    }
+}
+
+/// The numbered environments, each with whether every row takes a number (`align`) rather than
+/// the whole display one (`equation`).
+const NUMBERED: &[(&str, bool)] = &[
+    ("equation", false),
+    ("multline", false),
+    ("align", true),
+    ("gather", true),
+    ("eqnarray", true),
+    ("alignat", true),
+    ("flalign", true),
+];
+
+/// Text without its comments: `%` to the end of the line, unless escaped (`\%`).
+fn strip_comments(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for line in text.split_inclusive('\n') {
+        let mut prev = ' ';
+        let mut cut = None;
+        for (i, c) in line.char_indices() {
+            if c == '%' && prev != '\\' {
+                cut = Some(i);
+                break;
+            }
+            prev = c;
+        }
+        match cut {
+            Some(i) => {
+                out.push_str(&line[..i]);
+                if line.ends_with('\n') {
+                    out.push('\n');
+                }
+            }
+            None => out.push_str(line),
+        }
+    }
+    out
+}
+
+/// The argument of the command whose name ends at `at` (`\label{x}` with `at` after
+/// `\label`): the text inside the braces and the index after the closing brace.
+fn braced(text: &str, at: usize) -> Option<(String, usize)> {
+    let rest = &text[at..];
+    let open = rest.find(|c: char| !c.is_whitespace())?;
+    if !rest[open..].starts_with('{') {
+        return None;
+    }
+    let mut depth = 0;
+    for (i, c) in rest[open..].char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' => {
+                depth -= 1;
+                if depth == 0 {
+                    let inner = rest[open + 1..open + i].to_string();
+                    return Some((inner, at + open + i + 1));
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
+/// `row` without each `\name{..}` and the arguments taken out.
+fn take_command(row: &str, name: &str) -> (String, Vec<String>) {
+    let pat = format!("\\{name}");
+    let mut out = String::new();
+    let mut args = Vec::new();
+    let mut rest = row;
+    while let Some(i) = rest.find(&pat) {
+        let after = i + pat.len();
+        // `\tagx` is another command
+        if rest[after..].starts_with(|c: char| c.is_ascii_alphabetic()) {
+            out.push_str(&rest[..after]);
+            rest = &rest[after..];
+            continue;
+        }
+        match braced(rest, after) {
+            Some((arg, end)) => {
+                out.push_str(&rest[..i]);
+                args.push(arg.trim().to_string());
+                rest = &rest[end..];
+            }
+            None => {
+                out.push_str(&rest[..after]);
+                rest = &rest[after..];
+            }
+        }
+    }
+    out.push_str(rest);
+    (out, args)
+}
+
+/// `row` without `\nonumber` and `\notag`, and whether it had one.
+fn take_nonumber(row: &str) -> (String, bool) {
+    let mut had = false;
+    let mut out = row.to_string();
+    for w in ["\\nonumber", "\\notag"] {
+        if out.contains(w) {
+            had = true;
+            out = out.replace(w, " ");
+        }
+    }
+    (out, had)
+}
+
+/// The reading state: the equation counter, the section counter, and what was found.
+struct Numbering {
+    within_section: bool,
+    section: u32,
+    counter: u32,
+    doc: Document,
+}
+
+impl Numbering {
+    fn next(&mut self) -> String {
+        self.counter += 1;
+        if self.within_section {
+            format!("{}.{}", self.section, self.counter)
+        } else {
+            self.counter.to_string()
+        }
+    }
+
+    /// A row of a display: its `\tag`, else (when it takes one) the next number, written in as
+    /// `\tag{..}`; its labels recorded against that number.
+    fn row(&mut self, row: &str, numbered: bool) -> String {
+        let (row, labels) = take_command(row, "label");
+        let (row, nonumber) = take_nonumber(&row);
+        let (_, tags) = take_command(&row, "tag");
+        let (row, number) = match tags.first() {
+            Some(t) => (row.clone(), Some(t.clone())),
+            None if numbered && !nonumber && !row.trim().is_empty() => {
+                let n = self.next();
+                (format!("{} \\tag{{{n}}}", row.trim_end()), Some(n))
+            }
+            None => (row, None),
+        };
+        if let Some(n) = &number {
+            self.doc.numbers.push(n.clone());
+            for l in labels {
+                self.doc.labels.push((l, n.clone()));
+            }
+        }
+        row
+    }
+
+    /// A numbered or starred environment's body.
+    fn environment(&mut self, env: &str, body: &str) -> String {
+        let base = env.trim_end_matches('*');
+        let starred = env.ends_with('*');
+        let per_row = NUMBERED
+            .iter()
+            .find(|(e, _)| *e == base)
+            .is_some_and(|(_, r)| *r);
+        if per_row {
+            let rows: Vec<String> = split_top(body, &["\\\\"])
+                .iter()
+                .map(|r| self.row(r, !starred))
+                .collect();
+            return rows.join("\\\\");
+        }
+        // one number for the whole display, at its end; a \tag anywhere in it is its label
+        let (body, labels) = take_command(body, "label");
+        let (body, nonumber) = take_nonumber(&body);
+        let (_, tags) = take_command(&body, "tag");
+        let (body, number) = match tags.first() {
+            Some(t) => (body.clone(), Some(t.clone())),
+            None if !starred && !nonumber => {
+                let n = self.next();
+                (format!("{} \\tag{{{n}}}", body.trim_end()), Some(n))
+            }
+            None => (body, None),
+        };
+        if let Some(n) = number {
+            self.doc.numbers.push(n.clone());
+            for l in labels {
+                self.doc.labels.push((l, n.clone()));
+            }
+        }
+        body
+    }
+
+    /// A `$$` or `\[` block: its own `\tag`s count; labels go.
+    fn unnumbered(&mut self, body: &str) -> String {
+        split_top(body, &["\\\\"])
+            .iter()
+            .map(|r| self.row(r, false))
+            .collect::<Vec<_>>()
+            .join("\\\\")
+    }
+}
+
+/// A plain `(2.10)` (or `(A1)`) alone on the rest of the line after a block, with the index
+/// after it.
+fn number_after(text: &str, at: usize) -> Option<String> {
+    let rest = &text[at..];
+    let start = rest.find(|c: char| !c.is_whitespace())?;
+    // on the line of the closing delimiter or the next
+    if rest[..start].matches('\n').count() > 1 || !rest[start..].starts_with('(') {
+        return None;
+    }
+    let close = rest[start..].find(')')?;
+    let inner = &rest[start + 1..start + close];
+    let line_end = rest[start + close + 1..]
+        .find('\n')
+        .map_or(rest.len(), |k| start + close + 1 + k);
+    let ok = !inner.is_empty()
+        && inner.len() <= 12
+        && inner.chars().any(|c| c.is_ascii_digit())
+        && inner
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '.' || c == '-')
+        && rest[start + close + 1..line_end].trim().is_empty();
+    ok.then(|| inner.to_string())
+}
+
+/// The next thing the reader acts on at or after `from`: a display opening, a `\section`, or
+/// nothing.
+enum Next {
+    Dollars(usize),
+    Bracket(usize),
+    Begin(usize, String),
+    Section(usize),
+}
+
+fn next_item(text: &str, from: usize) -> Option<Next> {
+    let rest = &text[from..];
+    let mut best: Option<(usize, Next)> = None;
+    let mut offer = |i: usize, n: Next| {
+        if best.as_ref().is_none_or(|(b, _)| i < *b) {
+            best = Some((i, n));
+        }
+    };
+    if let Some(i) = rest.find("$$") {
+        offer(from + i, Next::Dollars(from + i));
+    }
+    if let Some(i) = rest.find("\\[") {
+        offer(from + i, Next::Bracket(from + i));
+    }
+    let mut search = 0;
+    while let Some(i) = rest[search..].find("\\begin{") {
+        let at = search + i;
+        if let Some((env, _)) = braced(rest, at + 6) {
+            let base = env.trim_end_matches('*');
+            if NUMBERED.iter().any(|(e, _)| *e == base) {
+                offer(from + at, Next::Begin(from + at, env));
+                break;
+            }
+        }
+        search = at + 7;
+    }
+    let mut search = 0;
+    while let Some(i) = rest[search..].find("\\section") {
+        let at = search + i;
+        let after = &rest[at + 8..];
+        if after.starts_with('{') || after.starts_with("*{") || after.starts_with('[') {
+            offer(from + at, Next::Section(from + at));
+            break;
+        }
+        search = at + 8;
+    }
+    best.map(|(_, n)| n)
+}
+
+/// Reads a paper's source: every display with its numbers and labels.
+pub fn read_document(source: &str) -> Document {
+    let text = strip_comments(source);
+    let mut st = Numbering {
+        within_section: text.contains("\\numberwithin{equation}{section}"),
+        section: 0,
+        counter: 0,
+        doc: Document::default(),
+    };
+    let mut pos = 0;
+    while let Some(item) = next_item(&text, pos) {
+        match item {
+            Next::Section(at) => {
+                // a starred section takes no number
+                if !text[at + 8..].starts_with('*') {
+                    st.section += 1;
+                    if st.within_section {
+                        st.counter = 0;
+                    }
+                }
+                pos = at + 8;
+            }
+            Next::Dollars(at) | Next::Bracket(at) => {
+                let dollars = matches!(item, Next::Dollars(_));
+                let close = if dollars { "$$" } else { "\\]" };
+                let Some(len) = text[at + 2..].find(close) else {
+                    break;
+                };
+                let body = &text[at + 2..at + 2 + len];
+                let end = at + 2 + len + 2;
+                let after = number_after(&text, end);
+                if let Some(n) = &after {
+                    st.doc.numbers.push(n.clone());
+                }
+                let latex = st.unnumbered(body);
+                st.doc.displays.push(DocDisplay {
+                    latex: latex.trim().to_string(),
+                    after,
+                    environment: (if dollars { "$$" } else { "\\[" }).to_string(),
+                });
+                pos = end;
+            }
+            Next::Begin(at, env) => {
+                let open = format!("\\begin{{{env}}}");
+                let close = format!("\\end{{{env}}}");
+                let start = at + open.len();
+                let Some(len) = text[start..].find(&close) else {
+                    break;
+                };
+                let body = st.environment(&env, &text[start..start + len]);
+                st.doc.displays.push(DocDisplay {
+                    latex: format!("{open}{body}{close}"),
+                    after: None,
+                    environment: env,
+                });
+                pos = start + len + close.len();
+            }
+        }
+    }
+    st.doc
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_as_latex_gives_them() {
+        let src = r"
+Intro $x$ and 50\% of it. % a comment with $$ x $$ in it
+\begin{equation}\label{eq:a} a = b \end{equation}
+\begin{equation*} c = d \end{equation*}
+\begin{align}
+e &= f \label{eq:e} \\
+g &= h \nonumber \\
+i &= j \notag \\
+k &= l \tag{A1} \\
+m &= n \label{eq:m}
+\end{align}
+$$ o = p $$
+(7.1)
+$$ q = r \tag{B} $$
+\[ s = t \]
+\begin{gather} u = v \\ w = x \end{gather}
+\begin{multline} y = z \\ + 1 \end{multline}
+\begin{eqnarray} aa &=& bb \\ cc &=& dd \nonumber \end{eqnarray}
+";
+        let d = read_document(src);
+        // by hand: equation 1; align rows e (2), g and i none, k A1, m (3); $$ (7.1) after;
+        // B; gather 4, 5; multline 6; eqnarray aa 7, cc none
+        assert_eq!(
+            d.numbers,
+            ["1", "2", "A1", "3", "7.1", "B", "4", "5", "6", "7"]
+        );
+        assert_eq!(d.number_of("eq:a"), Some("1"));
+        assert_eq!(d.number_of("eq:e"), Some("2"));
+        assert_eq!(d.number_of("eq:m"), Some("3"));
+        assert_eq!(d.label_of("3"), Some("eq:m"));
+        assert_eq!(d.displays.len(), 9);
+        assert!(d.displays[0].latex.contains("a = b \\tag{1}"), "{:?}", d.displays[0]);
+        assert!(!d.displays[0].latex.contains("label"));
+        assert!(!d.displays[1].latex.contains("\\tag"));
+        assert!(!d.displays[2].latex.contains("nonumber") && !d.displays[2].latex.contains("notag"));
+        assert_eq!(d.displays[3].after.as_deref(), Some("7.1"));
+        assert_eq!(d.displays[5].environment, "\\[");
+    }
+
+    #[test]
+    fn numbers_within_sections() {
+        let src = r"\numberwithin{equation}{section}
+\section{One} \begin{equation} a = b \end{equation}
+\section*{Unnumbered} \begin{equation} c = d \end{equation}
+\section{Two} \begin{equation} e = f \end{equation} \begin{equation} g = h \end{equation}";
+        assert_eq!(read_document(src).numbers, ["1.1", "1.2", "2.1", "2.2"]);
+    }
+
+    #[test]
+    fn a_number_after_a_block_is_one_on_its_own() {
+        assert_eq!(number_after("\n(2.10)\nNext", 0).as_deref(), Some("2.10"));
+        assert_eq!(number_after("  (A1)  \n", 0).as_deref(), Some("A1"));
+        // prose in parentheses, a later line, or text after it: not a number
+        assert_eq!(number_after("\n(see above)\n", 0), None);
+        assert_eq!(number_after("\n(3) and more\n", 0), None);
+        assert_eq!(number_after("\n\n\n(3)\n", 0), None);
+    }
+
+    #[test]
+    fn comments_go_but_an_escaped_percent_stays() {
+        assert_eq!(strip_comments("a % b\nc \\% d\n"), "a \nc \\% d\n");
+    }
+}
