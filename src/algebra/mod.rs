@@ -14,6 +14,7 @@ pub mod expo;
 pub mod expr;
 pub mod galerkin;
 pub mod identity21;
+pub mod infer;
 pub mod operator;
 pub mod poly;
 pub mod ratfunc;

@@ -2,7 +2,7 @@
 //! with the committed `reports/summary.json` and write nothing.
 
 use anyhow::{Context, Result, bail};
-use clap::{Parser, ValueEnum};
+use clap::{Parser, Subcommand, ValueEnum};
 use impactcheck::{report, verify};
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -27,9 +27,50 @@ enum Fmt {
     Json,
 }
 
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum AuditFmt {
+    Text,
+    Json,
+    Markdown,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// The units of every relation of a paper: consistent, inconsistent (the terms that
+    /// disagree and their units), undetermined (the symbols nothing fixes) or unreadable (the
+    /// construct the LaTeX reader lacks); the units of the other symbols inferred from the
+    /// relations.
+    Audit {
+        /// The paper: its LaTeX source (.tex), a text with display math ($$ ... $$), or a
+        /// displays extract of `%% block N` sections (verify/tex/*.tex).
+        paper: PathBuf,
+        /// A TOML file with [symbols] (name = "unit") and optionally [tex_symbols]; a claims
+        /// file serves as it is.
+        #[arg(long, value_name = "FILE")]
+        units: Option<PathBuf>,
+        /// text (a line per relation), json or markdown (a report: the inconsistent first).
+        #[arg(long, value_enum, default_value = "text")]
+        format: AuditFmt,
+    },
+    /// Print a claims file to start from: the header with the paper's numbers, [symbols] with
+    /// the declared and inferred units, and a dimension claim per readable numbered relation,
+    /// its printed side read from the paper (save it beside the paper).
+    Init {
+        /// The paper (as for audit).
+        paper: PathBuf,
+        /// The units file (as for audit).
+        #[arg(long, value_name = "FILE")]
+        units: Option<PathBuf>,
+        /// The paper's short name: the first part of every claim id.
+        #[arg(long = "paper", value_name = "ID")]
+        id: String,
+    },
+}
+
 #[derive(Parser)]
 #[command(
     name = "verify",
+    args_conflicts_with_subcommands = true,
     version,
     about = "Check every claim of every paper; write reports/ (or compare with it: --check)",
     long_about = "verify: the main job of impactcheck.\n\n\
@@ -54,6 +95,8 @@ enum Fmt {
         (a claims file, a scene, an option), with nothing written."
 )]
 struct Args {
+    #[command(subcommand)]
+    command: Option<Command>,
     /// Compare with the committed summary instead of writing reports.
     #[arg(long)]
     check: bool,
@@ -284,6 +327,8 @@ fn write_reports(
         readme.insert_str(at, &format!("{coverage}## Every claim\n\n"));
     }
     if !custom {
+        // the units of every relation of each paper, from its LaTeX and its claims' units
+        files.extend(verify::audit::paper_audits(papers));
         if progress {
             eprintln!("verify: work-precision diagrams ...");
         }
@@ -329,7 +374,65 @@ fn write_reports(
 /// The run, in its steps: read and select the claims, validate every file, check every claim
 /// (and the power of those measured), print the summary, then compare it with the baseline
 /// (--check), stop (--only, or custom claims without --out), or write the reports.
+/// `verify audit` and `verify init`: the paper read, its units audited, the audit or a claims
+/// file printed.
+fn run_paper(command: &Command) -> Result<bool> {
+    let (paper, units) = match command {
+        Command::Audit { paper, units, .. } | Command::Init { paper, units, .. } => (paper, units),
+    };
+    let text = std::fs::read_to_string(paper)
+        .with_context(|| format!("reading the paper {}", paper.display()))?;
+    let units = match units {
+        Some(u) => verify::audit::read_units(u)?,
+        None => Default::default(),
+    };
+    let (blocks, doc) = verify::audit::paper_blocks(&text);
+    if blocks.is_empty() {
+        bail!(
+            "{}: no display math found ($$ ... $$, \\[ ... \\], equation, align, gather, multline, eqnarray)",
+            paper.display()
+        );
+    }
+    let a = verify::audit::audit(&blocks, doc.as_ref(), &units);
+    let name = paper
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().to_string());
+    match command {
+        Command::Audit { format, .. } => match format {
+            AuditFmt::Text => print!("{}", verify::audit::to_text(&a)),
+            AuditFmt::Json => println!("{}", serde_json::to_string_pretty(&a)?),
+            AuditFmt::Markdown => print!("{}", verify::audit::to_markdown(&a, &name)),
+        },
+        Command::Init { id, .. } => {
+            let numbers = match &doc {
+                Some(d) => {
+                    let mut n: Vec<String> = Vec::new();
+                    for x in &d.numbers {
+                        if !n.contains(x) {
+                            n.push(x.clone());
+                        }
+                    }
+                    n
+                }
+                None => verify::coverage::tags(&text),
+            };
+            let title = doc
+                .as_ref()
+                .and_then(|_| verify::audit::title_of(&text))
+                .unwrap_or_else(|| name.clone());
+            print!(
+                "{}",
+                verify::audit::init_claims(&a, &numbers, id, &name, &title, &units)
+            );
+        }
+    }
+    Ok(true)
+}
+
 fn run(args: Args) -> Result<bool> {
+    if let Some(command) = &args.command {
+        return run_paper(command);
+    }
     // claims other than the project's own write a report only where --out says
     let custom = args.claims.is_some();
     let write = !custom || args.out.is_some();

@@ -6,6 +6,7 @@
 //! stated error.
 
 pub mod accuracy;
+pub mod audit;
 pub mod coverage;
 pub mod hard_cases;
 pub mod kinds;

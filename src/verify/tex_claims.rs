@@ -16,7 +16,7 @@ use crate::algebra::tex::{TexSymbols, read_display, read_formula};
 use crate::algebra::tex_matrix::{TexMatrix, factor_of, matrix_value, read_matrix_display};
 
 /// The blocks of a displays file: (the tag printed after the block, the LaTeX).
-fn display_blocks(text: &str) -> Vec<(Option<String>, String)> {
+pub(crate) fn display_blocks(text: &str) -> Vec<(Option<String>, String)> {
     let mut out: Vec<(Option<String>, String)> = Vec::new();
     for line in text.lines() {
         if let Some(head) = line.strip_prefix("%% block ") {

@@ -1,0 +1,738 @@
+//! Units inferred across a paper's relations from the units of a few symbols, the way unit
+//! checkers for programs infer them across a code base (CamFort's units-of-measure for Fortran,
+//! Phriky-Units for ROS C++), and the relations that break consistency named.
+//!
+//! A unit is a vector of rational exponents of kg, m and s ([`Unit`]). The exponents are
+//! linear in the formula: a product adds them, a quotient subtracts them, a rational power
+//! scales them, the terms of a sum and the sides of a relation are equal, and the argument of
+//! `exp`, `sin`, `ln` (and a symbolic exponent) is a pure number. So every formula's unit is an
+//! affine form $\sum_s a_s u_s + c$ in the unknown units $u_s$ of the undeclared symbols, with
+//! one rational coefficient $a_s$ for all three dimensions, and each relation gives equations
+//! $\sum_s a_s u_s = -c$: a linear system over the rationals with three right sides, solved
+//! exactly by elimination.
+//!
+//! One bad relation must not poison the rest: relations are added one at a time, those with
+//! the fewest undeclared symbols first (a relation of declared symbols only is a plain check),
+//! then in the order of the paper; a relation whose equations contradict what the system
+//! already fixes is `inconsistent` and adds nothing. A symbol's unit is determined when the
+//! system fixes it; a relation with a symbol nothing fixes is `undetermined`.
+//!
+//! Names: a function application read as an opaque symbol (`{w(x,y,t)}`) has the unit of its
+//! function (`w`); a dotted symbol (`zd`, `zdd` from `\dot{z}`, `\ddot{z}`) the unit of its
+//! base per second (per second squared), given as [`Relation::dots`].
+//!
+//! Written by hand: the system is small (tens of unknowns), must stay exact, and must say which
+//! relations fixed each unit; no crate does the bookkeeping.
+
+use super::expr::{Calc, Expr, Func, Op};
+use super::poly::Q;
+use super::units::Unit;
+use num_traits::{One, ToPrimitive, Zero};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// The unit of a formula as an affine form in the unknown units.
+#[derive(Clone, Debug, Default, PartialEq)]
+struct Form {
+    coeffs: BTreeMap<String, Q>,
+    konst: [Q; 3],
+}
+
+impl Form {
+    fn constant(u: Unit) -> Form {
+        Form {
+            coeffs: BTreeMap::new(),
+            konst: u.0.map(|r| Q::new((*r.numer()).into(), (*r.denom()).into())),
+        }
+    }
+
+    fn var(name: &str) -> Form {
+        Form {
+            coeffs: [(name.to_string(), Q::one())].into(),
+            konst: Default::default(),
+        }
+    }
+
+    /// `self + k o`.
+    fn plus(mut self, o: &Form, k: &Q) -> Form {
+        for (v, c) in &o.coeffs {
+            let e = self.coeffs.entry(v.clone()).or_insert_with(Q::zero);
+            *e += c * k;
+            if e.is_zero() {
+                self.coeffs.remove(v);
+            }
+        }
+        for (x, y) in self.konst.iter_mut().zip(&o.konst) {
+            *x += y * k;
+        }
+        self
+    }
+
+    fn scaled(&self, k: &Q) -> Form {
+        Form::default().plus(self, k)
+    }
+}
+
+/// A relation of the paper as the inference reads it.
+#[derive(Clone, Debug, Default)]
+pub struct Relation {
+    /// Its sides, left to right (each pair equal in unit).
+    pub sides: Vec<Expr>,
+    /// `(dotted, base, order)`: the symbol `dotted` is the `order`-th time derivative of `base`
+    /// (`("zd", "z", 1)` from `\dot{z}`).
+    pub dots: Vec<(String, String, u32)>,
+}
+
+/// What the inference says of one relation.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Status {
+    /// Every side and term agrees, every unit fixed.
+    Consistent,
+    /// The relation contradicts what the declared units and the other relations fix: the two
+    /// terms that disagree and the unit of each.
+    Inconsistent {
+        /// One term (or side), as text.
+        left: String,
+        /// Its unit under the inference (or the unit it would need).
+        left_unit: String,
+        /// The other term.
+        right: String,
+        /// Its unit.
+        right_unit: String,
+        /// What must agree: "the sides", "the terms of a sum", "the argument of exp".
+        what: String,
+    },
+    /// Consistent so far, but these symbols' units are fixed by nothing.
+    Undetermined(Vec<String>),
+}
+
+/// The unit found for a symbol.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SymbolUnit {
+    /// The symbol.
+    pub name: String,
+    /// Its unit, `None` when nothing fixes it.
+    pub unit: Option<Unit>,
+    /// Whether it was declared (else inferred).
+    pub declared: bool,
+    /// The relations (indices into the input) that fixed an inferred unit.
+    pub from: Vec<usize>,
+}
+
+/// The inference over a paper: a status per relation (in input order) and every symbol met.
+#[derive(Clone, Debug)]
+pub struct Inference {
+    /// One per relation given.
+    pub statuses: Vec<Status>,
+    /// Every symbol of the relations, declared or not, sorted by name.
+    pub symbols: Vec<SymbolUnit>,
+}
+
+/// The symbol a name's unit is that of: an opaque application `{w(x,y,t)}` is its function `w`.
+pub fn unit_name(s: &str) -> String {
+    if let Some(inner) = s.strip_prefix('{')
+        && let Some(k) = inner.find('(')
+        && k > 0
+        && inner[..k]
+            .chars()
+            .all(|c| c.is_alphanumeric() || c == '_')
+    {
+        return inner[..k].to_string();
+    }
+    s.to_string()
+}
+
+/// One equation: the unit of `left` equals that of `right`.
+#[derive(Clone, Debug)]
+struct Constraint {
+    left: (String, Form),
+    right: (String, Form),
+    what: String,
+}
+
+impl Constraint {
+    fn new(left: (String, Form), right: (String, Form), what: &str) -> Constraint {
+        Constraint {
+            left,
+            right,
+            what: what.to_string(),
+        }
+    }
+
+    /// `(coefficients, right side)` of `left - right = 0`.
+    fn equation(&self) -> (BTreeMap<String, Q>, [Q; 3]) {
+        let d = self.left.1.clone().plus(&self.right.1, &-Q::one());
+        (d.coeffs, d.konst.map(|c| -c))
+    }
+}
+
+/// The prefix of a bound variable's own unknown: `~2~x` is the variable `x` of the second
+/// integral or sum met (its unit is that of its bounds, whatever a symbol `x` elsewhere has).
+const LOCAL: char = '~';
+
+/// Whether an unknown is a bound variable's own.
+fn is_local(name: &str) -> bool {
+    name.starts_with(LOCAL)
+}
+
+/// Where [`walk`] is: the bound variables in scope (symbol, its unknown) and a counter for
+/// fresh ones.
+#[derive(Default)]
+struct Scope {
+    bound: Vec<(String, String)>,
+    fresh: usize,
+}
+
+/// The unit form of `e`, pushing the equations it needs to `out`.
+fn walk(e: &Expr, declared: &dyn Fn(&str) -> Option<Unit>, out: &mut Vec<Constraint>) -> Form {
+    walk_in(e, declared, out, &mut Scope::default())
+}
+
+fn walk_in(
+    e: &Expr,
+    declared: &dyn Fn(&str) -> Option<Unit>,
+    out: &mut Vec<Constraint>,
+    scope: &mut Scope,
+) -> Form {
+    let pure = |x: &Expr, f: Form, what: &str, out: &mut Vec<Constraint>| {
+        out.push(Constraint::new(
+            (x.to_string(), f),
+            ("1".into(), Form::default()),
+            what,
+        ));
+    };
+    match e {
+        Expr::Num(_) | Expr::Pi => Form::default(),
+        Expr::Sym(s) => {
+            if let Some((_, local)) = scope.bound.iter().rev().find(|(b, _)| b == s) {
+                return Form::var(local);
+            }
+            let name = unit_name(s);
+            match declared(&name) {
+                Some(u) => Form::constant(u),
+                None => Form::var(&name),
+            }
+        }
+        Expr::Neg(a) => walk_in(a, declared, out, scope),
+        Expr::Call(f, a) => {
+            let fa = walk_in(a, declared, out, scope);
+            match f {
+                Func::Sqrt => fa.scaled(&Q::new(1.into(), 2.into())),
+                Func::Abs => fa,
+                Func::Sign | Func::Heaviside => Form::default(),
+                _ => {
+                    pure(a, fa, &format!("the argument of {}", f.name()), out);
+                    Form::default()
+                }
+            }
+        }
+        Expr::Calc(c, body, x, extra) => {
+            // the variable of an integral with bounds and the index of a sum are bound: an
+            // unknown of their own
+            let bound = matches!(c, Calc::Sum) || (matches!(c, Calc::Int) && !extra.is_empty());
+            let fx = if bound {
+                scope.fresh += 1;
+                let local = format!("{LOCAL}{}{LOCAL}{x}", scope.fresh);
+                let fx = Form::var(&local);
+                if matches!(c, Calc::Sum) {
+                    pure(&Expr::Sym(x.clone()), fx.clone(), "the index of a sum", out);
+                }
+                scope.bound.push((x.clone(), local));
+                fx
+            } else {
+                walk_in(&Expr::Sym(x.clone()), declared, out, scope)
+            };
+            for v in extra {
+                let fv = walk_in(v, declared, out, scope);
+                // a literal 0 bound has every unit
+                if matches!(v, Expr::Num(c) if c.is_zero()) {
+                    continue;
+                }
+                out.push(Constraint::new(
+                    (x.clone(), fx.clone()),
+                    (v.to_string(), fv),
+                    "a variable and its bounds",
+                ));
+            }
+            let fb = walk_in(body, declared, out, scope);
+            if bound {
+                scope.bound.pop();
+            }
+            match c {
+                Calc::Diff => fb.plus(&fx, &-Q::one()),
+                Calc::Int => fb.plus(&fx, &Q::one()),
+                Calc::At | Calc::Sum => fb,
+            }
+        }
+        Expr::Bin(op, a, b) => {
+            let fa = walk_in(a, declared, out, scope);
+            let fb = walk_in(b, declared, out, scope);
+            match op {
+                Op::Add | Op::Sub => {
+                    // a literal 0 has every unit
+                    let zero = |x: &Expr| matches!(x, Expr::Num(c) if c.is_zero());
+                    if zero(a) {
+                        return fb;
+                    }
+                    if !zero(b) {
+                        out.push(Constraint::new(
+                            (a.to_string(), fa.clone()),
+                            (b.to_string(), fb),
+                            "the terms of a sum",
+                        ));
+                    }
+                    fa
+                }
+                Op::Mul => fa.plus(&fb, &Q::one()),
+                Op::Div => fa.plus(&fb, &-Q::one()),
+                Op::Pow => {
+                    pure(b, fb, "an exponent", out);
+                    match b.exact_constant() {
+                        Some(k) => fa.scaled(&k),
+                        // a dimensional base to a symbolic power (alpha^(i+1)) has a unit no
+                        // linear form gives: an unknown of its own, which nothing constrains
+                        None => {
+                            scope.fresh += 1;
+                            Form::var(&format!("{LOCAL}{}{LOCAL}power", scope.fresh))
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A row of the eliminated system: `pivot + sum coeffs_v v = rhs`, with the relations it came
+/// from.
+#[derive(Clone, Debug)]
+struct Row {
+    coeffs: BTreeMap<String, Q>,
+    rhs: [Q; 3],
+    from: BTreeSet<usize>,
+}
+
+/// The system in reduced echelon form: no pivot appears in another row.
+#[derive(Clone, Debug, Default)]
+struct System {
+    rows: BTreeMap<String, Row>,
+}
+
+impl System {
+    /// The equation reduced by the pivots: what is left, its right side and its relations.
+    fn reduce(
+        &self,
+        mut coeffs: BTreeMap<String, Q>,
+        mut rhs: [Q; 3],
+        mut from: BTreeSet<usize>,
+    ) -> (BTreeMap<String, Q>, [Q; 3], BTreeSet<usize>) {
+        let pivots: Vec<String> = coeffs
+            .keys()
+            .filter(|v| self.rows.contains_key(*v))
+            .cloned()
+            .collect();
+        for p in pivots {
+            let Some(c) = coeffs.remove(&p) else { continue };
+            let row = &self.rows[&p];
+            for (v, a) in &row.coeffs {
+                let e = coeffs.entry(v.clone()).or_insert_with(Q::zero);
+                *e -= &c * a;
+                if e.is_zero() {
+                    coeffs.remove(v);
+                }
+            }
+            for (x, y) in rhs.iter_mut().zip(&row.rhs) {
+                *x -= &c * y;
+            }
+            from.extend(row.from.iter().copied());
+        }
+        (coeffs, rhs, from)
+    }
+
+    /// Adds an equation; `Err` when it contradicts the system (0 = a non-zero unit).
+    fn add(&mut self, c: &Constraint, rel: usize) -> Result<(), ()> {
+        let (coeffs, rhs) = c.equation();
+        let (mut coeffs, mut rhs, from) = self.reduce(coeffs, rhs, [rel].into());
+        let Some((pivot, a)) = coeffs.iter().next().map(|(v, a)| (v.clone(), a.clone())) else {
+            return if rhs.iter().all(Zero::is_zero) {
+                Ok(())
+            } else {
+                Err(())
+            };
+        };
+        coeffs.remove(&pivot);
+        for v in coeffs.values_mut() {
+            *v /= &a;
+        }
+        for x in rhs.iter_mut() {
+            *x /= &a;
+        }
+        // the new pivot leaves every other row
+        for row in self.rows.values_mut() {
+            let Some(k) = row.coeffs.remove(&pivot) else {
+                continue;
+            };
+            for (v, b) in &coeffs {
+                let e = row.coeffs.entry(v.clone()).or_insert_with(Q::zero);
+                *e -= &k * b;
+                if e.is_zero() {
+                    row.coeffs.remove(v);
+                }
+            }
+            for (x, y) in row.rhs.iter_mut().zip(&rhs) {
+                *x -= &k * y;
+            }
+            row.from.extend(from.iter().copied());
+        }
+        self.rows.insert(pivot, Row { coeffs, rhs, from });
+        Ok(())
+    }
+
+    /// The unit of `v` when the system fixes it, with the relations that did.
+    fn fixed(&self, v: &str) -> Option<(Unit, &BTreeSet<usize>)> {
+        let row = self.rows.get(v)?;
+        if !row.coeffs.is_empty() {
+            return None;
+        }
+        Some((to_unit(&row.rhs)?, &row.from))
+    }
+
+    /// A form's unit under the system, or the form written with its unknowns.
+    fn show(&self, f: &Form) -> String {
+        let (coeffs, rhs, _) = self.reduce(
+            f.coeffs.clone(),
+            f.konst.clone().map(|c| -c),
+            BTreeSet::new(),
+        );
+        let konst = rhs.map(|c| -c);
+        let base = to_unit(&konst).map_or("?".to_string(), |u| u.to_string());
+        if coeffs.is_empty() {
+            return base;
+        }
+        let mut parts: Vec<String> = coeffs
+            .iter()
+            .map(|(v, a)| {
+                if a.is_one() {
+                    format!("[{v}]")
+                } else {
+                    format!("[{v}]^({a})")
+                }
+            })
+            .collect();
+        if base != "1" {
+            parts.insert(0, base);
+        }
+        parts.join(" ")
+    }
+}
+
+fn to_unit(x: &[Q; 3]) -> Option<Unit> {
+    let r = |q: &Q| {
+        Some(num_rational::Rational64::new(
+            q.numer().to_i64()?,
+            q.denom().to_i64()?,
+        ))
+    };
+    Some(Unit([r(&x[0])?, r(&x[1])?, r(&x[2])?]))
+}
+
+/// The equations of a relation: its sides pairwise equal, every term of every sum equal, every
+/// function argument pure, and each dotted symbol its base per second.
+fn constraints(r: &Relation, declared: &dyn Fn(&str) -> Option<Unit>) -> Vec<Constraint> {
+    let mut out = Vec::new();
+    let forms: Vec<Form> = r.sides.iter().map(|s| walk(s, declared, &mut out)).collect();
+    for k in 1..forms.len() {
+        // a side that is a literal 0 has every unit
+        if matches!(&r.sides[k], Expr::Num(c) if c.is_zero())
+            || matches!(&r.sides[k - 1], Expr::Num(c) if c.is_zero())
+        {
+            continue;
+        }
+        out.push(Constraint::new(
+            (r.sides[k - 1].to_string(), forms[k - 1].clone()),
+            (r.sides[k].to_string(), forms[k].clone()),
+            "the sides",
+        ));
+    }
+    let second = Form::constant(Unit::parse("s").expect("the second is a unit"));
+    for (dotted, base, order) in &r.dots {
+        let fd = walk(&Expr::Sym(dotted.clone()), declared, &mut Vec::new());
+        let fb = walk(&Expr::Sym(base.clone()), declared, &mut Vec::new());
+        out.push(Constraint::new(
+            (dotted.clone(), fd),
+            (
+                format!("{base}/s^{order}"),
+                fb.plus(&second, &-Q::from_integer((*order).into())),
+            ),
+            "a time derivative and its base",
+        ));
+    }
+    out
+}
+
+/// The undeclared symbols a relation's unit forms name.
+fn unknowns(cs: &[Constraint]) -> BTreeSet<String> {
+    cs.iter()
+        .flat_map(|c| c.left.1.coeffs.keys().chain(c.right.1.coeffs.keys()))
+        .cloned()
+        .collect()
+}
+
+/// Infers the units of every symbol of `relations` from the `declared` ones and judges each
+/// relation. `None` relations (unreadable) are passed over and get no status of their own
+/// (their index still holds a status, `Undetermined(vec![])`, which the caller replaces).
+pub fn infer(relations: &[Option<Relation>], declared: &BTreeMap<String, Unit>) -> Inference {
+    let decl = |s: &str| declared.get(s).copied();
+    let cs: Vec<Vec<Constraint>> = relations
+        .iter()
+        .map(|r| r.as_ref().map_or_else(Vec::new, |r| constraints(r, &decl)))
+        .collect();
+    let mut order: Vec<usize> = (0..relations.len())
+        .filter(|&i| relations[i].is_some())
+        .collect();
+    // definitions first (a bare undeclared symbol on the left: the paper's own statement of
+    // its unit), then the relations with the fewest unknowns, each group in the paper's order
+    let defines = |i: usize| {
+        relations[i].as_ref().is_some_and(|r| {
+            r.sides.len() == 2
+                && matches!(&r.sides[0], Expr::Sym(s) if declared.get(&unit_name(s)).is_none())
+        })
+    };
+    order.sort_by_key(|&i| (!defines(i), unknowns(&cs[i]).len(), i));
+    let mut system = System::default();
+    let mut rejected = BTreeSet::new();
+    for &i in &order {
+        let mut trial = system.clone();
+        if cs[i].iter().all(|c| trial.add(c, i).is_ok()) {
+            system = trial;
+        } else {
+            rejected.insert(i);
+        }
+    }
+    let statuses = (0..relations.len())
+        .map(|i| {
+            if rejected.contains(&i) {
+                return inconsistency(&system, &cs[i]);
+            }
+            let open: Vec<String> = unknowns(&cs[i])
+                .into_iter()
+                .filter(|v| !is_local(v) && system.fixed(v).is_none())
+                .collect();
+            if open.is_empty() && relations[i].is_some() {
+                Status::Consistent
+            } else {
+                Status::Undetermined(open)
+            }
+        })
+        .collect();
+    let mut names: BTreeSet<String> = cs
+        .iter()
+        .flatten()
+        .flat_map(|c| {
+            c.left
+                .1
+                .coeffs
+                .keys()
+                .chain(c.right.1.coeffs.keys())
+                .filter(|v| !is_local(v))
+                .cloned()
+        })
+        .collect();
+    for r in relations.iter().flatten() {
+        for s in &r.sides {
+            names.extend(s.symbols().iter().map(|x| unit_name(x)));
+        }
+    }
+    let symbols = names
+        .into_iter()
+        .map(|name| {
+            if let Some(u) = declared.get(&name) {
+                return SymbolUnit {
+                    name,
+                    unit: Some(*u),
+                    declared: true,
+                    from: vec![],
+                };
+            }
+            let fixed = system.fixed(&name);
+            SymbolUnit {
+                unit: fixed.map(|(u, _)| u),
+                from: fixed.map_or_else(Vec::new, |(_, f)| f.iter().copied().collect()),
+                name,
+                declared: false,
+            }
+        })
+        .collect();
+    Inference { statuses, symbols }
+}
+
+/// The first equation of a rejected relation that the final system contradicts, as the two
+/// terms and their units (the first that does not hold if none contradicts alone).
+fn inconsistency(system: &System, cs: &[Constraint]) -> Status {
+    let broken = cs
+        .iter()
+        .find(|c| {
+            let (coeffs, rhs) = c.equation();
+            let (rest, rhs, _) = system.reduce(coeffs, rhs, BTreeSet::new());
+            rest.is_empty() && rhs.iter().any(|x| !x.is_zero())
+        })
+        .or_else(|| {
+            cs.iter().find(|c| {
+                let (coeffs, rhs) = c.equation();
+                let (rest, rhs, _) = system.reduce(coeffs, rhs, BTreeSet::new());
+                !rest.is_empty() || rhs.iter().any(|x| !x.is_zero())
+            })
+        })
+        .or(cs.first());
+    match broken {
+        Some(c) => Status::Inconsistent {
+            left: c.left.0.clone(),
+            left_unit: system.show(&c.left.1),
+            right: c.right.0.clone(),
+            right_unit: system.show(&c.right.1),
+            what: c.what.clone(),
+        },
+        None => Status::Undetermined(vec![]),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::expr::parse;
+
+    fn rel(text: &str) -> Option<Relation> {
+        let sides = text.split('=').map(|s| parse(s).unwrap()).collect();
+        Some(Relation {
+            sides,
+            dots: vec![],
+        })
+    }
+
+    fn units(pairs: &[(&str, &str)]) -> BTreeMap<String, Unit> {
+        pairs
+            .iter()
+            .map(|(n, u)| (n.to_string(), Unit::parse(u).unwrap()))
+            .collect()
+    }
+
+    fn unit_of(inf: &Inference, name: &str) -> Option<String> {
+        inf.symbols
+            .iter()
+            .find(|s| s.name == name)
+            .and_then(|s| s.unit.map(|u| u.to_string()))
+    }
+
+    #[test]
+    fn units_flow_through_a_chain_of_relations() {
+        // F = k x, a = F/m, v = a t, E = m v^2/2: from m, x, t and F's unit, by hand
+        // k = N/m = kg s^-2, a = m s^-2, v = m s^-1, E = J
+        let rs = [
+            rel("F = k*x"),
+            rel("a = F/m"),
+            rel("v = a*t"),
+            rel("E = m*v^2/2"),
+        ];
+        let d = units(&[("m", "kg"), ("x", "m"), ("t", "s"), ("F", "N")]);
+        let inf = infer(&rs, &d);
+        assert!(inf.statuses.iter().all(|s| *s == Status::Consistent), "{:?}", inf.statuses);
+        assert_eq!(unit_of(&inf, "k").as_deref(), Some("kg s^-2"));
+        assert_eq!(unit_of(&inf, "v").as_deref(), Some("m s^-1"));
+        assert_eq!(unit_of(&inf, "E").as_deref(), Some("kg m^2 s^-2"));
+        // E's unit came from a = F/m, v = a t and its own relation, not from F = k x
+        let e = inf.symbols.iter().find(|s| s.name == "E").unwrap();
+        assert_eq!(e.from, vec![1, 2, 3]);
+        assert!(!e.declared);
+    }
+
+    #[test]
+    fn a_bad_relation_is_named_and_does_not_poison_the_rest() {
+        // the third says v = a t^2: wrong; the fourth fixes v from declared units alone
+        let rs = [
+            rel("F = k*x"),
+            rel("a = F/m"),
+            rel("v = a*t^2"),
+            rel("v = x/t"),
+            rel("E = m*v^2/2"),
+        ];
+        let d = units(&[("m", "kg"), ("x", "m"), ("t", "s"), ("F", "N")]);
+        let inf = infer(&rs, &d);
+        assert!(matches!(&inf.statuses[2], Status::Inconsistent { .. }), "{:?}", inf.statuses);
+        for i in [0, 1, 3, 4] {
+            assert_eq!(inf.statuses[i], Status::Consistent, "{i}: {:?}", inf.statuses);
+        }
+        assert_eq!(unit_of(&inf, "E").as_deref(), Some("kg m^2 s^-2"));
+        let Status::Inconsistent { left, left_unit, right, right_unit, what } = &inf.statuses[2]
+        else {
+            unreachable!()
+        };
+        assert_eq!((left.as_str(), left_unit.as_str()), ("v", "m s^-1"));
+        assert_eq!((right.as_str(), right_unit.as_str()), ("a*t^2", "m"));
+        assert_eq!(what, "the sides");
+    }
+
+    #[test]
+    fn sums_functions_and_powers_constrain() {
+        // x0 + v t: v is m/s; exp(-c t/m) makes c kg/s; sqrt(k/m) is 1/s; w^(3/2) scales
+        let rs = [
+            rel("y = x0 + v*t"),
+            rel("z = exp(-c*t/m)"),
+            rel("om = sqrt(kk/m)"),
+            rel("P = q*w^(3/2)"),
+        ];
+        let d = units(&[
+            ("m", "kg"),
+            ("x0", "m"),
+            ("t", "s"),
+            ("kk", "N/m"),
+            ("w", "m"),
+            ("P", "N"),
+        ]);
+        let inf = infer(&rs, &d);
+        assert_eq!(unit_of(&inf, "v").as_deref(), Some("m s^-1"));
+        assert_eq!(unit_of(&inf, "c").as_deref(), Some("kg s^-1"));
+        assert_eq!(unit_of(&inf, "z").as_deref(), Some("1"));
+        assert_eq!(unit_of(&inf, "om").as_deref(), Some("s^-1"));
+        assert_eq!(unit_of(&inf, "q").as_deref(), Some("kg m^(-1/2) s^-2"));
+        assert_eq!(inf.statuses[3], Status::Consistent);
+    }
+
+    #[test]
+    fn nothing_fixes_a_lone_ratio() {
+        // a = b c with only a known: b and c are open, named
+        let inf = infer(&[rel("a = b*c")], &units(&[("a", "m")]));
+        assert_eq!(
+            inf.statuses[0],
+            Status::Undetermined(vec!["b".into(), "c".into()])
+        );
+        assert_eq!(unit_of(&inf, "b"), None);
+    }
+
+    #[test]
+    fn applications_and_dots_take_their_base_unit() {
+        // m zdd = -P with z in m, P in N: m is kg; zd = z per second
+        let mut r = Relation {
+            sides: vec![
+                parse("m*zdd").unwrap(),
+                Expr::Neg(Box::new(Expr::Sym("{P(t)}".into()))),
+            ],
+            dots: vec![],
+        };
+        r.dots = vec![("zdd".into(), "z".into(), 2), ("zd".into(), "z".into(), 1)];
+        let inf = infer(&[Some(r)], &units(&[("z", "m"), ("P", "N")]));
+        assert_eq!(unit_of(&inf, "m").as_deref(), Some("kg"));
+        assert_eq!(unit_of(&inf, "zd").as_deref(), Some("m s^-1"));
+        assert_eq!(unit_name("{w(x,y,t)}"), "w");
+        assert_eq!(unit_name("{int_S w dS}"), "{int_S w dS}");
+    }
+
+    #[test]
+    fn a_declared_relation_that_is_wrong_is_inconsistent() {
+        let inf = infer(&[rel("F = m*x")], &units(&[("F", "N"), ("m", "kg"), ("x", "m")]));
+        let Status::Inconsistent { left_unit, right_unit, .. } = &inf.statuses[0] else {
+            panic!("{:?}", inf.statuses)
+        };
+        assert_eq!((left_unit.as_str(), right_unit.as_str()), ("kg m s^-2", "kg m"));
+        // and unreadable input has no status of its own
+        let inf = infer(&[None, rel("F = m*x")], &units(&[("F", "N")]));
+        assert_eq!(inf.statuses[0], Status::Undetermined(vec![]));
+    }
+}

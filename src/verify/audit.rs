@@ -1,0 +1,638 @@
+//! `verify audit`: the units of every relation of a paper, from its LaTeX and the units of a few
+//! symbols ([`crate::algebra::infer`]), and `verify init`: a claims file to start from.
+//!
+//! The paper is its LaTeX source (or a text with display math), read as LaTeX numbers it
+//! ([`read_document`]), or a displays extract of `%% block N` sections (`verify/tex/*.tex`, the
+//! seeds' cache). Every relation of every display, numbered or not, gets a status:
+//! `consistent`, `inconsistent` (the two terms whose units disagree, with their units),
+//! `undetermined` (the symbols whose units nothing fixes) or `unreadable` (the construct the
+//! LaTeX reader lacks). The units file is TOML with `[symbols]` (name = unit) and optionally
+//! `[tex_symbols]`: a claims file serves as it is.
+
+use super::tex_claims::display_blocks;
+use super::VerifyError;
+use crate::algebra::expr::Expr;
+use crate::algebra::infer::{Inference, Relation, Status, infer, unit_name};
+use crate::algebra::tex::document::{Document, read_document};
+use crate::algebra::tex::{TexSymbols, read_display, read_formula};
+use crate::algebra::units::Unit;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// The declared units and LaTeX spellings an audit starts from.
+#[derive(Clone, Debug, Default)]
+pub struct Units {
+    /// Declared units by symbol.
+    pub symbols: BTreeMap<String, Unit>,
+    /// The same as written (for the claims file `init` prints).
+    pub texts: BTreeMap<String, String>,
+    /// LaTeX spellings mapped to symbols.
+    pub tex_symbols: BTreeMap<String, String>,
+}
+
+/// Reads a units file: `[symbols]` (and `[tex_symbols]`) of any TOML file, a claims file
+/// included; every unit checked, a bad one an error naming the file and the symbol.
+pub fn read_units(path: &Path) -> Result<Units, VerifyError> {
+    let bad = |message: String| VerifyError::BadClaims {
+        path: path.to_path_buf(),
+        message,
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| bad(format!("cannot read it: {e}")))?;
+    let table: toml::Table = toml::from_str(&text).map_err(|e| bad(format!("not TOML: {e}")))?;
+    let mut out = Units::default();
+    let section = |name: &str| -> Result<BTreeMap<String, String>, VerifyError> {
+        match table.get(name) {
+            None => Ok(BTreeMap::new()),
+            Some(toml::Value::Table(t)) => t
+                .iter()
+                .map(|(k, v)| {
+                    v.as_str()
+                        .map(|s| (k.clone(), s.to_string()))
+                        .ok_or_else(|| bad(format!("{name}.{k} = {v}: a string (\"m/s\")")))
+                })
+                .collect(),
+            Some(other) => Err(bad(format!("`{name}` = {other}: a table [{name}]"))),
+        }
+    };
+    out.texts = section("symbols")?;
+    out.tex_symbols = section("tex_symbols")?;
+    if out.texts.is_empty() {
+        return Err(bad(
+            "no [symbols]: the units file declares the unit of at least one symbol (name = \"unit\")"
+                .into(),
+        ));
+    }
+    for (k, u) in &out.texts {
+        let unit = Unit::parse(u).map_err(|m| bad(format!("symbols.{k} = \"{u}\": {m}")))?;
+        out.symbols.insert(k.clone(), unit);
+    }
+    Ok(out)
+}
+
+/// One relation of the paper and what the audit says of it.
+#[derive(Clone, Debug, Serialize)]
+pub struct AuditRelation {
+    /// Its number as the paper's reader sees it (`"5"`, `"A1"`), `null` when unnumbered.
+    pub number: Option<String>,
+    /// Its `\label`, if any.
+    pub label: Option<String>,
+    /// The row's LaTeX.
+    pub latex: String,
+    /// `consistent`, `inconsistent`, `undetermined` or `unreadable`.
+    pub status: &'static str,
+    /// Why: the terms and units that disagree, the symbols nothing fixes, the construct the
+    /// reader lacks.
+    pub detail: String,
+    /// The relation as read (the formula language), when read.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub read: Option<String>,
+    /// Which relation of its row (0 for the first).
+    #[serde(skip)]
+    pub index_in_row: usize,
+    /// Whether a side reads a function application as an opaque symbol (`{z(0)}`).
+    #[serde(skip)]
+    pub opaque: bool,
+    /// The units of its sides, when fixed.
+    #[serde(skip)]
+    pub side_unit: Option<Unit>,
+}
+
+/// One symbol and its unit.
+#[derive(Clone, Debug, Serialize)]
+pub struct AuditSymbol {
+    /// The symbol.
+    pub name: String,
+    /// Its unit (`null`: nothing fixes it).
+    pub unit: Option<String>,
+    /// `declared` or `inferred`.
+    pub source: &'static str,
+    /// The relations that fixed an inferred unit: their numbers, or `display K` for one without.
+    pub from: Vec<String>,
+}
+
+/// The audit of a paper.
+#[derive(Clone, Debug, Serialize)]
+pub struct Audit {
+    /// Every relation, in the paper's order.
+    pub relations: Vec<AuditRelation>,
+    /// Every symbol met, sorted by name.
+    pub symbols: Vec<AuditSymbol>,
+}
+
+impl Audit {
+    /// How many relations have each status.
+    pub fn counts(&self) -> BTreeMap<&'static str, usize> {
+        let mut c = BTreeMap::new();
+        for r in &self.relations {
+            *c.entry(r.status).or_insert(0) += 1;
+        }
+        c
+    }
+}
+
+/// A paper's displays: from a displays extract (`%% block N` sections) or from its source.
+pub fn paper_blocks(text: &str) -> (Vec<(Option<String>, String)>, Option<Document>) {
+    if text.lines().any(|l| l.starts_with("%% block ")) {
+        return (display_blocks(text), None);
+    }
+    let doc = read_document(text);
+    let blocks = doc
+        .displays
+        .iter()
+        .map(|d| (d.after.clone(), d.latex.clone()))
+        .collect();
+    (blocks, Some(doc))
+}
+
+/// `(dotted, base, order)` of every `\dot{..}` and `\ddot{..}` of `tex`.
+fn dots(tex: &str, syms: &TexSymbols) -> Vec<(String, String, u32)> {
+    let mut out = Vec::new();
+    for (cmd, order, suffix) in [("\\ddot{", 2, "dd"), ("\\dot{", 1, "d")] {
+        let mut rest = tex;
+        while let Some(i) = rest.find(cmd) {
+            rest = &rest[i + cmd.len()..];
+            let Some(end) = rest.find('}') else { break };
+            if let Ok(Expr::Sym(s)) = read_formula(&rest[..end], syms) {
+                let base = unit_name(&s);
+                let d = (format!("{base}{suffix}"), base, order);
+                if !out.contains(&d) {
+                    out.push(d);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Audits the relations of `blocks` with the units given.
+pub fn audit(
+    blocks: &[(Option<String>, String)],
+    doc: Option<&Document>,
+    units: &Units,
+) -> Audit {
+    let syms = TexSymbols::new(units.tex_symbols.clone());
+    let mut rels: Vec<AuditRelation> = Vec::new();
+    let mut inputs: Vec<Option<Relation>> = Vec::new();
+    for (after, tex) in blocks {
+        for row in read_display(tex, &syms) {
+            let number = row.tag.clone().or_else(|| after.clone());
+            let label = number
+                .as_deref()
+                .and_then(|n| doc.and_then(|d| d.label_of(n)))
+                .map(str::to_string);
+            let row_dots = dots(&row.tex, &syms);
+            for (j, rel) in row.relations.iter().enumerate() {
+                let base = AuditRelation {
+                    number: number.clone(),
+                    label: label.clone(),
+                    latex: row.tex.clone(),
+                    status: "unreadable",
+                    detail: String::new(),
+                    read: None,
+                    index_in_row: j,
+                    opaque: false,
+                    side_unit: None,
+                };
+                match rel {
+                    Err(e) => {
+                        rels.push(AuditRelation {
+                            detail: format!("the LaTeX reader: {e}"),
+                            ..base
+                        });
+                        inputs.push(None);
+                    }
+                    // a bare formula is no relation
+                    Ok(r) if r.sides.len() < 2 => {}
+                    Ok(r) => {
+                        let read = r
+                            .sides
+                            .iter()
+                            .map(ToString::to_string)
+                            .collect::<Vec<_>>()
+                            .join(" = ");
+                        let opaque = r
+                            .sides
+                            .iter()
+                            .any(|s| s.symbols().iter().any(|x| x.starts_with('{')));
+                        rels.push(AuditRelation {
+                            read: Some(read),
+                            opaque,
+                            ..base
+                        });
+                        inputs.push(Some(Relation {
+                            sides: r.sides.clone(),
+                            dots: row_dots.clone(),
+                        }));
+                    }
+                }
+            }
+        }
+    }
+    operator_images(&mut inputs);
+    let inf = infer(&inputs, &units.symbols);
+    judge(&mut rels, &inputs, &inf, units);
+    let place = |i: usize| {
+        rels[i]
+            .number
+            .as_ref()
+            .map_or_else(|| format!("unnumbered: {}", short(&rels[i].latex)), |n| n.clone())
+    };
+    let symbols = inf
+        .symbols
+        .iter()
+        .map(|s| AuditSymbol {
+            name: s.name.clone(),
+            unit: s.unit.map(|u| u.to_string()),
+            source: if s.declared { "declared" } else { "inferred" },
+            from: {
+                let mut f: Vec<String> = s.from.iter().map(|&i| place(i)).collect();
+                f.dedup();
+                f
+            },
+        })
+        .collect();
+    Audit {
+        relations: rels,
+        symbols,
+    }
+}
+
+/// An application whose arguments name fields (`L(w, F)`, where `w` is applied elsewhere as
+/// `w(x, y, t)`) is an operator's image: its unit depends on its arguments, so each spelling is
+/// an unknown of its own (`{op L(w,F)}`), where `P(t)` and `P(0)` share the unit of `P`.
+fn operator_images(inputs: &mut [Option<Relation>]) {
+    let apps = |r: &Relation| -> Vec<String> {
+        r.sides
+            .iter()
+            .flat_map(|e| e.symbols())
+            .filter(|s| s.starts_with('{') && unit_name(s) != *s)
+            .collect()
+    };
+    let fields: std::collections::BTreeSet<String> = inputs
+        .iter()
+        .flatten()
+        .flat_map(apps)
+        .map(|s| unit_name(&s))
+        .collect();
+    let args_of = |s: &str| -> Vec<String> {
+        let inner = s.trim_start_matches('{').trim_end_matches('}');
+        inner
+            .split_once('(')
+            .map(|(_, a)| a.trim_end_matches(')'))
+            .unwrap_or_default()
+            .split(',')
+            .map(|a| a.trim().to_string())
+            .collect()
+    };
+    for r in inputs.iter_mut().flatten() {
+        for side in r.sides.iter_mut() {
+            *side = side.substitute(&|s: &str| {
+                (s.starts_with('{') && args_of(s).iter().any(|a| fields.contains(a)))
+                    .then(|| Expr::Sym(format!("{{op {}", &s[1..])))
+            });
+        }
+    }
+}
+
+/// The first 40 characters of a relation's LaTeX.
+fn short(tex: &str) -> String {
+    let t: String = tex.chars().take(40).collect();
+    if t.len() < tex.len() {
+        format!("{t}...")
+    } else {
+        t
+    }
+}
+
+/// Each readable relation's status and detail from the inference.
+fn judge(rels: &mut [AuditRelation], inputs: &[Option<Relation>], inf: &Inference, units: &Units) {
+    let unit_of = |name: &str| {
+        units.symbols.get(name).copied().or_else(|| {
+            inf.symbols
+                .iter()
+                .find(|s| s.name == name)
+                .and_then(|s| s.unit)
+        })
+    };
+    for (i, r) in rels.iter_mut().enumerate() {
+        let Some(input) = &inputs[i] else { continue };
+        r.side_unit =
+            crate::algebra::units::dimension(&input.sides[0], &|s| unit_of(&unit_name(s))).ok();
+        match &inf.statuses[i] {
+            Status::Consistent => {
+                r.status = "consistent";
+                r.detail = r
+                    .side_unit
+                    .map_or_else(String::new, |u| format!("every side in {u}"));
+            }
+            Status::Inconsistent {
+                left,
+                left_unit,
+                right,
+                right_unit,
+                what,
+            } => {
+                r.status = "inconsistent";
+                r.detail = match term_groups(input, &unit_of) {
+                    Some(groups) => groups,
+                    None => {
+                        format!("`{left}` is {left_unit} but `{right}` is {right_unit} ({what})")
+                    }
+                };
+            }
+            Status::Undetermined(open) => {
+                r.status = "undetermined";
+                r.detail = format!("nothing fixes the unit of {}", open.join(", "));
+            }
+        }
+    }
+}
+
+/// The top-level terms of a relation's sides grouped by unit, when they fall in more than one
+/// group (`in N: A3*f, P; in kg m: A1*(..)*f`): the terms whose units disagree, each with its
+/// unit. `None` when every top-level term has one unit (the fault is inside a term).
+fn term_groups(r: &Relation, unit_of: &dyn Fn(&str) -> Option<Unit>) -> Option<String> {
+    fn terms(e: &Expr, out: &mut Vec<Expr>) {
+        match e {
+            Expr::Bin(crate::algebra::expr::Op::Add | crate::algebra::expr::Op::Sub, a, b) => {
+                terms(a, out);
+                terms(b, out);
+            }
+            Expr::Neg(a) => terms(a, out),
+            // a literal 0 has every unit
+            Expr::Num(c) if num_traits::Zero::is_zero(c) => {}
+            other => out.push(other.clone()),
+        }
+    }
+    let mut all = Vec::new();
+    for s in &r.sides {
+        terms(s, &mut all);
+    }
+    let mut groups: Vec<(String, Vec<String>)> = Vec::new();
+    for t in &all {
+        let u = crate::algebra::units::dimension(t, &|s| unit_of(&unit_name(s)))
+            .map_or_else(|_| "a unit nothing fixes".to_string(), |u| u.to_string());
+        match groups.iter_mut().find(|(g, _)| *g == u) {
+            Some((_, v)) => v.push(format!("`{t}`")),
+            None => groups.push((u, vec![format!("`{t}`")])),
+        }
+    }
+    if groups.iter().filter(|(u, _)| u != "a unit nothing fixes").count() < 2 {
+        return None;
+    }
+    Some(
+        groups
+            .iter()
+            .map(|(u, ts)| format!("in {u}: {}", ts.join(", ")))
+            .collect::<Vec<_>>()
+            .join("; "),
+    )
+}
+
+/// The audit as text: a line per relation, then the symbols.
+pub fn to_text(a: &Audit) -> String {
+    let mut s = String::new();
+    for r in &a.relations {
+        s.push_str(&format!(
+            "{:<10} {:<13} {}  {}\n",
+            r.number.as_deref().map_or("-".to_string(), |n| format!("({n})")),
+            r.status,
+            short(&r.latex),
+            r.detail
+        ));
+    }
+    s.push_str("\nsymbols:\n");
+    for y in &a.symbols {
+        s.push_str(&format!(
+            "  {:<16} {:<22} {}{}\n",
+            y.name,
+            y.unit.as_deref().unwrap_or("?"),
+            y.source,
+            if y.from.is_empty() {
+                String::new()
+            } else {
+                format!(" from {}", y.from.join(", "))
+            }
+        ));
+    }
+    let counts: Vec<String> = a.counts().iter().map(|(k, v)| format!("{v} {k}")).collect();
+    s.push_str(&format!("\n{} relations: {}\n", a.relations.len(), counts.join(", ")));
+    s
+}
+
+/// The audit as a Markdown report: the inconsistent relations first, with their LaTeX and the
+/// terms that disagree; then every relation; then the symbols.
+pub fn to_markdown(a: &Audit, title: &str) -> String {
+    let esc = |t: &str| t.replace('|', "\\|").replace('\n', " ");
+    let counts: Vec<String> = a.counts().iter().map(|(k, v)| format!("{v} {k}")).collect();
+    let mut s = format!(
+        "# Units audit: {title}\n\n{} relations: {}. Units of the symbols not declared are inferred from the relations (`verify audit`); a relation is inconsistent when it contradicts what the declared units and the other relations fix.\n\n",
+        a.relations.len(),
+        counts.join(", ")
+    );
+    let bad: Vec<&AuditRelation> = a
+        .relations
+        .iter()
+        .filter(|r| r.status == "inconsistent")
+        .collect();
+    s.push_str("## Inconsistent relations\n\n");
+    if bad.is_empty() {
+        s.push_str("None.\n\n");
+    }
+    for r in bad {
+        s.push_str(&format!(
+            "- **{}**: $${}$$\n  {}\n",
+            r.number.as_deref().map_or("unnumbered".to_string(), |n| format!("({n})")),
+            r.latex.trim(),
+            r.detail
+        ));
+    }
+    s.push_str("\n## Every relation\n\n| number | status | LaTeX | detail |\n|---|---|---|---|\n");
+    for r in &a.relations {
+        s.push_str(&format!(
+            "| {} | {} | `{}` | {} |\n",
+            r.number.as_deref().map_or("-".to_string(), |n| format!("({n})")),
+            r.status,
+            esc(&short(&r.latex)),
+            esc(&r.detail)
+        ));
+    }
+    s.push_str("\n## Symbols\n\n| symbol | unit | source | from |\n|---|---|---|---|\n");
+    for y in &a.symbols {
+        s.push_str(&format!(
+            "| `{}` | {} | {} | {} |\n",
+            esc(&y.name),
+            y.unit.as_deref().unwrap_or("not fixed"),
+            y.source,
+            esc(&y.from.join(", "))
+        ));
+    }
+    s
+}
+
+/// A claims file to start from: the header (the `equations` list from the numbers found),
+/// `[symbols]` with the declared and inferred units, and a `dimension` claim per readable
+/// numbered relation whose units are all fixed, its printed side read from the paper.
+pub fn init_claims(
+    a: &Audit,
+    doc_numbers: &[String],
+    id: &str,
+    file: &str,
+    title: &str,
+    units: &Units,
+) -> String {
+    let q = |t: &str| format!("{t:?}");
+    let mut s = format!(
+        "# A claims file to start from, written by `verify init` from {file}: save it beside the paper\n# (printed_from reads the paper from this file's folder), then add the model and identity claims.\npaper = {}\ntitle = {}\nfile = {}\nreport = {}\nequations = [{}]\n\n[symbols]\n",
+        q(id),
+        q(title),
+        q(file),
+        q(&format!("{id}.md")),
+        doc_numbers.iter().map(|n| q(n)).collect::<Vec<_>>().join(", ")
+    );
+    for y in &a.symbols {
+        if y.name.starts_with('{') {
+            continue;
+        }
+        match (&y.unit, y.source) {
+            (Some(_), "declared") => {
+                let written = units.texts.get(&y.name).cloned().unwrap_or_default();
+                s.push_str(&format!("{} = {}    # declared\n", key(&y.name), q(&written)));
+            }
+            (Some(u), _) => s.push_str(&format!(
+                "{} = {}    # inferred from {}\n",
+                key(&y.name),
+                q(u),
+                y.from.join(", ")
+            )),
+            (None, _) => s.push_str(&format!("# {} = ?    # nothing fixes its unit\n", key(&y.name))),
+        }
+    }
+    if !units.tex_symbols.is_empty() {
+        s.push_str("\n[tex_symbols]\n");
+        for (k, v) in &units.tex_symbols {
+            s.push_str(&format!("{} = {}\n", q(k), q(v)));
+        }
+    }
+    let mut seen = std::collections::BTreeSet::new();
+    for r in &a.relations {
+        let Some(n) = &r.number else { continue };
+        if r.index_in_row != 0 || !seen.insert(n.clone()) {
+            continue;
+        }
+        let why_not = match r.status {
+            "unreadable" => Some(format!("unreadable: {}", r.detail)),
+            "undetermined" => Some(r.detail.clone()),
+            _ if r.opaque => Some(
+                "reads a function application as an opaque symbol; map its spelling in [tex_symbols] (\"z(t)\" = \"z\")"
+                    .into(),
+            ),
+            _ => None,
+        };
+        if let Some(w) = why_not {
+            s.push_str(&format!("\n# ({n}): no claim: {w}\n"));
+            continue;
+        }
+        // an inconsistent relation whose left side has no single unit: the unit of the term
+        // its detail names first
+        let expect = r
+            .side_unit
+            .map_or_else(|| left_unit(r), |u| u.to_string());
+        let slug: String = n
+            .chars()
+            .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+            .collect();
+        s.push_str(&format!(
+            "\n[[claim]]\nid = {}\nequation = {}\nreading = {}\nkind = \"dimension\"\nprinted_from = {{ tag = {}, form = \"difference\" }}\nexpect = {}\n",
+            q(&format!("{id}.eq{slug}.units")),
+            q(&format!("({n})")),
+            q(&format!(
+                "({n}) is dimensionally consistent: left minus right in {expect} ({})",
+                r.status
+            )),
+            q(&format!("({n})")),
+            q(&expect)
+        ));
+    }
+    s
+}
+
+/// The unit of an inconsistent relation's left side, from its detail (`` `v` is m s^-1 but ``).
+fn left_unit(r: &AuditRelation) -> String {
+    r.detail
+        .split(" is ")
+        .nth(1)
+        .and_then(|t| t.split(" but ").next())
+        .map_or_else(|| "1".to_string(), |u| u.to_string())
+}
+
+/// A TOML key: bare when it can be, quoted otherwise.
+fn key(name: &str) -> String {
+    if name
+        .chars()
+        .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+    {
+        name.to_string()
+    } else {
+        format!("{name:?}")
+    }
+}
+
+/// The units a claims file declares (`[symbols]` that parse as units, `[tex_symbols]`).
+pub fn units_of_claims(p: &super::PaperClaims) -> Units {
+    let mut u = Units {
+        tex_symbols: p.tex_symbols.clone(),
+        ..Units::default()
+    };
+    for (k, t) in &p.symbols {
+        if let Ok(unit) = Unit::parse(t) {
+            u.symbols.insert(k.clone(), unit);
+            u.texts.insert(k.clone(), t.clone());
+        }
+    }
+    u
+}
+
+/// The audit of every paper whose displays are found (its `.tex` source, or the extract
+/// `tex/<paper>.tex` beside its claims file) with the units of its claims file:
+/// `audit/<paper>.md` and `audit/<paper>.json` under the reports folder.
+pub fn paper_audits(papers: &[super::PaperClaims]) -> Vec<(String, String)> {
+    let mut files = Vec::new();
+    for p in papers {
+        let Ok((blocks, doc, _)) = super::tex_claims::paper_displays(p) else {
+            continue;
+        };
+        let a = audit(&blocks, doc.as_ref(), &units_of_claims(p));
+        files.push((
+            format!("audit/{}.md", p.paper),
+            to_markdown(&a, &format!("{} ({})", p.title, p.paper)),
+        ));
+        files.push((
+            format!("audit/{}.json", p.paper),
+            serde_json::to_string_pretty(&a).unwrap_or_default() + "\n",
+        ));
+    }
+    files
+}
+
+/// The `\title{..}` of a LaTeX source, on one line.
+pub fn title_of(text: &str) -> Option<String> {
+    let at = text.find("\\title")?;
+    let rest = &text[at + 6..];
+    let rest = rest.trim_start().strip_prefix('{')?;
+    let mut depth = 1;
+    for (i, c) in rest.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' => {
+                depth -= 1;
+                if depth == 0 {
+                    return Some(rest[..i].split_whitespace().collect::<Vec<_>>().join(" "));
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
