@@ -100,10 +100,11 @@ fn the_seeds_display_equations_are_read() {
     // measured when the reader was written: 48 relations not read (242 of 290; 239 of 287 since
     // the continuation rows of 000's (22) and (23), tagged on a middle row, join their
     // relation; 243 of 285 since matrices are read: 002's (2.5), the B~ after (3.9) and the
-    // two displays before (4.8), whose matrix rows were counted as relations of their own); more
-    // unread relations is a regression
-    assert!(total - read <= 42, "read {read} of {total}");
-    assert!(total >= 285, "fewer relations found: {total}");
+    // two displays before (4.8), whose matrix rows were counted as relations of their own; 253
+    // of 284 since the spacing `\,` no longer splits a row: 002's (2.6) `m\rho^2 \,\Omega = ..`
+    // was two relations, `m\rho^2 \` and `\Omega = ..`); more unread relations is a regression
+    assert!(total - read <= 31, "read {read} of {total}");
+    assert!(total >= 284, "fewer relations found: {total}");
 }
 
 #[test]

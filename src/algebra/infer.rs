@@ -41,7 +41,9 @@ impl Form {
     fn constant(u: Unit) -> Form {
         Form {
             coeffs: BTreeMap::new(),
-            konst: u.0.map(|r| Q::new((*r.numer()).into(), (*r.denom()).into())),
+            konst: u
+                .0
+                .map(|r| Q::new((*r.numer()).into(), (*r.denom()).into())),
         }
     }
 
@@ -132,9 +134,7 @@ pub fn unit_name(s: &str) -> String {
     if let Some(inner) = s.strip_prefix('{')
         && let Some(k) = inner.find('(')
         && k > 0
-        && inner[..k]
-            .chars()
-            .all(|c| c.is_alphanumeric() || c == '_')
+        && inner[..k].chars().all(|c| c.is_alphanumeric() || c == '_')
     {
         return inner[..k].to_string();
     }
@@ -180,11 +180,16 @@ fn is_local(name: &str) -> bool {
 struct Scope {
     bound: Vec<(String, String)>,
     fresh: usize,
+    /// The relation's index: the unknowns of bound variables are the relation's own.
+    relation: usize,
 }
 
-/// The unit form of `e`, pushing the equations it needs to `out`.
-fn walk(e: &Expr, declared: &dyn Fn(&str) -> Option<Unit>, out: &mut Vec<Constraint>) -> Form {
-    walk_in(e, declared, out, &mut Scope::default())
+impl Scope {
+    /// A new unknown of this relation's, named for `what`.
+    fn local(&mut self, what: &str) -> String {
+        self.fresh += 1;
+        format!("{LOCAL}{}.{}{LOCAL}{what}", self.relation, self.fresh)
+    }
 }
 
 fn walk_in(
@@ -230,8 +235,7 @@ fn walk_in(
             // unknown of their own
             let bound = matches!(c, Calc::Sum) || (matches!(c, Calc::Int) && !extra.is_empty());
             let fx = if bound {
-                scope.fresh += 1;
-                let local = format!("{LOCAL}{}{LOCAL}{x}", scope.fresh);
+                let local = scope.local(x);
                 let fx = Form::var(&local);
                 if matches!(c, Calc::Sum) {
                     pure(&Expr::Sym(x.clone()), fx.clone(), "the index of a sum", out);
@@ -290,10 +294,7 @@ fn walk_in(
                         Some(k) => fa.scaled(&k),
                         // a dimensional base to a symbolic power (alpha^(i+1)) has a unit no
                         // linear form gives: an unknown of its own, which nothing constrains
-                        None => {
-                            scope.fresh += 1;
-                            Form::var(&format!("{LOCAL}{}{LOCAL}power", scope.fresh))
-                        }
+                        None => Form::var(&scope.local("power")),
                     }
                 }
             }
@@ -436,9 +437,21 @@ fn to_unit(x: &[Q; 3]) -> Option<Unit> {
 
 /// The equations of a relation: its sides pairwise equal, every term of every sum equal, every
 /// function argument pure, and each dotted symbol its base per second.
-fn constraints(r: &Relation, declared: &dyn Fn(&str) -> Option<Unit>) -> Vec<Constraint> {
+fn constraints(
+    r: &Relation,
+    declared: &dyn Fn(&str) -> Option<Unit>,
+    index: usize,
+) -> Vec<Constraint> {
     let mut out = Vec::new();
-    let forms: Vec<Form> = r.sides.iter().map(|s| walk(s, declared, &mut out)).collect();
+    let mut scope = Scope {
+        relation: index,
+        ..Scope::default()
+    };
+    let forms: Vec<Form> = r
+        .sides
+        .iter()
+        .map(|s| walk_in(s, declared, &mut out, &mut scope))
+        .collect();
     for k in 1..forms.len() {
         // a side that is a literal 0 has every unit
         if matches!(&r.sides[k], Expr::Num(c) if c.is_zero())
@@ -454,8 +467,18 @@ fn constraints(r: &Relation, declared: &dyn Fn(&str) -> Option<Unit>) -> Vec<Con
     }
     let second = Form::constant(Unit::parse("s").expect("the second is a unit"));
     for (dotted, base, order) in &r.dots {
-        let fd = walk(&Expr::Sym(dotted.clone()), declared, &mut Vec::new());
-        let fb = walk(&Expr::Sym(base.clone()), declared, &mut Vec::new());
+        let fd = walk_in(
+            &Expr::Sym(dotted.clone()),
+            declared,
+            &mut Vec::new(),
+            &mut scope,
+        );
+        let fb = walk_in(
+            &Expr::Sym(base.clone()),
+            declared,
+            &mut Vec::new(),
+            &mut scope,
+        );
         out.push(Constraint::new(
             (dotted.clone(), fd),
             (
@@ -483,7 +506,11 @@ pub fn infer(relations: &[Option<Relation>], declared: &BTreeMap<String, Unit>) 
     let decl = |s: &str| declared.get(s).copied();
     let cs: Vec<Vec<Constraint>> = relations
         .iter()
-        .map(|r| r.as_ref().map_or_else(Vec::new, |r| constraints(r, &decl)))
+        .enumerate()
+        .map(|(i, r)| {
+            r.as_ref()
+                .map_or_else(Vec::new, |r| constraints(r, &decl, i))
+        })
         .collect();
     let mut order: Vec<usize> = (0..relations.len())
         .filter(|&i| relations[i].is_some())
@@ -633,7 +660,11 @@ mod tests {
         ];
         let d = units(&[("m", "kg"), ("x", "m"), ("t", "s"), ("F", "N")]);
         let inf = infer(&rs, &d);
-        assert!(inf.statuses.iter().all(|s| *s == Status::Consistent), "{:?}", inf.statuses);
+        assert!(
+            inf.statuses.iter().all(|s| *s == Status::Consistent),
+            "{:?}",
+            inf.statuses
+        );
         assert_eq!(unit_of(&inf, "k").as_deref(), Some("kg s^-2"));
         assert_eq!(unit_of(&inf, "v").as_deref(), Some("m s^-1"));
         assert_eq!(unit_of(&inf, "E").as_deref(), Some("kg m^2 s^-2"));
@@ -655,12 +686,27 @@ mod tests {
         ];
         let d = units(&[("m", "kg"), ("x", "m"), ("t", "s"), ("F", "N")]);
         let inf = infer(&rs, &d);
-        assert!(matches!(&inf.statuses[2], Status::Inconsistent { .. }), "{:?}", inf.statuses);
+        assert!(
+            matches!(&inf.statuses[2], Status::Inconsistent { .. }),
+            "{:?}",
+            inf.statuses
+        );
         for i in [0, 1, 3, 4] {
-            assert_eq!(inf.statuses[i], Status::Consistent, "{i}: {:?}", inf.statuses);
+            assert_eq!(
+                inf.statuses[i],
+                Status::Consistent,
+                "{i}: {:?}",
+                inf.statuses
+            );
         }
         assert_eq!(unit_of(&inf, "E").as_deref(), Some("kg m^2 s^-2"));
-        let Status::Inconsistent { left, left_unit, right, right_unit, what } = &inf.statuses[2]
+        let Status::Inconsistent {
+            left,
+            left_unit,
+            right,
+            right_unit,
+            what,
+        } = &inf.statuses[2]
         else {
             unreachable!()
         };
@@ -726,11 +772,22 @@ mod tests {
 
     #[test]
     fn a_declared_relation_that_is_wrong_is_inconsistent() {
-        let inf = infer(&[rel("F = m*x")], &units(&[("F", "N"), ("m", "kg"), ("x", "m")]));
-        let Status::Inconsistent { left_unit, right_unit, .. } = &inf.statuses[0] else {
+        let inf = infer(
+            &[rel("F = m*x")],
+            &units(&[("F", "N"), ("m", "kg"), ("x", "m")]),
+        );
+        let Status::Inconsistent {
+            left_unit,
+            right_unit,
+            ..
+        } = &inf.statuses[0]
+        else {
             panic!("{:?}", inf.statuses)
         };
-        assert_eq!((left_unit.as_str(), right_unit.as_str()), ("kg m s^-2", "kg m"));
+        assert_eq!(
+            (left_unit.as_str(), right_unit.as_str()),
+            ("kg m s^-2", "kg m")
+        );
         // and unreadable input has no status of its own
         let inf = infer(&[None, rel("F = m*x")], &units(&[("F", "N")]));
         assert_eq!(inf.statuses[0], Status::Undetermined(vec![]));

@@ -324,7 +324,12 @@ fn write_reports(
             .find("## Power of the checks")
             .or_else(|| readme.find("| claim | paper |"))
             .unwrap_or(readme.len());
-        readme.insert_str(at, &format!("{coverage}## Every claim\n\n"));
+        let audits = if custom {
+            String::new()
+        } else {
+            verify::audit::index_section(papers)
+        };
+        readme.insert_str(at, &format!("{coverage}{audits}## Every claim\n\n"));
     }
     if !custom {
         // the units of every relation of each paper, from its LaTeX and its claims' units

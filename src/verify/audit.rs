@@ -7,10 +7,11 @@
 //! `consistent`, `inconsistent` (the two terms whose units disagree, with their units),
 //! `undetermined` (the symbols whose units nothing fixes) or `unreadable` (the construct the
 //! LaTeX reader lacks). The units file is TOML with `[symbols]` (name = unit) and optionally
-//! `[tex_symbols]`: a claims file serves as it is.
+//! `[audit_symbols]` (more units, which only the audit reads) and `[tex_symbols]`: a claims
+//! file serves as it is.
 
-use super::tex_claims::display_blocks;
 use super::VerifyError;
+use super::tex_claims::display_blocks;
 use crate::algebra::expr::Expr;
 use crate::algebra::infer::{Inference, Relation, Status, infer, unit_name};
 use crate::algebra::tex::document::{Document, read_document};
@@ -56,6 +57,7 @@ pub fn read_units(path: &Path) -> Result<Units, VerifyError> {
         }
     };
     out.texts = section("symbols")?;
+    out.texts.extend(section("audit_symbols")?);
     out.tex_symbols = section("tex_symbols")?;
     if out.texts.is_empty() {
         return Err(bad(
@@ -166,11 +168,7 @@ fn dots(tex: &str, syms: &TexSymbols) -> Vec<(String, String, u32)> {
 }
 
 /// Audits the relations of `blocks` with the units given.
-pub fn audit(
-    blocks: &[(Option<String>, String)],
-    doc: Option<&Document>,
-    units: &Units,
-) -> Audit {
+pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units: &Units) -> Audit {
     let syms = TexSymbols::new(units.tex_symbols.clone());
     let mut rels: Vec<AuditRelation> = Vec::new();
     let mut inputs: Vec<Option<Relation>> = Vec::new();
@@ -233,10 +231,10 @@ pub fn audit(
     let inf = infer(&inputs, &units.symbols);
     judge(&mut rels, &inputs, &inf, units);
     let place = |i: usize| {
-        rels[i]
-            .number
-            .as_ref()
-            .map_or_else(|| format!("unnumbered: {}", short(&rels[i].latex)), |n| n.clone())
+        rels[i].number.as_ref().map_or_else(
+            || format!("unnumbered: {}", short(&rels[i].latex)),
+            |n| n.clone(),
+        )
     };
     let symbols = inf
         .symbols
@@ -378,7 +376,12 @@ fn term_groups(r: &Relation, unit_of: &dyn Fn(&str) -> Option<Unit>) -> Option<S
             None => groups.push((u, vec![format!("`{t}`")])),
         }
     }
-    if groups.iter().filter(|(u, _)| u != "a unit nothing fixes").count() < 2 {
+    if groups
+        .iter()
+        .filter(|(u, _)| u != "a unit nothing fixes")
+        .count()
+        < 2
+    {
         return None;
     }
     Some(
@@ -396,7 +399,9 @@ pub fn to_text(a: &Audit) -> String {
     for r in &a.relations {
         s.push_str(&format!(
             "{:<10} {:<13} {}  {}\n",
-            r.number.as_deref().map_or("-".to_string(), |n| format!("({n})")),
+            r.number
+                .as_deref()
+                .map_or("-".to_string(), |n| format!("({n})")),
             r.status,
             short(&r.latex),
             r.detail
@@ -417,7 +422,11 @@ pub fn to_text(a: &Audit) -> String {
         ));
     }
     let counts: Vec<String> = a.counts().iter().map(|(k, v)| format!("{v} {k}")).collect();
-    s.push_str(&format!("\n{} relations: {}\n", a.relations.len(), counts.join(", ")));
+    s.push_str(&format!(
+        "\n{} relations: {}\n",
+        a.relations.len(),
+        counts.join(", ")
+    ));
     s
 }
 
@@ -443,7 +452,9 @@ pub fn to_markdown(a: &Audit, title: &str) -> String {
     for r in bad {
         s.push_str(&format!(
             "- **{}**: $${}$$\n  {}\n",
-            r.number.as_deref().map_or("unnumbered".to_string(), |n| format!("({n})")),
+            r.number
+                .as_deref()
+                .map_or("unnumbered".to_string(), |n| format!("({n})")),
             r.latex.trim(),
             r.detail
         ));
@@ -452,7 +463,9 @@ pub fn to_markdown(a: &Audit, title: &str) -> String {
     for r in &a.relations {
         s.push_str(&format!(
             "| {} | {} | `{}` | {} |\n",
-            r.number.as_deref().map_or("-".to_string(), |n| format!("({n})")),
+            r.number
+                .as_deref()
+                .map_or("-".to_string(), |n| format!("({n})")),
             r.status,
             esc(&short(&r.latex)),
             esc(&r.detail)
@@ -489,7 +502,11 @@ pub fn init_claims(
         q(title),
         q(file),
         q(&format!("{id}.md")),
-        doc_numbers.iter().map(|n| q(n)).collect::<Vec<_>>().join(", ")
+        doc_numbers
+            .iter()
+            .map(|n| q(n))
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     for y in &a.symbols {
         if y.name.starts_with('{') {
@@ -498,7 +515,11 @@ pub fn init_claims(
         match (&y.unit, y.source) {
             (Some(_), "declared") => {
                 let written = units.texts.get(&y.name).cloned().unwrap_or_default();
-                s.push_str(&format!("{} = {}    # declared\n", key(&y.name), q(&written)));
+                s.push_str(&format!(
+                    "{} = {}    # declared\n",
+                    key(&y.name),
+                    q(&written)
+                ));
             }
             (Some(u), _) => s.push_str(&format!(
                 "{} = {}    # inferred from {}\n",
@@ -506,7 +527,10 @@ pub fn init_claims(
                 q(u),
                 y.from.join(", ")
             )),
-            (None, _) => s.push_str(&format!("# {} = ?    # nothing fixes its unit\n", key(&y.name))),
+            (None, _) => s.push_str(&format!(
+                "# {} = ?    # nothing fixes its unit\n",
+                key(&y.name)
+            )),
         }
     }
     if !units.tex_symbols.is_empty() {
@@ -536,9 +560,7 @@ pub fn init_claims(
         }
         // an inconsistent relation whose left side has no single unit: the unit of the term
         // its detail names first
-        let expect = r
-            .side_unit
-            .map_or_else(|| left_unit(r), |u| u.to_string());
+        let expect = r.side_unit.map_or_else(|| left_unit(r), |u| u.to_string());
         let slug: String = n
             .chars()
             .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
@@ -548,7 +570,7 @@ pub fn init_claims(
             q(&format!("{id}.eq{slug}.units")),
             q(&format!("({n})")),
             q(&format!(
-                "({n}) is dimensionally consistent: left minus right in {expect} ({})",
+                "({n}) has one unit on both sides, {expect} (the audit found it {})",
                 r.status
             )),
             q(&format!("({n})")),
@@ -585,13 +607,43 @@ pub fn units_of_claims(p: &super::PaperClaims) -> Units {
         tex_symbols: p.tex_symbols.clone(),
         ..Units::default()
     };
-    for (k, t) in &p.symbols {
+    for (k, t) in p.symbols.iter().chain(&p.audit_symbols) {
         if let Ok(unit) = Unit::parse(t) {
             u.symbols.insert(k.clone(), unit);
             u.texts.insert(k.clone(), t.clone());
         }
     }
     u
+}
+
+/// The index's paragraph on the audits: each paper's counts per status and its report.
+pub fn index_section(papers: &[super::PaperClaims]) -> String {
+    let mut rows = Vec::new();
+    for p in papers {
+        let Ok((blocks, doc, _)) = super::tex_claims::paper_displays(p) else {
+            continue;
+        };
+        let a = audit(&blocks, doc.as_ref(), &units_of_claims(p));
+        let c = a.counts();
+        let n = |k: &str| c.get(k).copied().unwrap_or(0);
+        rows.push(format!(
+            "| [{}](audit/{}.md) | {} | {} | {} | {} | {} |",
+            p.paper,
+            p.paper,
+            a.relations.len(),
+            n("consistent"),
+            n("inconsistent"),
+            n("undetermined"),
+            n("unreadable")
+        ));
+    }
+    if rows.is_empty() {
+        return String::new();
+    }
+    format!(
+        "## Units of every relation\n\nEach paper's displays read from its LaTeX and every relation's units checked, the units of the symbols no claims file declares inferred from the relations (`verify audit`; a relation is inconsistent when it contradicts what the declared units and the other relations fix).\n\n| paper | relations | consistent | inconsistent | undetermined | unreadable |\n|---|---|---|---|---|---|\n{}\n\n",
+        rows.join("\n")
+    )
 }
 
 /// The audit of every paper whose displays are found (its `.tex` source, or the extract

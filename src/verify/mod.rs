@@ -57,6 +57,11 @@ pub struct PaperClaims {
     /// (`"\\tilde{E}" = "Et"`, `"z(t)" = "z"`; [`tex_claims`]).
     #[serde(default)]
     pub tex_symbols: BTreeMap<String, String>,
+    /// Units of symbols that only `verify audit` uses (symbols of the paper's relations that no
+    /// claim names: kept apart from `[symbols]`, whose units the power measurement draws its
+    /// symbol swaps from).
+    #[serde(default)]
+    pub audit_symbols: BTreeMap<String, String>,
     /// The claims.
     pub claim: Vec<ClaimSpec>,
     /// Where the file was read from (scenes of generic claims are relative to it).

@@ -2,12 +2,15 @@
 //! judged is what the paper prints and not a retyped copy ([`crate::algebra::tex`]).
 //!
 //! `printed_tex = "..."` is LaTeX pasted from a paper. `printed_from = { tag = "(16)", lhs =
-//! "A_{5}" }` is the relation of the display tagged (16) whose left side reads as `A_{5}` (its
-//! right side); without `lhs`, the right side of the tagged equation. The displays are those of
-//! `tex/<paper>.tex` beside the claims file (`verify/tex/`, copied once from the paper's text, so
-//! that the reports do not depend on where the papers lie). The file's `[tex_symbols]` maps any
-//! other spelling to a symbol (`"z(t)" = "z"`). Either key becomes the claim's `printed` (as
-//! text, which the kinds read as before) and the LaTeX read is kept for the report.
+//! "A_{5}" }` is the relation of the display numbered (16) whose left side reads as `A_{5}` (its
+//! right side); without `lhs`, the right side of the numbered equation; `{ label =
+//! "eq:restitution" }` the relation with that `\label`. The displays are those of the paper's own
+//! LaTeX source when the file's `file` is a `.tex` beside the claims file, numbered as LaTeX
+//! numbers them ([`read_document`]), else those of `tex/<paper>.tex` beside the claims file
+//! (`verify/tex/`, copied once from the seeds' text, so that the reports do not depend on where
+//! the papers lie). The file's `[tex_symbols]` maps any other spelling to a symbol (`"z(t)" =
+//! "z"`). Either key becomes the claim's `printed` (as text, which the kinds read as before) and
+//! the LaTeX read is kept for the report.
 
 use super::{PaperClaims, VerifyError};
 use crate::algebra::expr::Expr;
@@ -34,13 +37,19 @@ pub(crate) fn display_blocks(text: &str) -> Vec<(Option<String>, String)> {
     out
 }
 
+/// A paper's displays (each with the number printed after it, if any), its document when read
+/// from its LaTeX source, and the path read.
+pub type PaperDisplays = (
+    Vec<(Option<String>, String)>,
+    Option<Document>,
+    std::path::PathBuf,
+);
+
 /// The displays a claims file's printed sides are read from: the paper's own LaTeX source when
 /// its `file` is a `.tex` beside the claims file (read as LaTeX numbers it, [`read_document`]),
 /// else the extract `tex/<paper>.tex` (the seeds' cache). With the document when there is one,
 /// and the path read.
-pub fn paper_displays(
-    file: &PaperClaims,
-) -> Result<(Vec<(Option<String>, String)>, Option<Document>, std::path::PathBuf), String> {
+pub fn paper_displays(file: &PaperClaims) -> Result<PaperDisplays, String> {
     let dir = file.source.parent().unwrap_or(std::path::Path::new("."));
     if file.file.ends_with(".tex") {
         let path = dir.join(&file.file);
@@ -97,9 +106,9 @@ fn from_paper(
     let by_label = match spec.get("label") {
         None => None,
         Some(v) => {
-            let name = v
-                .as_str()
-                .ok_or_else(|| err("`label` is the name of a \\label{..}, \"eq:restitution\"".into()))?;
+            let name = v.as_str().ok_or_else(|| {
+                err("`label` is the name of a \\label{..}, \"eq:restitution\"".into())
+            })?;
             let doc = doc.as_ref().ok_or_else(|| {
                 err(format!(
                     "label = \"{name}\" needs the paper's LaTeX source (`file = \"paper.tex\"` beside the claims file); {} holds displays only",
@@ -113,19 +122,27 @@ fn from_paper(
                         err(format!(
                             "no numbered relation has \\label{{{name}}} in {}; its labels: {}",
                             path.display(),
-                            if labels.is_empty() { "none".to_string() } else { labels.join(", ") }
+                            if labels.is_empty() {
+                                "none".to_string()
+                            } else {
+                                labels.join(", ")
+                            }
                         ))
                     })?
                     .to_string(),
             )
         }
     };
-    let (tag, after) = match (label("tag").transpose()?, label("after").transpose()?, by_label) {
+    let (tag, after) = match (
+        label("tag").transpose()?,
+        label("after").transpose()?,
+        by_label,
+    ) {
         (Some(t), None, None) | (None, None, Some(t)) => (t, false),
         (None, Some(a), None) => (a, true),
         _ => {
             return Err(err(
-                "needs one of `tag` (the equation's number, \"(16)\"), `label` (its \\label, \"eq:restitution\") or `after` (the untagged displays after it)".into(),
+                "needs one of `tag` (the equation's number, \"(16)\"), `label` (its \\label, \"eq:restitution\") or `after` (the untagged displays after it), and only one: not both of any two".into(),
             ));
         }
     };

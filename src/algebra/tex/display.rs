@@ -25,7 +25,8 @@ pub(crate) fn split_top(text: &str, seps: &[&str]) -> Vec<String> {
     let mut i = 0;
     'next: while i < chars.len() {
         let c = chars[i];
-        if c == '\\' && i + 1 < chars.len() && matches!(chars[i + 1], '{' | '}') {
+        // an escaped brace, and the spacing commands `\,` `\;` (not the separators , ;)
+        if c == '\\' && i + 1 < chars.len() && matches!(chars[i + 1], '{' | '}' | ',' | ';') {
             cur.push(c);
             cur.push(chars[i + 1]);
             i += 2;

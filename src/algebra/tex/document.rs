@@ -423,10 +423,16 @@ $$ q = r \tag{B} $$
         assert_eq!(d.number_of("eq:m"), Some("3"));
         assert_eq!(d.label_of("3"), Some("eq:m"));
         assert_eq!(d.displays.len(), 9);
-        assert!(d.displays[0].latex.contains("a = b \\tag{1}"), "{:?}", d.displays[0]);
+        assert!(
+            d.displays[0].latex.contains("a = b \\tag{1}"),
+            "{:?}",
+            d.displays[0]
+        );
         assert!(!d.displays[0].latex.contains("label"));
         assert!(!d.displays[1].latex.contains("\\tag"));
-        assert!(!d.displays[2].latex.contains("nonumber") && !d.displays[2].latex.contains("notag"));
+        assert!(
+            !d.displays[2].latex.contains("nonumber") && !d.displays[2].latex.contains("notag")
+        );
         assert_eq!(d.displays[3].after.as_deref(), Some("7.1"));
         assert_eq!(d.displays[5].environment, "\\[");
     }

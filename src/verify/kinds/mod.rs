@@ -280,6 +280,13 @@ impl<'a> Checked<'a> {
             })?;
             units.insert(name.clone(), u);
         }
+        // the units only the audit uses are checked here too: a bad one is a bad file
+        for (name, text) in &file.audit_symbols {
+            Unit::parse(text).map_err(|message| VerifyError::BadClaims {
+                path: file.source.clone(),
+                message: format!("audit_symbols.{name}: {message}"),
+            })?;
+        }
         let dir = file
             .source
             .parent()

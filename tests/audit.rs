@@ -1,0 +1,353 @@
+//! A paper read from its own LaTeX (issue 43): `printed_from` by `\label` and by number,
+//! `verify audit` and `verify init` on a test paper with a planted dimension error
+//! (tests/papers/spring_dashpot/paper.tex: `equation`, `align` with `\nonumber`, `equation*`,
+//! `$$`, `\tag{A1}`, `\label`/`\eqref`), the bad inputs, and the audit of the seeds.
+//!
+//! The references are independent of the code under test: the numbers LaTeX gives the test
+//! paper are counted by hand below; the model claims compare the printed restitution and contact
+//! time with the integrated spring-dashpot impact; the planted error (`E_d = m v_0 (1 - e^2)/2`,
+//! an energy without the square of `v_0`) was written by hand.
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn verify(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_verify"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("verify runs")
+}
+
+const PAPER: &str = "tests/papers/spring_dashpot/paper.tex";
+const CLAIMS: &str = "tests/papers/spring_dashpot/claims.toml";
+
+/// A fresh folder with a copy of the test paper.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("impactcheck-audit-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join(PAPER),
+        dir.join("paper.tex"),
+    )
+    .unwrap();
+    dir
+}
+
+fn verdicts(out: &Output) -> Vec<(String, String)> {
+    let v: Value = serde_json::from_slice(&out.stdout)
+        .unwrap_or_else(|e| panic!("{e}: {}", String::from_utf8_lossy(&out.stderr)));
+    v["claims"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| {
+            (
+                c["id"].as_str().unwrap().to_string(),
+                c["verdict"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn the_test_paper_is_numbered_as_latex_numbers_it() {
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(PAPER)).unwrap();
+    let doc = impactcheck::algebra::tex::document::read_document(&text);
+    // by hand: equation (1); align rows omega_n (2), zeta \nonumber, omega_d (3); equation*
+    // none; (4), (5); $$ none; \tag{A1}
+    assert_eq!(doc.numbers, ["1", "2", "3", "4", "5", "A1"]);
+    assert_eq!(doc.number_of("eq:motion"), Some("1"));
+    assert_eq!(doc.number_of("eq:omegad"), Some("3"));
+    assert_eq!(doc.number_of("eq:restitution"), Some("5"));
+    assert_eq!(doc.number_of("eq:nothing"), None);
+    assert_eq!(doc.displays.len(), 7);
+}
+
+#[test]
+fn printed_from_by_label_and_by_number_read_the_relation_meant() {
+    let out = verify(&["--claims", CLAIMS, "--format", "json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v = verdicts(&out);
+    let want = [
+        // the restitution by \label against the integrated impact, by number against its
+        // closed form; the contact time by \label; the align's third row by number (its second
+        // has \nonumber); the planted error fails
+        ("sd.eq3.omegad", "holds"),
+        ("sd.eq4.duration", "holds"),
+        ("sd.eq5.by-label", "holds"),
+        ("sd.eq5.by-number", "holds"),
+        ("sd.eqA1.units", "fails"),
+    ];
+    let got: Vec<(&str, &str)> = v.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
+    assert_eq!(got, want);
+}
+
+#[test]
+fn a_label_or_number_not_in_the_paper_exits_2_naming_it() {
+    let dir = scratch("refs");
+    let claims = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(CLAIMS))
+        .unwrap()
+        .replace(
+            "../../../scenes/",
+            &format!("{}/scenes/", env!("CARGO_MANIFEST_DIR")),
+        );
+    for (from, to, says) in [
+        (
+            "label = \"eq:restitution\"",
+            "label = \"eq:restitutoin\"",
+            "no numbered relation has \\label{eq:restitutoin}",
+        ),
+        ("tag = \"(5)\"", "tag = \"(9)\"", "no display is tagged (9)"),
+        (
+            "equations = [\"1\", \"2\", \"3\", \"4\", \"5\", \"A1\"]",
+            "equations = [\"1\", \"2\", \"4\", \"5\", \"A1\"]",
+            "not listed: [\"3\"]",
+        ),
+    ] {
+        assert!(claims.contains(from), "{from}");
+        let path = dir.join("claims.toml");
+        std::fs::write(&path, claims.replace(from, to)).unwrap();
+        let out = verify(&["--claims", path.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{to}: {err}");
+        assert!(err.contains(says), "{to}: {err}");
+    }
+}
+
+#[test]
+fn the_audit_finds_the_planted_error_and_no_other() {
+    let out = verify(&["audit", PAPER, "--units", CLAIMS, "--format", "json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let rels = v["relations"].as_array().unwrap();
+    let bad: Vec<&Value> = rels
+        .iter()
+        .filter(|r| r["status"] == "inconsistent")
+        .collect();
+    assert_eq!(bad.len(), 1, "{bad:?}");
+    assert_eq!(bad[0]["number"], "A1");
+    let detail = bad[0]["detail"].as_str().unwrap();
+    // the two terms and their units, by hand: E_d in J, m v0 (1 - e^2)/2 in kg m/s
+    assert!(detail.contains("in kg m^2 s^-2: `Ed`"), "{detail}");
+    assert!(
+        detail.contains("in kg m s^-1: `1/2*m*v0*(1 - e^2)`"),
+        "{detail}"
+    );
+    // every other relation is consistent: nine relations, the equation* and $$ ones included
+    assert_eq!(rels.len(), 9);
+    assert!(
+        rels.iter()
+            .all(|r| r["status"] == "consistent" || r["number"] == "A1")
+    );
+    let restitution = rels.iter().find(|r| r["number"] == "5").unwrap();
+    assert_eq!(restitution["label"], "eq:restitution");
+    assert!(rels.iter().any(|r| r["number"].is_null()));
+    // the units inferred, by hand: omega_n, omega_d in 1/s, t_c in s, zeta and e pure, the dotted
+    // x in m/s and m/s^2
+    let sym = |n: &str| {
+        v["symbols"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|s| s["name"] == n)
+            .unwrap_or_else(|| panic!("{n}"))
+            .clone()
+    };
+    for (n, u) in [
+        ("omegan", "s^-1"),
+        ("omegad", "s^-1"),
+        ("tc", "s"),
+        ("zeta", "1"),
+        ("e", "1"),
+        ("xd", "m s^-1"),
+        ("xdd", "m s^-2"),
+    ] {
+        assert_eq!(sym(n)["unit"], u, "{n}");
+        assert_eq!(sym(n)["source"], "inferred", "{n}");
+    }
+    assert_eq!(sym("k")["source"], "declared");
+    assert_eq!(sym("tc")["from"], serde_json::json!(["2", "3", "4"]));
+    // text and markdown say the same
+    let text = verify(&["audit", PAPER, "--units", CLAIMS]);
+    assert!(
+        String::from_utf8_lossy(&text.stdout).contains("9 relations: 8 consistent, 1 inconsistent")
+    );
+    let md = verify(&["audit", PAPER, "--units", CLAIMS, "--format", "markdown"]);
+    let md = String::from_utf8_lossy(&md.stdout).to_string();
+    let first = md.find("## Inconsistent relations").unwrap();
+    assert!(
+        md[first..].starts_with("## Inconsistent relations\n\n- **(A1)**"),
+        "{md}"
+    );
+}
+
+#[test]
+fn the_scaffold_runs_and_its_claim_on_the_planted_relation_fails() {
+    let dir = scratch("init");
+    let out = verify(&["init", PAPER, "--units", CLAIMS, "--paper", "sd"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let claims = dir.join("claims.toml");
+    std::fs::write(&claims, &out.stdout).unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("equations = [\"1\", \"2\", \"3\", \"4\", \"5\", \"A1\"]"),
+        "{text}"
+    );
+    assert!(
+        text.contains("omegad = \"s^-1\"    # inferred from 2, 3, 4"),
+        "{text}"
+    );
+    let run = verify(&["--claims", claims.to_str().unwrap(), "--format", "json"]);
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let v = verdicts(&run);
+    assert_eq!(v.len(), 6, "{v:?}");
+    for (id, verdict) in &v {
+        let want = if id == "sd.eqA1.units" {
+            "fails"
+        } else {
+            "holds"
+        };
+        assert_eq!(verdict, want, "{id}");
+    }
+}
+
+#[test]
+fn bad_units_and_bad_papers_exit_2_naming_them() {
+    let dir = scratch("bad");
+    let cases: &[(&str, &str)] = &[
+        ("[symbols]\nm = \"furlong\"\n", "symbols.m = \"furlong\""),
+        ("[symbols]\nm = 3\n", "symbols.m = 3"),
+        ("title = \"no symbols\"\n", "no [symbols]"),
+        ("[symbols\n", "not TOML"),
+    ];
+    for (units, says) in cases {
+        let path = dir.join("units.toml");
+        std::fs::write(&path, units).unwrap();
+        for cmd in ["audit", "init"] {
+            let mut args = vec![cmd, PAPER, "--units", path.to_str().unwrap()];
+            if cmd == "init" {
+                args.extend(["--paper", "x"]);
+            }
+            let out = verify(&args);
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(2), "{cmd} {units}: {err}");
+            assert!(err.contains(says), "{cmd} {units}: {err}");
+            assert!(err.contains("units.toml"), "{err}");
+            assert!(out.stdout.is_empty());
+        }
+    }
+    let out = verify(&["audit", "no/such/paper.tex"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no/such/paper.tex"));
+    let empty = dir.join("empty.tex");
+    std::fs::write(&empty, "no display math here").unwrap();
+    let out = verify(&["audit", empty.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no display math"));
+}
+
+/// The seeds audited with the units of their claims files (what reports/audit/ holds): the count
+/// of relations per status, reviewed relation by relation (the closing note of issue 43), and the
+/// two dimension findings of 000 found without a claim naming them.
+#[test]
+fn the_seeds_audit() {
+    let counts = |paper: &str, claims: &str| -> (Value, [usize; 4]) {
+        let out = verify(&[
+            "audit",
+            &format!("verify/tex/{paper}.tex"),
+            "--units",
+            claims,
+            "--format",
+            "json",
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+        let n = |s: &str| {
+            v["relations"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter(|r| r["status"] == s)
+                .count()
+        };
+        let c = [
+            n("consistent"),
+            n("inconsistent"),
+            n("undetermined"),
+            n("unreadable"),
+        ];
+        (v, c)
+    };
+    let (v000, c000) = counts("000", "verify/000_cone_plate.toml");
+    assert_eq!(c000, [36, 8, 2, 5]);
+    let (_, c001) = counts("001", "verify/001_disk.toml");
+    assert_eq!(c001, [54, 1, 8, 20]);
+    let (_, c002) = counts("002", "verify/002_constrained_impact.toml");
+    assert_eq!(c002, [89, 7, 33, 12]);
+    let rels = v000["relations"].as_array().unwrap();
+    // (15): A5 f^3 is not a force (000-missing-thickness-h)
+    let eq15 = rels.iter().find(|r| r["number"] == "15").unwrap();
+    assert_eq!(eq15["status"], "inconsistent");
+    assert!(
+        eq15["detail"]
+            .as_str()
+            .unwrap()
+            .contains("in kg s^-2: `A5*f^3`"),
+        "{eq15}"
+    );
+    // the operator of sec. 2: E zeta [..][L(alpha) - L(gamma)] is Pa s^2 with zeta in s and L in s
+    // (000-operator-units), where the left side is a modulus
+    let op = rels
+        .iter()
+        .find(|r| {
+            r["latex"]
+                .as_str()
+                .unwrap()
+                .starts_with("\\frac{\\tilde{E}}{1-\\tilde{v}^{2}}=E \\zeta")
+        })
+        .unwrap();
+    assert_eq!(op["status"], "inconsistent");
+    assert!(
+        op["detail"]
+            .as_str()
+            .unwrap()
+            .contains("in kg m^-1: `E*zeta"),
+        "{op}"
+    );
+    // L~ of sec. 2 inferred a time from its definition, z' and z'' from z
+    let unit = |n: &str| {
+        v000["symbols"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|s| s["name"] == n)
+            .map(|s| s["unit"].clone())
+    };
+    assert_eq!(unit("Lt"), Some(Value::from("s")));
+    assert_eq!(unit("zd"), Some(Value::from("m s^-1")));
+    assert_eq!(unit("zdd"), Some(Value::from("m s^-2")));
+}
