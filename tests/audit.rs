@@ -351,3 +351,65 @@ fn the_seeds_audit() {
     assert_eq!(unit("zd"), Some(Value::from("m s^-1")));
     assert_eq!(unit("zdd"), Some(Value::from("m s^-2")));
 }
+
+/// The scaffold of a seed (002, its displays extract copied beside it) runs, and the claims that
+/// fail are those of its numbered relations the audit calls inconsistent (the dots its text lost
+/// in (1.1), (1.8) and (2.6): a momentum where a force is meant). (2.15), stated in the reduced
+/// units m = |GO| = 1 and inconsistent in SI, gets no claim: its eps_On'' has no unit then.
+#[test]
+fn a_seeds_scaffold_fails_exactly_on_its_inconsistent_relations() {
+    let dir = scratch("seed");
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("verify/tex/002.tex"),
+        dir.join("002.tex"),
+    )
+    .unwrap();
+    let paper = dir.join("002.tex");
+    let units = "verify/002_constrained_impact.toml";
+    let init = verify(&[
+        "init",
+        paper.to_str().unwrap(),
+        "--units",
+        units,
+        "--paper",
+        "s",
+    ]);
+    assert!(
+        init.status.success(),
+        "{}",
+        String::from_utf8_lossy(&init.stderr)
+    );
+    let claims = dir.join("claims.toml");
+    std::fs::write(&claims, &init.stdout).unwrap();
+    let run = verify(&["--claims", claims.to_str().unwrap(), "--format", "json"]);
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let failing: Vec<String> = verdicts(&run)
+        .into_iter()
+        .filter(|(_, v)| v == "fails")
+        .map(|(id, _)| id)
+        .collect();
+    assert_eq!(failing, ["s.eq1-1.units", "s.eq1-8.units", "s.eq2-6.units"]);
+    let audit = verify(&[
+        "audit",
+        paper.to_str().unwrap(),
+        "--units",
+        units,
+        "--format",
+        "json",
+    ]);
+    let v: Value = serde_json::from_slice(&audit.stdout).unwrap();
+    let mut bad: Vec<String> = v["relations"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|r| r["status"] == "inconsistent" && r["number"] != "2.15")
+        .map(|r| r["number"].as_str().unwrap().to_string())
+        .collect();
+    bad.dedup();
+    assert_eq!(bad, ["1.1", "1.8", "2.6"]);
+}

@@ -162,14 +162,25 @@ pub fn dimension(e: &Expr, unit: &dyn Fn(&str) -> Option<Unit>) -> Result<Unit, 
             }
         },
         Expr::Calc(c, body, x, extra) => {
-            // the index of a sum is a pure number
-            let ux = match c {
-                Calc::Sum => Unit::one(),
-                _ => unit(x).ok_or_else(|| DimError::Unknown(x.clone()))?,
+            let zero = |v: &Expr| matches!(v, Expr::Num(c) if c.is_zero());
+            // the index of a sum is a pure number; the variable of an integral with bounds has
+            // the unit of its bounds (a literal 0 bound has every unit), whatever a symbol of
+            // its name has outside it
+            let bound = match c {
+                Calc::Sum => Some(Unit::one()),
+                Calc::Int if !extra.is_empty() => match extra.iter().find(|v| !zero(v)) {
+                    Some(v) => Some(dimension(v, unit)?),
+                    None => unit(x),
+                },
+                _ => None,
+            };
+            let ux = match bound {
+                Some(u) => u,
+                None => unit(x).ok_or_else(|| DimError::Unknown(x.clone()))?,
             };
             for v in extra {
                 let uv = dimension(v, unit)?;
-                if uv != ux {
+                if uv != ux && !zero(v) {
                     return Err(DimError::Mismatch {
                         whole: e.to_string(),
                         left: x.clone(),
@@ -179,7 +190,10 @@ pub fn dimension(e: &Expr, unit: &dyn Fn(&str) -> Option<Unit>) -> Result<Unit, 
                     });
                 }
             }
-            let ub = dimension(body, unit)?;
+            let ub = match bound {
+                Some(u) => dimension(body, &|s| if s == x { Some(u) } else { unit(s) })?,
+                None => dimension(body, unit)?,
+            };
             Ok(match c {
                 Calc::Diff => ub.times(ux, (-1).into()),
                 Calc::Int => ub.times(ux, 1.into()),
@@ -264,6 +278,27 @@ mod tests {
         assert_eq!(u, Unit::named("m").unwrap());
         // diff(F, x) vanishes for a constant F but is N/m, not any unit
         assert!(dimension(&parse("diff(F, x) + z").unwrap(), &units).is_err());
+    }
+
+    #[test]
+    fn bound_variables_take_the_unit_of_their_bounds() {
+        let units = |s: &str| match s {
+            "x" => Unit::parse("m").ok(),
+            "t" => Unit::parse("s").ok(),
+            "v" => Unit::parse("m/s").ok(),
+            _ => None,
+        };
+        // int_0^t v(x) dx with x a time here (x is metres outside): metres; a sum's index is
+        // pure inside it
+        let u = dimension(&parse("int(v*x/x, x, 0, t)").unwrap(), &units).unwrap();
+        assert_eq!(u, Unit::named("m").unwrap());
+        let u = dimension(&parse("sum(t^2*i, i, 0, 3)").unwrap(), &units).unwrap();
+        assert_eq!(u, Unit::parse("s^2").unwrap());
+        // a bound of another unit than the other is still a mismatch
+        assert!(dimension(&parse("int(v, x, x, t)").unwrap(), &units).is_err());
+        // and a derivative keeps the symbol's own unit
+        let u = dimension(&parse("diff(x, t)").unwrap(), &units).unwrap();
+        assert_eq!(u, Unit::parse("m/s").unwrap());
     }
 
     #[test]

@@ -409,18 +409,7 @@ fn run_paper(command: &Command) -> Result<bool> {
             AuditFmt::Markdown => print!("{}", verify::audit::to_markdown(&a, &name)),
         },
         Command::Init { id, .. } => {
-            let numbers = match &doc {
-                Some(d) => {
-                    let mut n: Vec<String> = Vec::new();
-                    for x in &d.numbers {
-                        if !n.contains(x) {
-                            n.push(x.clone());
-                        }
-                    }
-                    n
-                }
-                None => verify::coverage::tags(&text),
-            };
+            let numbers = verify::coverage::numbers(&name, &text);
             let title = doc
                 .as_ref()
                 .and_then(|_| verify::audit::title_of(&text))

@@ -11,10 +11,9 @@
 //! file serves as it is.
 
 use super::VerifyError;
-use super::tex_claims::display_blocks;
 use crate::algebra::expr::Expr;
 use crate::algebra::infer::{Inference, Relation, Status, infer, unit_name};
-use crate::algebra::tex::document::{Document, read_document};
+use crate::algebra::tex::document::Document;
 use crate::algebra::tex::{TexSymbols, read_display, read_formula};
 use crate::algebra::units::Unit;
 use serde::Serialize;
@@ -95,6 +94,12 @@ pub struct AuditRelation {
     /// Whether a side reads a function application as an opaque symbol (`{z(0)}`).
     #[serde(skip)]
     pub opaque: bool,
+    /// The symbols its sides name.
+    #[serde(skip)]
+    pub names: Vec<String>,
+    /// Its sides as read.
+    #[serde(skip)]
+    pub sides: Vec<Expr>,
     /// The units of its sides, when fixed.
     #[serde(skip)]
     pub side_unit: Option<Unit>,
@@ -133,18 +138,10 @@ impl Audit {
     }
 }
 
-/// A paper's displays: from a displays extract (`%% block N` sections) or from its source.
+/// A paper's displays: from a displays extract (`%% block N` sections) or from its source
+/// ([`super::tex_claims::blocks_of`]).
 pub fn paper_blocks(text: &str) -> (Vec<(Option<String>, String)>, Option<Document>) {
-    if text.lines().any(|l| l.starts_with("%% block ")) {
-        return (display_blocks(text), None);
-    }
-    let doc = read_document(text);
-    let blocks = doc
-        .displays
-        .iter()
-        .map(|d| (d.after.clone(), d.latex.clone()))
-        .collect();
-    (blocks, Some(doc))
+    super::tex_claims::blocks_of(text)
 }
 
 /// `(dotted, base, order)` of every `\dot{..}` and `\ddot{..}` of `tex`.
@@ -190,6 +187,8 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
                     read: None,
                     index_in_row: j,
                     opaque: false,
+                    names: Vec::new(),
+                    sides: Vec::new(),
                     side_unit: None,
                 };
                 match rel {
@@ -213,9 +212,12 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
                             .sides
                             .iter()
                             .any(|s| s.symbols().iter().any(|x| x.starts_with('{')));
+                        let names = r.sides.iter().flat_map(|s| s.symbols()).collect();
                         rels.push(AuditRelation {
                             read: Some(read),
                             opaque,
+                            names,
+                            sides: r.sides.clone(),
                             ..base
                         });
                         inputs.push(Some(Relation {
@@ -545,15 +547,48 @@ pub fn init_claims(
         if r.index_in_row != 0 || !seen.insert(n.clone()) {
             continue;
         }
+        let no_unit: Vec<&str> = r
+            .names
+            .iter()
+            .filter(|n| !a.symbols.iter().any(|y| y.name == **n && y.unit.is_some()))
+            .map(String::as_str)
+            .collect();
         let why_not = match r.status {
             "unreadable" => Some(format!("unreadable: {}", r.detail)),
             "undetermined" => Some(r.detail.clone()),
+            _ if !r.opaque && !no_unit.is_empty() => Some(format!(
+                "nothing fixes the unit of {} ({})",
+                no_unit.join(", "),
+                r.detail
+            )),
             _ if r.opaque => Some(
                 "reads a function application as an opaque symbol; map its spelling in [tex_symbols] (\"z(t)\" = \"z\")"
                     .into(),
             ),
             _ => None,
         };
+        // what the dimension kind will compute: a consistent relation it cannot judge (a
+        // symbolic power of a dimensional base) would fail for the kind's sake, not the paper's
+        let why_not = why_not.or_else(|| {
+            let unit = |n: &str| {
+                a.symbols
+                    .iter()
+                    .find(|y| y.name == n)
+                    .and_then(|y| y.unit.as_deref())
+                    .and_then(|u| Unit::parse(u).ok())
+            };
+            let diff = Expr::Bin(
+                crate::algebra::expr::Op::Sub,
+                Box::new(r.sides[0].clone()),
+                Box::new(r.sides[1].clone()),
+            );
+            match crate::algebra::units::dimension(&diff, &unit) {
+                Err(e) if r.status == "consistent" => Some(format!(
+                    "consistent, but a dimension claim cannot judge it: {e}"
+                )),
+                _ => None,
+            }
+        });
         if let Some(w) = why_not {
             s.push_str(&format!("\n# ({n}): no claim: {w}\n"));
             continue;

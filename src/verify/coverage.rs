@@ -52,15 +52,24 @@ pub fn tags(text: &str) -> Vec<String> {
     out
 }
 
-/// The numbers of a paper's text, in order, once each: as LaTeX numbers them for a `.tex`
-/// source ([`read_document`]: automatic numbers, `\tag`s and numbers printed after a block),
-/// the `\tag{...}` labels for any other text (the seeds).
+/// The numbers of a paper's text, in order, once each: for a `.tex` file, as LaTeX numbers a
+/// source (automatic numbers, `\tag`s and numbers printed after a block) or, for a displays
+/// extract, its blocks' tags and the numbers printed after them; the `\tag{...}` labels for any
+/// other text (the seeds).
 pub fn numbers(file: &str, text: &str) -> Vec<String> {
     if !file.ends_with(".tex") {
         return tags(text);
     }
     let mut out: Vec<String> = Vec::new();
-    for n in crate::algebra::tex::document::read_document(text).numbers {
+    let all = match super::tex_claims::blocks_of(text) {
+        (_, Some(doc)) => doc.numbers,
+        // a displays extract: each block's tags, and the number printed after it
+        (blocks, None) => blocks
+            .iter()
+            .flat_map(|(after, tex)| tags(tex).into_iter().chain(after.clone()))
+            .collect(),
+    };
+    for n in all {
         if !out.contains(&n) {
             out.push(n);
         }

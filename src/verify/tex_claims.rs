@@ -45,6 +45,22 @@ pub type PaperDisplays = (
     std::path::PathBuf,
 );
 
+/// A paper's displays from its text: a displays extract of `%% block N` sections (the seeds'
+/// cache, `verify/tex/`), or a LaTeX source (or a text with display math) read as LaTeX numbers
+/// it, with its document.
+pub fn blocks_of(text: &str) -> (Vec<(Option<String>, String)>, Option<Document>) {
+    if text.lines().any(|l| l.starts_with("%% block ")) {
+        return (display_blocks(text), None);
+    }
+    let doc = read_document(text);
+    let blocks = doc
+        .displays
+        .iter()
+        .map(|d| (d.after.clone(), d.latex.clone()))
+        .collect();
+    (blocks, Some(doc))
+}
+
 /// The displays a claims file's printed sides are read from: the paper's own LaTeX source when
 /// its `file` is a `.tex` beside the claims file (read as LaTeX numbers it, [`read_document`]),
 /// else the extract `tex/<paper>.tex` (the seeds' cache). With the document when there is one,
@@ -55,13 +71,8 @@ pub fn paper_displays(file: &PaperClaims) -> Result<PaperDisplays, String> {
         let path = dir.join(&file.file);
         let text = std::fs::read_to_string(&path)
             .map_err(|e| format!("the paper's source {}: {e}", path.display()))?;
-        let doc = read_document(&text);
-        let blocks = doc
-            .displays
-            .iter()
-            .map(|d| (d.after.clone(), d.latex.clone()))
-            .collect();
-        return Ok((blocks, Some(doc), path));
+        let (blocks, doc) = blocks_of(&text);
+        return Ok((blocks, doc, path));
     }
     let path = dir.join("tex").join(format!("{}.tex", file.paper));
     let text = std::fs::read_to_string(&path)
@@ -232,7 +243,8 @@ fn from_paper(
                             return Ok((shown, lhs.clone()));
                         }
                         None if exact
-                            && row.tag.as_deref() == Some(tag.as_str())
+                            && row.tag.as_deref().or(block_after.as_deref())
+                                == Some(tag.as_str())
                             && rel.sides.len() > 1 =>
                         {
                             return Ok((shown, None));
