@@ -2,13 +2,13 @@
 //! checkers for programs infer them across a code base (CamFort's units-of-measure for Fortran,
 //! Phriky-Units for ROS C++), and the relations that break consistency named.
 //!
-//! A unit is a vector of rational exponents of kg, m and s ([`Unit`]). The exponents are
+//! A unit is a vector of rational exponents of the seven SI base units ([`Unit`]). The exponents are
 //! linear in the formula: a product adds them, a quotient subtracts them, a rational power
 //! scales them, the terms of a sum and the sides of a relation are equal, and the argument of
 //! `exp`, `sin`, `ln` (and a symbolic exponent) is a pure number. So every formula's unit is an
 //! affine form $\sum_s a_s u_s + c$ in the unknown units $u_s$ of the undeclared symbols, with
-//! one rational coefficient $a_s$ for all three dimensions, and each relation gives equations
-//! $\sum_s a_s u_s = -c$: a linear system over the rationals with three right sides, solved
+//! one rational coefficient $a_s$ for all seven dimensions, and each relation gives equations
+//! $\sum_s a_s u_s = -c$: a linear system over the rationals with seven right sides, solved
 //! exactly by elimination.
 //!
 //! One bad relation must not poison the rest: relations are added one at a time, those with
@@ -34,7 +34,7 @@ use std::collections::{BTreeMap, BTreeSet};
 #[derive(Clone, Debug, Default, PartialEq)]
 struct Form {
     coeffs: BTreeMap<String, Q>,
-    konst: [Q; 3],
+    konst: [Q; 7],
 }
 
 impl Form {
@@ -159,7 +159,7 @@ impl Constraint {
     }
 
     /// `(coefficients, right side)` of `left - right = 0`.
-    fn equation(&self) -> (BTreeMap<String, Q>, [Q; 3]) {
+    fn equation(&self) -> (BTreeMap<String, Q>, [Q; 7]) {
         let d = self.left.1.clone().plus(&self.right.1, &-Q::one());
         (d.coeffs, d.konst.map(|c| -c))
     }
@@ -307,7 +307,7 @@ fn walk_in(
 #[derive(Clone, Debug)]
 struct Row {
     coeffs: BTreeMap<String, Q>,
-    rhs: [Q; 3],
+    rhs: [Q; 7],
     from: BTreeSet<usize>,
 }
 
@@ -322,9 +322,9 @@ impl System {
     fn reduce(
         &self,
         mut coeffs: BTreeMap<String, Q>,
-        mut rhs: [Q; 3],
+        mut rhs: [Q; 7],
         mut from: BTreeSet<usize>,
-    ) -> (BTreeMap<String, Q>, [Q; 3], BTreeSet<usize>) {
+    ) -> (BTreeMap<String, Q>, [Q; 7], BTreeSet<usize>) {
         let pivots: Vec<String> = coeffs
             .keys()
             .filter(|v| self.rows.contains_key(*v))
@@ -425,14 +425,18 @@ impl System {
     }
 }
 
-fn to_unit(x: &[Q; 3]) -> Option<Unit> {
+fn to_unit(x: &[Q; 7]) -> Option<Unit> {
     let r = |q: &Q| {
         Some(num_rational::Rational64::new(
             q.numer().to_i64()?,
             q.denom().to_i64()?,
         ))
     };
-    Some(Unit([r(&x[0])?, r(&x[1])?, r(&x[2])?]))
+    let mut u = Unit::default();
+    for (e, q) in u.0.iter_mut().zip(x) {
+        *e = r(q)?;
+    }
+    Some(u)
 }
 
 /// The equations of a relation: its sides pairwise equal, every term of every sum equal, every

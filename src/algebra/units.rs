@@ -1,7 +1,7 @@
 //! Units of the claim files: every symbol a formula uses has one (`[symbols]` of
 //! `verify/*.toml`), written as SI names and products, quotients and rational powers of them
 //! (`"kg"`, `"m/s"`, `"N/m^1.5"`, `"Pa"`, `"J"`, `"1"`). A unit is kept as exact rational exponents
-//! of kilogram, metre and second, so that $k\,\delta^{3/2}$ with $k$ in N/m^1.5 and $\delta$ in m
+//! of the seven SI base units (kilogram, metre, second, ampere, kelvin, mole, candela), so that $k\,\delta^{3/2}$ with $k$ in N/m^1.5 and $\delta$ in m
 //! is a force exactly, and [`dimension`] of a formula either gives its unit or names the first
 //! term whose units do not match.
 
@@ -10,9 +10,12 @@ use num_rational::Rational64;
 use num_traits::{ToPrimitive, Zero};
 use std::fmt;
 
-/// Exponents of (kg, m, s).
+/// The SI base units, in the order of a [`Unit`]'s exponents.
+pub const BASE: [&str; 7] = ["kg", "m", "s", "A", "K", "mol", "cd"];
+
+/// Exponents of the SI base units (kg, m, s, A, K, mol, cd).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub struct Unit(pub [Rational64; 3]);
+pub struct Unit(pub [Rational64; 7]);
 
 impl Unit {
     /// Dimensionless.
@@ -21,7 +24,18 @@ impl Unit {
     }
 
     fn base(kg: i64, m: i64, s: i64) -> Unit {
-        Unit([kg.into(), m.into(), s.into()])
+        let mut u = Unit::default();
+        u.0[0] = kg.into();
+        u.0[1] = m.into();
+        u.0[2] = s.into();
+        u
+    }
+
+    /// The unit `BASE[k]`.
+    fn unit_of_base(k: usize) -> Unit {
+        let mut u = Unit::default();
+        u.0[k] = 1.into();
+        u
     }
 
     /// `self * o^k`.
@@ -55,6 +69,14 @@ impl Unit {
             "W" => Unit::base(1, 2, -3),
             "Hz" => Unit::base(0, 0, -1),
             "rad" => Unit::one(),
+            "A" => Unit::unit_of_base(3),
+            "K" => Unit::unit_of_base(4),
+            "mol" => Unit::unit_of_base(5),
+            "cd" => Unit::unit_of_base(6),
+            // coulomb, volt, ohm: A s, W/A, V/A
+            "C" => Unit::unit_of_base(3).times(Unit::base(0, 0, 1), 1.into()),
+            "V" => Unit::base(1, 2, -3).times(Unit::unit_of_base(3), (-1).into()),
+            "ohm" => Unit::base(1, 2, -3).times(Unit::unit_of_base(3), (-2).into()),
             _ => return None,
         })
     }
@@ -65,7 +87,7 @@ impl Unit {
         let e = super::expr::parse(&spaced).map_err(|e| format!("unit `{text}`: {e}"))?;
         dimension(&e, &|s| Unit::named(s)).map_err(|e| match e {
             DimError::Unknown(s) => format!(
-                "unit `{text}`: unknown unit `{s}`; allowed: kg m s N Pa J W Hz rad 1, with * / ^"
+                "unit `{text}`: unknown unit `{s}`; allowed: kg m s A K mol cd N Pa J W Hz rad C V ohm 1, with * / ^"
             ),
             other => format!("unit `{text}`: {other}"),
         })
@@ -74,7 +96,7 @@ impl Unit {
 
 impl fmt::Display for Unit {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let parts: Vec<String> = ["kg", "m", "s"]
+        let parts: Vec<String> = BASE
             .iter()
             .zip(self.0)
             .filter(|(_, e)| !e.is_zero())
@@ -252,7 +274,8 @@ mod tests {
     fn units_parse_to_si_exponents() {
         // N/m^1.5 = kg m^-1/2 s^-2 (by hand)
         let u = Unit::parse("N/m^1.5").unwrap();
-        assert_eq!(u.0, [1.into(), Rational64::new(-1, 2), (-2).into()]);
+        assert_eq!(u.0[..3], [1.into(), Rational64::new(-1, 2), (-2).into()]);
+        assert!(u.0[3..].iter().all(|e| *e == Rational64::from(0)));
         assert_eq!(
             Unit::parse("kg m^2").unwrap(),
             Unit::parse("J*s^2").unwrap()
@@ -263,6 +286,20 @@ mod tests {
                 .unwrap_err()
                 .contains("unknown unit `furlong`")
         );
+    }
+
+    #[test]
+    fn the_seven_base_units_and_the_electrical_ones() {
+        // by hand: V A = W, C/s = A, ohm A = V, K and mol apart from the rest
+        assert_eq!(Unit::parse("V*A").unwrap(), Unit::parse("W").unwrap());
+        assert_eq!(Unit::parse("C/s").unwrap(), Unit::parse("A").unwrap());
+        assert_eq!(Unit::parse("ohm*A").unwrap(), Unit::parse("V").unwrap());
+        assert_eq!(
+            Unit::parse("J/(mol*K)").unwrap().to_string(),
+            "kg m^2 s^-2 K^-1 mol^-1"
+        );
+        assert_eq!(Unit::parse("cd").unwrap().0[6], Rational64::from(1));
+        assert_ne!(Unit::parse("K").unwrap(), Unit::parse("mol").unwrap());
     }
 
     #[test]
