@@ -482,6 +482,11 @@ mod tests {
             r"B = \mathbf{E}_3 + \begin{vmatrix} x & y \\ z & w \end{vmatrix}",
             "adds a 3x3 and a 2x2",
         );
+        // as many rows but not as many columns (the row count alone does not decide)
+        refuse(
+            r"B = \begin{vmatrix} x & y \\ z & w \end{vmatrix} + \begin{vmatrix} x & y & u \\ z & w & v \end{vmatrix}",
+            "adds a 2x2 and a 2x3",
+        );
         refuse(
             r"B = \begin{vmatrix} x & y \\ z \end{vmatrix}",
             "equal lengths",

@@ -100,9 +100,12 @@ pub struct AuditRelation {
     /// Its sides as read.
     #[serde(skip)]
     pub sides: Vec<Expr>,
-    /// The units of its sides, when fixed.
+    /// The unit of its left side, when it has one.
     #[serde(skip)]
     pub side_unit: Option<Unit>,
+    /// The unit of its right side, when it has one.
+    #[serde(skip)]
+    pub right_unit: Option<Unit>,
 }
 
 /// One symbol and its unit.
@@ -190,6 +193,7 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
                     names: Vec::new(),
                     sides: Vec::new(),
                     side_unit: None,
+                    right_unit: None,
                 };
                 match rel {
                     Err(e) => {
@@ -317,8 +321,9 @@ fn judge(rels: &mut [AuditRelation], inputs: &[Option<Relation>], inf: &Inferenc
     };
     for (i, r) in rels.iter_mut().enumerate() {
         let Some(input) = &inputs[i] else { continue };
-        r.side_unit =
-            crate::algebra::units::dimension(&input.sides[0], &|s| unit_of(&unit_name(s))).ok();
+        let unit = |e: &Expr| crate::algebra::units::dimension(e, &|s| unit_of(&unit_name(s))).ok();
+        r.side_unit = unit(&input.sides[0]);
+        r.right_unit = input.sides.last().and_then(unit);
         match &inf.statuses[i] {
             Status::Consistent => {
                 r.status = "consistent";
@@ -593,9 +598,12 @@ pub fn init_claims(
             s.push_str(&format!("\n# ({n}): no claim: {w}\n"));
             continue;
         }
-        // an inconsistent relation whose left side has no single unit: the unit of the term
-        // its detail names first
-        let expect = r.side_unit.map_or_else(|| left_unit(r), |u| u.to_string());
+        // an inconsistent relation whose left side has no single unit: its right side's unit (the
+        // claim fails either way; the unit must only be one)
+        let expect = r
+            .side_unit
+            .or(r.right_unit)
+            .map_or_else(|| "1".to_string(), |u| u.to_string());
         let slug: String = n
             .chars()
             .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
@@ -613,15 +621,6 @@ pub fn init_claims(
         ));
     }
     s
-}
-
-/// The unit of an inconsistent relation's left side, from its detail (`` `v` is m s^-1 but ``).
-fn left_unit(r: &AuditRelation) -> String {
-    r.detail
-        .split(" is ")
-        .nth(1)
-        .and_then(|t| t.split(" but ").next())
-        .map_or_else(|| "1".to_string(), |u| u.to_string())
 }
 
 /// A TOML key: bare when it can be, quoted otherwise.
@@ -722,4 +721,47 @@ pub fn title_of(text: &str) -> Option<String> {
         }
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn units(pairs: &[(&str, &str)]) -> Units {
+        let texts: BTreeMap<String, String> = pairs
+            .iter()
+            .map(|(a, b)| (a.to_string(), b.to_string()))
+            .collect();
+        Units {
+            symbols: texts
+                .iter()
+                .map(|(k, v)| (k.clone(), Unit::parse(v).unwrap()))
+                .collect(),
+            texts,
+            tex_symbols: BTreeMap::new(),
+        }
+    }
+
+    #[test]
+    fn a_left_side_without_a_unit_gives_a_claim_that_fails_on_the_right_sides_unit() {
+        // a + b = c with a in m and b in s: the left side has no unit; the claim expects c's
+        let text = "\\begin{equation} a + b = c \\end{equation}";
+        let (blocks, doc) = paper_blocks(text);
+        let u = units(&[("a", "m"), ("b", "s"), ("c", "m")]);
+        let a = audit(&blocks, doc.as_ref(), &u);
+        assert_eq!(a.relations[0].status, "inconsistent");
+        assert_eq!(a.relations[0].detail, "in m: `a`, `c`; in s: `b`");
+        let init = init_claims(&a, &["1".into()], "p", "p.tex", "T", &u);
+        assert!(init.contains("expect = \"m\""), "{init}");
+    }
+
+    #[test]
+    fn the_title_on_one_line() {
+        assert_eq!(
+            title_of("x \\title{The  impact\n of {a} body} y").as_deref(),
+            Some("The impact of {a} body")
+        );
+        assert_eq!(title_of("no title"), None);
+        assert_eq!(title_of("\\title{unclosed"), None);
+    }
 }

@@ -438,6 +438,16 @@ $$ q = r \tag{B} $$
     }
 
     #[test]
+    fn a_label_with_a_space_before_its_brace() {
+        let d = read_document("\\begin{equation} a = b \\label {eq:s} + c \\end{equation}");
+        assert_eq!(d.number_of("eq:s"), Some("1"));
+        assert_eq!(
+            d.displays[0].latex,
+            "\\begin{equation} a = b  + c \\tag{1}\\end{equation}"
+        );
+    }
+
+    #[test]
     fn numbers_within_sections() {
         let src = r"\numberwithin{equation}{section}
 \section{One} \begin{equation} a = b \end{equation}

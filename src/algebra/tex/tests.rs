@@ -183,3 +183,41 @@ fn a_spelling_may_stand_for_a_formula() {
     let e = read_formula("\\tilde{E} E(k)", &syms).expect("reads");
     assert_eq!(e.to_string(), "Et*ellipe(k)");
 }
+
+/// What cargo-mutants found untested in the reader (issue 43's sample), each against the reading
+/// a referee expects, by hand.
+#[test]
+fn a_bad_name_part_applications_integrals_and_the_nesting_limit() {
+    let syms = TexSymbols::default();
+    let read = |t: &str| read_formula(t, &syms).map(|e| e.to_string());
+    // a name's part is letters, digits and Greek: `+` in a subscript is refused, naming it
+    let e = read("x_{a+b}").unwrap_err();
+    assert_eq!(
+        (e.column, e.construct.as_str(), e.found.as_str()),
+        (5, "a name's part (letters, digits, Greek)", "+")
+    );
+    // an application whose argument has braces is one opaque symbol
+    assert_eq!(read("w(x_{1}, t)").unwrap(), "{w(x_1,t)}");
+    // after an integral, `d b` is a product again (the integrand's `d x` ends only inside it)
+    assert_eq!(
+        read(r"\int_{0}^{t} x d x + d b").unwrap(),
+        "int(x, x, 0, t) + d*b"
+    );
+    // the nesting limit is 200: 64 parentheses (3 levels each) and 5 unary minus signs (1 each)
+    // reach it exactly and read; one sign more is refused, naming the limit
+    let nested = |k: usize| format!("{}{}x{}", "(".repeat(64), "-".repeat(k), ")".repeat(64));
+    assert!(read(&nested(5)).is_ok());
+    assert!(
+        read(&nested(6))
+            .unwrap_err()
+            .construct
+            .contains("nested at most 200 deep")
+    );
+}
+
+/// The spacing commands `\,` and `\;` are not the separators `,` and `;` of a row's relations.
+#[test]
+fn spacing_does_not_split_a_row() {
+    let parts = super::split_top(r"m\rho^2 \,\Omega = x, y \; = z; w", &[",", ";"]);
+    assert_eq!(parts, [r"m\rho^2 \,\Omega = x", r" y \; = z", " w"]);
+}
