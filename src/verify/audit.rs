@@ -321,9 +321,11 @@ fn judge(rels: &mut [AuditRelation], inputs: &[Option<Relation>], inf: &Inferenc
     };
     for (i, r) in rels.iter_mut().enumerate() {
         let Some(input) = &inputs[i] else { continue };
-        let unit = |e: &Expr| crate::algebra::units::dimension(e, &|s| unit_of(&unit_name(s))).ok();
-        r.side_unit = unit(&input.sides[0]);
-        r.right_unit = input.sides.last().and_then(unit);
+        let [left, right] = [input.sides.first(), input.sides.last()].map(|e| {
+            e.and_then(|e| crate::algebra::units::dimension(e, &|s| unit_of(&unit_name(s))).ok())
+        });
+        r.side_unit = left;
+        r.right_unit = right;
         match &inf.statuses[i] {
             Status::Consistent => {
                 r.status = "consistent";
