@@ -200,8 +200,8 @@ fn a_bad_name_part_applications_integrals_and_the_nesting_limit() {
     assert_eq!(read("w(x_{1}, t)").unwrap(), "{w(x_1,t)}");
     // after an integral, `d b` is a product again (the integrand's `d x` ends only inside it)
     assert_eq!(
-        read(r"\int_{0}^{t} x d x + d b").unwrap(),
-        "int(x, x, 0, t) + d*b"
+        read(r"\int_{0}^{t} x d x + a d b").unwrap(),
+        "int(x, x, 0, t) + a*d*b"
     );
     // the nesting limit is 200: 64 parentheses (3 levels each) and 5 unary minus signs (1 each)
     // reach it exactly and read; one sign more is refused, naming the limit
