@@ -221,3 +221,27 @@ fn spacing_does_not_split_a_row() {
     let parts = super::split_top(r"m\rho^2 \,\Omega = x, y \; = z; w", &[",", ";"]);
     assert_eq!(parts, [r"m\rho^2 \,\Omega = x", r" y \; = z", " w"]);
 }
+
+/// A `[tex_symbols]` target that is a number is a formula (the number), not a symbol named by
+/// it: 002 reads `V(t_0 + \tau)` as V at an instant by mapping the instant to 1.
+#[test]
+fn a_number_as_a_target_is_a_number() {
+    let syms = TexSymbols::new([
+        ("x_{0}".to_string(), "2".to_string()),
+        ("(t_0 + \\tau)".to_string(), "1".to_string()),
+        ("q_{1}".to_string(), "_q1".to_string()),
+    ]);
+    let e = read_formula("y + x_{0} V(t_0 + \\tau) + q_{1}", &syms).unwrap();
+    assert_eq!(e.symbols(), ["V", "_q1", "y"]);
+    let v = e
+        .eval(&|s| {
+            Some(match s {
+                "y" => 1.0,
+                "V" => 3.0,
+                _ => 0.5,
+            })
+        })
+        .unwrap();
+    // 1 + 2*3*1 + 0.5, by hand
+    assert!((v - 7.5).abs() < 1e-15, "{v}");
+}
