@@ -152,6 +152,8 @@ fn the_audit_finds_the_planted_error_and_no_other() {
     );
     let restitution = rels.iter().find(|r| r["number"] == "5").unwrap();
     assert_eq!(restitution["label"], "eq:restitution");
+    // the relation as read, in the formula language
+    assert_eq!(restitution["read"], "e = exp(-(zeta*pi/sqrt(1 - zeta^2)))");
     assert!(rels.iter().any(|r| r["number"].is_null()));
     // the units inferred, by hand: omega_n, omega_d in 1/s, t_c in s, zeta and e pure, the dotted
     // x in m/s and m/s^2

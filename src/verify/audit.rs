@@ -758,6 +758,15 @@ mod tests {
     }
 
     #[test]
+    fn a_zero_side_is_no_term_of_its_own() {
+        // a + b = 0 with a in m, b in s: the literal 0 has every unit and joins no group
+        let (blocks, doc) = paper_blocks("\\begin{equation} a + b = 0 \\end{equation}");
+        let a = audit(&blocks, doc.as_ref(), &units(&[("a", "m"), ("b", "s")]));
+        assert_eq!(a.relations[0].detail, "in m: `a`; in s: `b`");
+        assert_eq!(a.relations[0].read.as_deref(), Some("a + b = 0"));
+    }
+
+    #[test]
     fn the_title_on_one_line() {
         assert_eq!(
             title_of("x \\title{The  impact\n of {a} body} y").as_deref(),
