@@ -9,8 +9,12 @@
 //! an energy without the square of `v_0`) was written by hand.
 
 use serde_json::Value;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
+
+#[path = "support/scratch.rs"]
+mod scratch;
+use scratch::Scratch;
 
 fn verify(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_verify"))
@@ -24,10 +28,8 @@ const PAPER: &str = "tests/papers/spring_dashpot/paper.tex";
 const CLAIMS: &str = "tests/papers/spring_dashpot/claims.toml";
 
 /// A fresh folder with a copy of the test paper.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("impactcheck-audit-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+fn scratch(name: &str) -> Scratch {
+    let dir = Scratch::new(&format!("audit-{name}"));
     std::fs::copy(
         Path::new(env!("CARGO_MANIFEST_DIR")).join(PAPER),
         dir.join("paper.tex"),
@@ -414,4 +416,75 @@ fn a_seeds_scaffold_fails_exactly_on_its_inconsistent_relations() {
         .collect();
     bad.dedup();
     assert_eq!(bad, ["1.1", "1.8", "2.6"]);
+}
+
+/// The paper's source in another folder (`--papers DIR`), and a paper as plain text with `$$`
+/// displays (as the seeds are), read by `printed_from`
+/// without a displays extract. References: the closed forms of the identity claims, typed by
+/// hand in the test paper's claims file.
+#[test]
+fn the_paper_may_be_elsewhere_or_a_text_with_display_math() {
+    let claims =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(CLAIMS)).unwrap();
+    // the header, the symbols and definitions, and the two identity claims on (5) and (3)
+    let head = &claims[..claims.find("[[claim]]").unwrap()];
+    let claim = |id: &str| {
+        let at = claims.find(&format!("id = \"{id}\"")).unwrap();
+        let start = claims[..at].rfind("[[claim]]").unwrap();
+        let end = claims[at..]
+            .find("[[claim]]")
+            .map_or(claims.len(), |k| at + k);
+        claims[start..end].to_string()
+    };
+    let body = format!(
+        "{}{}{}",
+        head,
+        claim("sd.eq5.by-number"),
+        claim("sd.eq3.omegad")
+    );
+    let holds = vec![
+        ("sd.eq3.omegad".to_string(), "holds".to_string()),
+        ("sd.eq5.by-number".to_string(), "holds".to_string()),
+    ];
+    // the claims in one folder, the paper in another: found with --papers, an exit 2 without
+    let claims_at = scratch("elsewhere-claims");
+    std::fs::remove_file(claims_at.join("paper.tex")).unwrap();
+    let papers = scratch("elsewhere-papers");
+    let path = claims_at.join("claims.toml");
+    std::fs::write(&path, &body).unwrap();
+    let out = verify(&["--claims", path.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("the paper's source `paper.tex` is not in"),
+        "{err}"
+    );
+    let args = ["--claims", path.to_str().unwrap(), "--format", "json"];
+    let out = verify(&[&args[..], &["--papers", papers.to_str().unwrap()]].concat());
+    assert_eq!(verdicts(&out), holds);
+    // a plain text with $$ displays beside the claims file, tagged as the seeds' texts are
+    // (their numbers are their \tag labels); (2)-(3) as one $$ block of two rows
+    let text = "The restitution is\n$$\ne = \\exp\\left(-\\frac{\\zeta \\pi}{\\sqrt{1 - \\zeta^{2}}}\\right) \\tag{5}\n$$\nwith\n$$\n\\omega_{n} = \\sqrt{k/m} \\tag{2} \\\\ \\omega_{d} = \\omega_{n} \\sqrt{1 - \\zeta^{2}} \\tag{3}\n$$\n";
+    std::fs::write(claims_at.join("paper.txt"), text).unwrap();
+    let body = body.replace("paper.tex", "paper.txt").replace(
+        "\"1\", \"2\", \"3\", \"4\", \"5\", \"A1\"",
+        "\"5\", \"2\", \"3\"",
+    );
+    std::fs::write(&path, &body).unwrap();
+    let out = verify(&args);
+    assert_eq!(verdicts(&out), holds);
+    // and what is read is the text: a misprint in it (zeta^3) fails the claim on (5)
+    std::fs::write(
+        claims_at.join("paper.txt"),
+        text.replacen("\\zeta^{2}", "\\zeta^{3}", 1),
+    )
+    .unwrap();
+    let out = verify(&args);
+    assert_eq!(
+        verdicts(&out),
+        vec![
+            ("sd.eq3.omegad".to_string(), "holds".to_string()),
+            ("sd.eq5.by-number".to_string(), "fails".to_string()),
+        ]
+    );
 }

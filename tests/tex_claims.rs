@@ -4,16 +4,19 @@
 //! not in the paper stops validation with exit 2 naming the claim and the key. The references
 //! are the retyped formulas of `verify/000_cone_plate.toml` (typed by hand from the paper).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
+
+#[path = "support/scratch.rs"]
+mod scratch;
+use scratch::Scratch;
 
 const A5: &str = "E*m^2*n^2*pi^4*b/(64*a^3) + E*m^2*n^2*pi^4*a/(64*b^3)";
 const A6: &str = "m^2*n^2*pi^4*b/(64*a^3)*eta + m^2*n^2*pi^4*a/(64*b^3)*eta";
 
 /// A claims file for paper 000 in a fresh folder, with the paper's displays beside it.
-fn claims_dir(name: &str, body: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("impactcheck-tex-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
+fn claims_dir(name: &str, body: &str) -> Scratch {
+    let d = Scratch::new(&format!("tex-{name}"));
     std::fs::create_dir_all(d.join("tex")).expect("temp dir");
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     std::fs::copy(root.join("verify/tex/000.tex"), d.join("tex/000.tex")).expect("copy");

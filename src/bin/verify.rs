@@ -133,9 +133,10 @@ struct Args {
     /// The seed that picks the claims of --power-sample (CI gives the commit).
     #[arg(long, value_name = "TEXT", default_value = "0")]
     power_seed: String,
-    /// Where the papers' texts are (each claims file's `file`): its `equations` list is checked
-    /// against their \tag labels (default: beside the claims file, then ../shared/seeds/). The
-    /// reports never depend on it: coverage is counted from the lists.
+    /// Where the papers' texts are (each claims file's `file`), looked for before the folder of
+    /// the claims file and ../shared/seeds/: its `equations` list is checked against their
+    /// numbers, and `printed_from` reads a paper's `.tex` (or a text with `$$` displays, when
+    /// there is no `tex/<paper>.tex` extract) from there. Coverage is counted from the lists.
     #[arg(long, value_name = "DIR")]
     papers: Option<PathBuf>,
     /// For CI use: `fails` exits with status 1 when any claim's verdict is `fails` (after
@@ -443,7 +444,7 @@ fn run(args: Args) -> Result<bool> {
             None,
         );
     }
-    let all = verify::load_claims(&claims_dir)
+    let all = verify::load_claims_with(&claims_dir, args.papers.as_deref())
         .with_context(|| format!("reading claims from {}", claims_dir.display()))?;
     let papers = verify::select(&all, args.only.as_deref());
     if papers.is_empty() {

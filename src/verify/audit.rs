@@ -767,6 +767,26 @@ mod tests {
     }
 
     #[test]
+    fn a_claims_file_gives_the_units_a_units_file_reads_from_it() {
+        // the seeds' claims files, read as claims and as units files: the same units and the
+        // same LaTeX spellings (000's `[tex_symbols]` among them)
+        for f in ["000_cone_plate", "001_disk", "002_constrained_impact"] {
+            let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("verify/{f}.toml"));
+            let papers = crate::verify::load_claims(&path).expect("loads");
+            let from_claims = units_of_claims(&papers[0]);
+            let from_file = read_units(&path).expect("reads");
+            assert_eq!(from_claims.symbols, from_file.symbols, "{f}");
+            assert_eq!(from_claims.texts, from_file.texts, "{f}");
+            assert_eq!(from_claims.tex_symbols, from_file.tex_symbols, "{f}");
+        }
+        let p = crate::verify::load_claims(
+            &Path::new(env!("CARGO_MANIFEST_DIR")).join("verify/000_cone_plate.toml"),
+        )
+        .expect("loads");
+        assert!(!units_of_claims(&p[0]).tex_symbols.is_empty());
+    }
+
+    #[test]
     fn the_title_on_one_line() {
         assert_eq!(
             title_of("x \\title{The  impact\n of {a} body} y").as_deref(),

@@ -373,6 +373,7 @@ mod tests {
         p.equations = vec!["1".into()];
         let err = check_equations(&p, Some(&dir)).unwrap_err().to_string();
         assert!(err.contains("not listed: [\"2\"]"), "{err}");
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

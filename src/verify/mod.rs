@@ -67,6 +67,10 @@ pub struct PaperClaims {
     /// Where the file was read from (scenes of generic claims are relative to it).
     #[serde(skip)]
     pub source: PathBuf,
+    /// Where the papers' texts are looked for first (`verify --papers DIR`), before the folder
+    /// of the claims file.
+    #[serde(skip)]
+    pub papers_dir: Option<PathBuf>,
 }
 
 /// What every claim has, whatever its kind.
@@ -309,6 +313,14 @@ pub(crate) fn holds(b: bool) -> Verdict {
 
 /// Reads a claims file, or every `*.toml` claims file of a folder (sorted by file name).
 pub fn load_claims(path: &Path) -> Result<Vec<PaperClaims>, VerifyError> {
+    load_claims_with(path, None)
+}
+
+/// [`load_claims`], with the papers' texts looked for in `papers` first (`verify --papers`).
+pub fn load_claims_with(
+    path: &Path,
+    papers: Option<&Path>,
+) -> Result<Vec<PaperClaims>, VerifyError> {
     let io = |path: &Path, source| VerifyError::Io {
         path: path.to_path_buf(),
         source,
@@ -333,6 +345,7 @@ pub fn load_claims(path: &Path) -> Result<Vec<PaperClaims>, VerifyError> {
                     message: e.to_string().trim().replace('\n', " "),
                 })?;
             claims.source = p.clone();
+            claims.papers_dir = papers.map(Path::to_path_buf);
             tex_claims::resolve(&mut claims)?;
             Ok(claims)
         })

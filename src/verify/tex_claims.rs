@@ -62,22 +62,49 @@ pub fn blocks_of(text: &str) -> (Vec<(Option<String>, String)>, Option<Document>
 }
 
 /// The displays a claims file's printed sides are read from: the paper's own LaTeX source when
-/// its `file` is a `.tex` beside the claims file (read as LaTeX numbers it, [`read_document`]),
-/// else the extract `tex/<paper>.tex` (the seeds' cache). With the document when there is one,
-/// and the path read.
+/// its `file` is a `.tex` (read as LaTeX numbers it, [`read_document`]); else the extract
+/// `tex/<paper>.tex` beside the claims file (the seeds' cache); else its `file`, a text with
+/// display math (`$$ ... $$` with the number printed after each). A `file` is looked for in
+/// `--papers DIR`, beside the claims file, then among the seeds
+/// ([`super::coverage::text_path`]). With the document when there is one, and the path read.
 pub fn paper_displays(file: &PaperClaims) -> Result<PaperDisplays, String> {
     let dir = file.source.parent().unwrap_or(std::path::Path::new("."));
-    if file.file.ends_with(".tex") {
-        let path = dir.join(&file.file);
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| format!("the paper's source {}: {e}", path.display()))?;
-        let (blocks, doc) = blocks_of(&text);
-        return Ok((blocks, doc, path));
+    let source = || {
+        let path = super::coverage::text_path(file, file.papers_dir.as_deref())?;
+        Some(
+            std::fs::read_to_string(&path)
+                .map_err(|e| format!("the paper's source {}: {e}", path.display()))
+                .map(|text| {
+                    let (blocks, doc) = blocks_of(&text);
+                    (blocks, doc, path)
+                }),
+        )
+    };
+    let extract = dir.join("tex").join(format!("{}.tex", file.paper));
+    if !file.file.ends_with(".tex") && extract.is_file() {
+        let text = std::fs::read_to_string(&extract)
+            .map_err(|e| format!("the paper's displays {}: {e}", extract.display()))?;
+        return Ok((display_blocks(&text), None, extract));
     }
-    let path = dir.join("tex").join(format!("{}.tex", file.paper));
-    let text = std::fs::read_to_string(&path)
-        .map_err(|e| format!("the paper's displays {}: {e}", path.display()))?;
-    Ok((display_blocks(&text), None, path))
+    source().unwrap_or_else(|| {
+        let tried = match &file.papers_dir {
+            Some(d) => format!("{}, ", d.display()),
+            None => String::new(),
+        };
+        Err(if file.file.is_empty() {
+            format!(
+                "no paper to read: no `file` in the claims file and no displays extract {}",
+                extract.display()
+            )
+        } else {
+            format!(
+                "the paper's source `{}` is not in {tried}{} or the seeds, and there is no displays extract {}",
+                file.file,
+                dir.display(),
+                extract.display()
+            )
+        })
+    })
 }
 
 fn bad(file: &PaperClaims, id: &str, field: &str, message: String) -> VerifyError {

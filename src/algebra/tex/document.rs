@@ -464,6 +464,18 @@ $$ q = r \tag{B} $$
         assert_eq!(number_after("\n(see above)\n", 0), None);
         assert_eq!(number_after("\n(3) and more\n", 0), None);
         assert_eq!(number_after("\n\n\n(3)\n", 0), None);
+        // a hyphen belongs to a number; a space or a comma does not
+        assert_eq!(number_after("\n(A-1)\n", 0).as_deref(), Some("A-1"));
+        assert_eq!(number_after("\n(3 a)\n", 0), None);
+        assert_eq!(number_after("\n(3,4)\n", 0), None);
+    }
+
+    #[test]
+    fn a_command_that_only_starts_like_section_is_passed_over() {
+        // `\sectionmark` is no section: the search goes on to the real one after it
+        let src = r"\numberwithin{equation}{section} \sectionmark{x} \sectionmark{y} \section{A}
+\begin{equation} a = b \end{equation}";
+        assert_eq!(read_document(src).numbers, ["1.1"]);
     }
 
     #[test]

@@ -245,3 +245,27 @@ fn a_number_as_a_target_is_a_number() {
     // 1 + 2*3*1 + 0.5, by hand
     assert!((v - 7.5).abs() < 1e-15, "{v}");
 }
+
+#[test]
+fn a_multi_digit_script_and_a_subscript_on_a_group_are_refused_by_name() {
+    let e = read_formula("x^23", &TexSymbols::default()).unwrap_err();
+    assert!(e.construct.contains("multi-digit script"), "{e}");
+    same("x^2", "x^2");
+    let e = read_formula("(a + b)_1", &TexSymbols::default()).unwrap_err();
+    assert!(e.construct.contains("subscript on something"), "{e}");
+}
+
+#[test]
+fn two_absolute_values_side_by_side() {
+    // after the first `|a|` closes, a `|` opens again
+    same("|a| |b|", "abs(a)*abs(b)");
+    same("|a - b| c |d|", "abs(a - b)*c*abs(d)");
+}
+
+#[test]
+fn a_missing_operand_is_found_where_it_is_missing() {
+    // `a + )`: the error points at the `)` (column 5), not at what follows it
+    let e = read_formula("a + ) b", &TexSymbols::default()).unwrap_err();
+    assert_eq!((e.column, e.construct.as_str()), (5, "a formula"), "{e}");
+    assert!(e.found.contains(')'), "{e}");
+}
