@@ -237,6 +237,12 @@ pub fn derivative(e: &Expr, x: &str) -> Result<Expr, String> {
                 Func::Asin => div(num(1), call(Func::Sqrt, sub(num(1), pow(a, num(2))))),
                 Func::Acos => neg(div(num(1), call(Func::Sqrt, sub(num(1), pow(a, num(2)))))),
                 Func::Atan => div(num(1), add(num(1), pow(a, num(2)))),
+                Func::Sinh => call(Func::Cosh, a),
+                Func::Cosh => call(Func::Sinh, a),
+                Func::Tanh => div(num(1), pow(call(Func::Cosh, a), num(2))),
+                Func::Asinh => div(num(1), call(Func::Sqrt, add(pow(a, num(2)), num(1)))),
+                Func::Acosh => div(num(1), call(Func::Sqrt, sub(pow(a, num(2)), num(1)))),
+                Func::Atanh => div(num(1), sub(num(1), pow(a, num(2)))),
                 Func::EllipK => sub(
                     div(
                         call(Func::EllipE, a.clone()),
@@ -496,12 +502,25 @@ mod tests {
     fn elliptic_derivatives_match_differences() {
         // central differences of K and E at k = 0.6 against the chain-rule forms
         let h = 1e-6;
-        for f in ["ellipk(k)", "ellipe(k)", "asin(k)", "acos(k)", "atan(k)"] {
+        // (and the hyperbolic functions and their inverses; acosh at 1.6, inside its domain)
+        for (f, k) in [
+            ("ellipk(k)", 0.6),
+            ("ellipe(k)", 0.6),
+            ("asin(k)", 0.6),
+            ("acos(k)", 0.6),
+            ("atan(k)", 0.6),
+            ("sinh(k)", 0.6),
+            ("cosh(k)", 0.6),
+            ("tanh(k)", 0.6),
+            ("asinh(k)", 0.6),
+            ("acosh(k)", 1.6),
+            ("atanh(k)", 0.6),
+        ] {
             let e = parse(f).unwrap();
             let d = parse(&format!("diff({f}, k)")).unwrap();
-            let v = |k: f64| e.eval(&|_| Some(k)).unwrap();
-            let fd = (v(0.6 + h) - v(0.6 - h)) / (2.0 * h);
-            let an = d.eval(&|_| Some(0.6)).unwrap();
+            let v = |x: f64| e.eval(&|_| Some(x)).unwrap();
+            let fd = (v(k + h) - v(k - h)) / (2.0 * h);
+            let an = d.eval(&|_| Some(k)).unwrap();
             assert!((fd - an).abs() < 1e-8, "{f}: {fd} vs {an}");
         }
     }

@@ -10,7 +10,8 @@
 //! - an exponent $\pm 1$;
 //! - a sign (a unary minus dropped, `+` and `-` exchanged, the whole side negated);
 //! - a dropped term of a sum;
-//! - a symbol swapped for another of the same unit in the file's `[symbols]`.
+//! - a symbol swapped for another of the same unit in the file's `[symbols]`;
+//! - a function swapped for its sibling (sin for cos, sinh for cosh, asinh for acosh, and back).
 //!
 //! A mutant is **killed** when the verdict changes (or the misprint is refused at validation,
 //! or its check stops with an error), and **survives** otherwise. Not counted: a mutant equal to
@@ -196,6 +197,14 @@ fn local(e: &Expr, in_exponent: bool, swaps: &dyn Fn(&str) -> Vec<String>, out: 
                 });
             }
         }
+        Expr::Call(f, a) => {
+            if let Some(g) = sibling(*f) {
+                out.push(Mutant {
+                    what: format!("`{}` for `{}`", g.name(), f.name()),
+                    expr: Expr::Call(g, a.clone()),
+                });
+            }
+        }
         Expr::Neg(a) => out.push(Mutant {
             what: format!("sign of -{} dropped", short(a)),
             expr: (**a).clone(),
@@ -236,13 +245,35 @@ fn local(e: &Expr, in_exponent: bool, swaps: &dyn Fn(&str) -> Vec<String>, out: 
     }
 }
 
+/// The function a misprint puts for `f`: its sibling of the same family (sin and cos, sinh and
+/// cosh, asin and acos, asinh and acosh, tan and tanh, atan and atanh).
+fn sibling(f: expr::Func) -> Option<expr::Func> {
+    use expr::Func as F;
+    Some(match f {
+        F::Sin => F::Cos,
+        F::Cos => F::Sin,
+        F::Sinh => F::Cosh,
+        F::Cosh => F::Sinh,
+        F::Asin => F::Acos,
+        F::Acos => F::Asin,
+        F::Asinh => F::Acosh,
+        F::Acosh => F::Asinh,
+        F::Tan => F::Tanh,
+        F::Tanh => F::Tan,
+        F::Atan => F::Atanh,
+        F::Atanh => F::Atan,
+        _ => return None,
+    })
+}
+
 /// How many symbol values a fingerprint may look up: nested integrals evaluated by
 /// quadrature cost 1024 evaluations per level, and a formula too dear to evaluate is not
 /// fingerprinted (its mutants are run, none merged as equivalent).
 const FINGERPRINT_BUDGET: usize = 200_000;
 
 /// Values of a formula's symbols at three points (a hash of the name picks each in
-/// [0.35, 0.85], where every function of the formula language is defined).
+/// [0.35, 0.85], where every function of the formula language but `acosh` is defined; a value
+/// that is not finite fingerprints nothing, and its mutant is run).
 fn fingerprint(values: &[&Expr]) -> Option<Vec<f64>> {
     let mut out = Vec::new();
     let spent = std::cell::Cell::new(0usize);
@@ -635,6 +666,33 @@ mod tests {
             _ => Some(0.0),
         };
         assert!((back.eval(&at).unwrap() - 3.2 * 2f64.powf(-0.6)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_function_is_misprinted_as_its_sibling() {
+        // by hand: each function of the family for the other, once; exp has no sibling
+        let t = texts("sin(x) + acosh(y) - tanh(z)*exp(w)");
+        for want in [
+            "cos(x) + acosh(y) - tanh(z)*exp(w)",
+            "sin(x) + asinh(y) - tanh(z)*exp(w)",
+            "sin(x) + acosh(y) - tan(z)*exp(w)",
+        ] {
+            assert!(t.contains(&want.to_string()), "{want} missing from {t:?}");
+        }
+        for (f, g) in [
+            ("cos", "sin"),
+            ("cosh", "sinh"),
+            ("acos", "asin"),
+            ("asinh", "acosh"),
+            ("atan", "atanh"),
+            ("atanh", "atan"),
+        ] {
+            assert!(
+                texts(&format!("{f}(x)")).contains(&format!("{g}(x)")),
+                "{f}"
+            );
+        }
+        assert!(!texts("exp(x)").iter().any(|m| !m.contains("exp")));
     }
 
     #[test]

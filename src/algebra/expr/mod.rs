@@ -57,6 +57,12 @@ pub const FUNCTIONS: &[&str] = &[
     "asin",
     "acos",
     "atan",
+    "sinh",
+    "cosh",
+    "tanh",
+    "asinh",
+    "acosh",
+    "atanh",
     "abs",
     "ellipk",
     "ellipe",
@@ -95,6 +101,18 @@ pub enum Func {
     Acos,
     /// Arc tangent (radians).
     Atan,
+    /// Hyperbolic sine.
+    Sinh,
+    /// Hyperbolic cosine.
+    Cosh,
+    /// Hyperbolic tangent.
+    Tanh,
+    /// Inverse hyperbolic sine.
+    Asinh,
+    /// Inverse hyperbolic cosine (the non-negative branch, argument >= 1).
+    Acosh,
+    /// Inverse hyperbolic tangent (argument in (-1, 1)).
+    Atanh,
     /// Absolute value.
     Abs,
     /// The complete elliptic integral of the first kind $K(k)$, modulus $k$ in [0, 1).
@@ -125,6 +143,12 @@ impl Func {
             "asin" => Func::Asin,
             "acos" => Func::Acos,
             "atan" => Func::Atan,
+            "sinh" => Func::Sinh,
+            "cosh" => Func::Cosh,
+            "tanh" => Func::Tanh,
+            "asinh" => Func::Asinh,
+            "acosh" => Func::Acosh,
+            "atanh" => Func::Atanh,
             "abs" => Func::Abs,
             "ellipk" => Func::EllipK,
             "ellipe" => Func::EllipE,
@@ -149,6 +173,12 @@ impl Func {
             Func::Asin => "asin",
             Func::Acos => "acos",
             Func::Atan => "atan",
+            Func::Sinh => "sinh",
+            Func::Cosh => "cosh",
+            Func::Tanh => "tanh",
+            Func::Asinh => "asinh",
+            Func::Acosh => "acosh",
+            Func::Atanh => "atanh",
             Func::Abs => "abs",
             Func::EllipK => "ellipk",
             Func::EllipE => "ellipe",
@@ -171,6 +201,12 @@ impl Func {
             Func::Asin => x.asin(),
             Func::Acos => x.acos(),
             Func::Atan => x.atan(),
+            Func::Sinh => x.sinh(),
+            Func::Cosh => x.cosh(),
+            Func::Tanh => x.tanh(),
+            Func::Asinh => x.asinh(),
+            Func::Acosh => x.acosh(),
+            Func::Atanh => x.atanh(),
             Func::Abs => x.abs(),
             Func::EllipK => complete_elliptic(x).0,
             Func::EllipE => complete_elliptic(x).1,
@@ -634,6 +670,16 @@ impl Expr {
                 return RatFunc::from_q(sin_cos_of_pi_multiple(*f == Func::Cos, &a.to_ratfunc()?)?)
                     .into();
             }
+            // the hyperbolic functions and their inverses at the points where they are rational
+            Expr::Call(Func::Sinh | Func::Tanh | Func::Asinh | Func::Atanh, a)
+                if a.exact_constant()?.is_zero() =>
+            {
+                RatFunc::from_q(Q::zero())
+            }
+            Expr::Call(Func::Cosh, a) if a.exact_constant()?.is_zero() => RatFunc::one(),
+            Expr::Call(Func::Acosh, a) if a.exact_constant()?.is_one() => {
+                RatFunc::from_q(Q::zero())
+            }
             Expr::Call(Func::Factorial, a) => {
                 let n = a.exact_constant()?;
                 let n = n.is_integer().then(|| n.to_integer().to_u32())??;
@@ -720,6 +766,17 @@ impl Expr {
                 let inv = Q::one() / r.denom().as_constant()?;
                 let rate: Poly = slope.scale(&-inv);
                 Expo::part(RatFunc::one(), 0, rate)
+            }
+            // sinh and cosh of a multiple of t: (exp(x) -+ exp(-x))/2
+            Expr::Call(f @ (Func::Sinh | Func::Cosh), arg) if free(self).is_none() => {
+                let up = Expr::Call(Func::Exp, arg.clone()).to_expo(t)?;
+                let down = Expr::Call(Func::Exp, Box::new(Expr::Neg(arg.clone()))).to_expo(t)?;
+                let half = RatFunc::from_q(Q::new(1.into(), 2.into()));
+                if *f == Func::Sinh {
+                    (&up - &down).scale(&half)
+                } else {
+                    (&up + &down).scale(&half)
+                }
             }
             Expr::Call(..) => Expo::monomial(free(self)?, 0),
             // int_0^t g(s) ds, g an exponential polynomial in s (t may appear in it)
@@ -828,6 +885,33 @@ mod tests {
         for bad in ["2e", "2e+", "x*3E"] {
             assert!(parse(bad).is_err(), "{bad}");
         }
+    }
+
+    #[test]
+    fn hyperbolic_functions_are_exact_where_the_algebra_has_them() {
+        // rational values at 0 (and acosh at 1); none elsewhere
+        let c = |s: &str| parse(s).unwrap().exact_constant();
+        assert_eq!(
+            c("cosh(0) + acosh(2 - 1) + sinh(0) + tanh(0) + asinh(0) + atanh(0)"),
+            Some(q(1, 1))
+        );
+        for open in [
+            "cosh(1)",
+            "sinh(1)",
+            "acosh(2)",
+            "tanh(1)",
+            "asinh(1)",
+            "atanh(1/2)",
+        ] {
+            assert_eq!(c(open), None, "{open}");
+        }
+        // sinh, cosh of a multiple of t are exponential polynomials: cosh^2 - sinh^2 = 1 and
+        // d/dt sinh(k t) = k cosh(k t), exactly
+        let x = |s: &str| parse(s).unwrap().to_expo("t").unwrap();
+        assert_eq!(x("cosh(2*a*t)^2 - sinh(2*a*t)^2"), x("1"));
+        assert_eq!(x("sinh(k*t)").deriv(), x("k*cosh(k*t)"));
+        assert_eq!(x("2*sinh(t)"), x("exp(t) - exp(-t)"));
+        assert!(parse("tanh(t)").unwrap().to_expo("t").is_none());
     }
 
     #[test]

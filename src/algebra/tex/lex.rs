@@ -97,6 +97,12 @@ pub(super) fn func(cmd: &str) -> Option<Func> {
         "arcsin" => Func::Asin,
         "arccos" => Func::Acos,
         "arctan" => Func::Atan,
+        "sinh" => Func::Sinh,
+        "cosh" => Func::Cosh,
+        "tanh" => Func::Tanh,
+        "arsinh" | "arcsinh" => Func::Asinh,
+        "arcosh" | "arccosh" => Func::Acosh,
+        "artanh" | "arctanh" => Func::Atanh,
         _ => return None,
     })
 }

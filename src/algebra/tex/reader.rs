@@ -658,6 +658,14 @@ impl<'a> Reader<'a> {
             Tok::Cmd(c) if c == "left" => self.atom()?,
             _ => self.term_until(true)?,
         };
+        // `\cosh^{-1} x` is the inverse function, as papers mean it, not 1/cosh x
+        if let Some(p) = &pow
+            && p.exact_constant()
+                .is_some_and(|c| c == -num_rational::BigRational::from_integer(1.into()))
+            && let Some(inv) = inverse(f)
+        {
+            return Ok(Expr::Call(inv, Box::new(arg)));
+        }
         let e = Expr::Call(f, Box::new(arg));
         Ok(match pow {
             Some(p) => power(e, p),
@@ -781,4 +789,17 @@ pub(super) fn mul(a: Expr, b: Expr) -> Expr {
 }
 pub(super) fn power(a: Expr, b: Expr) -> Expr {
     Expr::Bin(Op::Pow, Box::new(a), Box::new(b))
+}
+
+/// The inverse of a circular or hyperbolic function (`\sin^{-1}` is `asin`).
+fn inverse(f: Func) -> Option<Func> {
+    Some(match f {
+        Func::Sin => Func::Asin,
+        Func::Cos => Func::Acos,
+        Func::Tan => Func::Atan,
+        Func::Sinh => Func::Asinh,
+        Func::Cosh => Func::Acosh,
+        Func::Tanh => Func::Atanh,
+        _ => return None,
+    })
 }

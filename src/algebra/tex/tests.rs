@@ -269,3 +269,28 @@ fn a_missing_operand_is_found_where_it_is_missing() {
     assert_eq!((e.column, e.construct.as_str()), (5, "a formula"), "{e}");
     assert!(e.found.contains(')'), "{e}");
 }
+
+#[test]
+fn hyperbolic_functions_and_inverses_as_papers_print_them() {
+    // `f^{-1}` of a circular or hyperbolic function is its inverse; `\operatorname{arccosh}`
+    // and the ISO `arcosh`, `arsinh`, `artanh`; a square stays a square
+    same(
+        "\\sinh x + \\cosh(y) - \\tanh w",
+        "sinh(x) + cosh(y) - tanh(w)",
+    );
+    same("\\cosh^{-1} (1 + y^{2})", "acosh(1 + y^2)");
+    same("\\operatorname{arccosh} (1 + z)", "acosh(1 + z)");
+    same("\\operatorname{arcosh} (1 + z)", "acosh(1 + z)");
+    same(
+        "\\operatorname{arsinh} v + \\operatorname{arcsinh} u",
+        "asinh(v) + asinh(u)",
+    );
+    same(
+        "\\operatorname{artanh} \\frac{u}{2 + u}",
+        "atanh(u/(2 + u))",
+    );
+    same("\\tanh^{-1} \\frac{u}{2 + u}", "atanh(u/(2 + u))");
+    same("\\sin^{-1} \\frac{s}{2 + s}", "asin(s/(2 + s))");
+    same("\\sinh^{2} x", "sinh(x)^2");
+    same("\\exp^{-1} x", "exp(x)^(-1)");
+}

@@ -225,8 +225,10 @@ fn slots(
     Ok(slots)
 }
 
-/// `[definitions]`, expanded in the order written; a definition may use earlier ones.
+/// `[definitions]`, in any order: each read after the definitions it uses (a topological
+/// order; among those free to go, the order of the file), a cycle an error naming its members.
 fn read_definitions(r: &mut Reader, table: &toml::Table) -> Result<(), SceneError> {
+    let mut uses: Vec<(&String, &Value, Vec<String>)> = Vec::new();
     for (k, v) in table {
         let field = format!("definitions.{k}");
         if !name_ok(k) || r.slots.contains(k) {
@@ -236,6 +238,42 @@ fn read_definitions(r: &mut Reader, table: &toml::Table) -> Result<(), SceneErro
                 "a new name (not a parameter, state, t or a function)",
             ));
         }
+        // the names it uses, read before any definition is expanded (a formula that does not
+        // parse is reported when its turn comes)
+        let names = match v {
+            Value::String(text) => crate::algebra::expr::parse(text)
+                .map(|e| {
+                    e.symbols()
+                        .into_iter()
+                        .filter(|s| table.contains_key(s))
+                        .collect()
+                })
+                .unwrap_or_default(),
+            _ => Vec::new(),
+        };
+        uses.push((k, v, names));
+    }
+    while !uses.is_empty() {
+        let Some(i) = uses
+            .iter()
+            .position(|(_, _, names)| names.iter().all(|n| r.defs.contains_key(n)))
+        else {
+            let mut members: Vec<&str> = uses.iter().map(|(k, _, _)| k.as_str()).collect();
+            members.retain(|m| {
+                uses.iter()
+                    .any(|(_, _, names)| names.iter().any(|n| n == m))
+            });
+            return Err(r.bad(
+                &format!("definitions.{}", members[0]),
+                &members.join(", "),
+                &format!(
+                    "definitions that do not use each other in a cycle; these do: {}",
+                    members.join(", ")
+                ),
+            ));
+        };
+        let (k, v, _) = uses.remove(i);
+        let field = format!("definitions.{k}");
         let (e, text) = r.formula_text(v, &field)?;
         let u = r.unit_of(&e, &field, &text)?;
         r.def_units.insert(k.clone(), u);
@@ -257,6 +295,8 @@ fn read_initial(
     for s in states {
         let field = format!("state.{s}");
         let (e, text) = r.formula_text(&table[s], &field)?;
+        // a number is a value in the state's unit (`y = 1.0` for a state in m)
+        let number = matches!(table[s], Value::Float(_) | Value::Integer(_));
         if let Some(x) = e
             .symbols()
             .into_iter()
@@ -264,13 +304,15 @@ fn read_initial(
         {
             return Err(r.bad_formula(&field, &text, format!("an initial value is a number or a formula of the parameters; `{x}` is not a parameter")));
         }
-        r.unit_is(
-            &e,
-            &field,
-            &text,
-            r.units[s],
-            &format!("the initial value of {s}"),
-        )?;
+        if !number {
+            r.unit_is(
+                &e,
+                &field,
+                &text,
+                r.units[s],
+                &format!("the initial value of {s}"),
+            )?;
+        }
         init.push(r.compile(&e, &field)?);
         init_exprs.push(e);
     }
