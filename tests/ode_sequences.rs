@@ -100,3 +100,203 @@ fn a_number_in_state_is_a_value_in_the_states_unit() {
     let err = run(&text.replace("z = 1.0", "z = \"e\"")).unwrap_err();
     assert!(err.contains("state.z") && err.contains("is in 1"), "{err}");
 }
+
+/// The ball's closed forms (free fall between impacts, v -> -e v at each): the first impact at
+/// t1 = sqrt(2 h/g) with speed v1 = sqrt(2 g h); the k-th flight lasts 2 e^k v1/g, so the
+/// impacts accumulate at t1 + 2 v1 e/(g (1 - e)).
+const G: f64 = 9.81;
+const E: f64 = 0.8;
+fn v1() -> f64 {
+    (2.0 * G).sqrt()
+}
+fn t1() -> f64 {
+    (2.0 / G).sqrt()
+}
+
+#[test]
+fn stop_after_ends_the_run_at_that_firing_after_its_jump() {
+    let text = ball("", "stop_after = 3", "", 10.0);
+    let v = run(&text).expect("runs");
+    let t3 = t1() + 2.0 * v1() * (E + E * E) / G;
+    assert!((num(&v, "t_end") - t3).abs() < 1e-9, "{v}");
+    assert_eq!(v["stopped_by"], "impact");
+    assert_eq!(num(&v, "event_counts.impact"), 3.0);
+    // the state is the one after the third jump: moving up at e^3 v1
+    assert!((num(&v, "state.v") - E.powi(3) * v1()).abs() < 1e-9, "{v}");
+    for bad in ["stop_after = 0", "stop_after = 1.5", "stop_after = \"3\""] {
+        let err = run(&ball("", bad, "", 10.0)).unwrap_err();
+        assert!(err.contains("event.impact.stop_after"), "{bad}: {err}");
+    }
+}
+
+#[test]
+fn the_state_after_a_jump_and_outcomes_of_firings_and_outcomes() {
+    // before the first jump v = -v1, after it e v1; at the second, -e v1 and e^2 v1. The ratio
+    // of kinetic energies across one impact is e^2, the same as the ratio of two outcomes.
+    let outcomes = r#"[outcome]
+before1 = "v@impact[1]"
+after1 = "v@+impact[1]"
+after2 = "v@+impact[2]"
+ratio = "(v^2)@+impact[1]/(v^2)@impact[1]"
+ke1 = "(v^2/2)@impact[1]"
+ke1p = "(v^2/2)@+impact[1]"
+loss = "ke1p/ke1"
+lossd = "1 - loss"
+flight = "t@impact[2] - t@impact[1]"
+count = "2*hits@impact - hits@impact"
+late = "v@+impact[40]"
+"#;
+    let v = run(&ball("", "stop_after = 3", outcomes, 10.0)).expect("runs");
+    let o = |k: &str| num(&v, &format!("outcome.{k}"));
+    assert!((o("before1") + v1()).abs() < 1e-9, "{v}");
+    assert!((o("after1") - E * v1()).abs() < 1e-9, "{v}");
+    assert!((o("after2") - E * E * v1()).abs() < 1e-9, "{v}");
+    for k in ["ratio", "loss"] {
+        assert!((o(k) - E * E).abs() < 1e-12, "{k}: {v}");
+    }
+    assert!((o("lossd") - (1.0 - E * E)).abs() < 1e-12, "{v}");
+    assert!((o("flight") - 2.0 * E * v1() / G).abs() < 1e-9, "{v}");
+    assert_eq!(o("count"), 3.0);
+    // units derived: m^2 s^-2 for the energies per mass, 1 for their ratio, s for the flight
+    assert_eq!(v["outcome_units"]["ke1"], "m^2 s^-2");
+    assert_eq!(v["outcome_units"]["loss"], "1");
+    assert_eq!(v["outcome_units"]["flight"], "s");
+    // a firing that did not happen: null, and a warning naming it
+    assert!(v["outcome"]["late"].is_null());
+    assert!(v["warnings"].to_string().contains("outcome.late"), "{v}");
+    // an outcome formula that mixes units, a cycle of outcomes, a name that is nothing
+    for (bad, says) in [
+        ("x = \"t@impact[1] + v@impact[1]\"", "outcome.x"),
+        ("x = \"y\"\ny = \"x\"", "cycle"),
+        ("x = \"w@impact[1] + t@impact[2]\"", "`w`"),
+        (
+            "x = \"t@impct[1] + t@impact[2]\"",
+            "`impct` is not an event",
+        ),
+    ] {
+        let err = run(&ball("", "", &format!("[outcome]\n{bad}"), 1.0)).unwrap_err();
+        assert!(err.contains(says), "{bad}: {err}");
+    }
+}
+
+#[test]
+fn events_on_one_when_all_fire_in_the_order_written() {
+    // a second event on the ball's `when`: one that only counts, one that adds u = e sqrt(g h)
+    // to v after the impact's jump. By hand: after the first impact v = e v1, then e v1 + u.
+    let second = r#"
+[[event]]
+name = "count"
+when = "z"
+direction = "down"
+
+[[event]]
+name = "kick"
+when = "z"
+direction = "down"
+jump = { v = "v + e*sqrt(g*h)" }
+"#;
+    let outcomes = "[outcome]\nafter_impact = \"v@+impact[1]\"\nafter_kick = \"v@+kick[1]\"\nkicked = \"v@kick[1]\"";
+    let v = run(&ball(
+        "",
+        "stop_after = 2",
+        &format!("{second}\n{outcomes}"),
+        10.0,
+    ))
+    .expect("runs");
+    let o = |k: &str| num(&v, &format!("outcome.{k}"));
+    assert!((o("after_impact") - E * v1()).abs() < 1e-9, "{v}");
+    // the kick sees the state after the impact's jump, and adds e sqrt(g h) to it
+    assert!((o("kicked") - E * v1()).abs() < 1e-9, "{v}");
+    assert!(
+        (o("after_kick") - (E * v1() + E * G.sqrt())).abs() < 1e-9,
+        "{v}"
+    );
+    assert_eq!(num(&v, "event_counts.count"), 2.0, "{v}");
+    assert_eq!(num(&v, "event_counts.kick"), 2.0, "{v}");
+}
+
+#[test]
+fn impacts_that_accumulate_end_the_run_at_their_accumulation_time() {
+    // without stop_after the impacts of the ball accumulate at t* (closed form above), long
+    // before t_end = 10 s: the run ends there with the warning, not with a step-size error
+    let t_star = t1() + 2.0 * v1() * E / (G * (1.0 - E));
+    let v = run(&ball("", "", "", 10.0)).expect("ends at the accumulation");
+    let t_end = num(&v, "t_end");
+    assert!(
+        (t_end - t_star).abs() < 1e-9 * t_star,
+        "{t_end} vs {t_star}"
+    );
+    assert!((num(&v, "accumulation.t") - t_star).abs() < 1e-9 * t_star);
+    assert_eq!(v["accumulation"]["event"], "impact");
+    // (the ratio of the last two intervals, each about 1e-9 s, known to about 1e-6)
+    assert!((num(&v, "accumulation.ratio") - E).abs() < 1e-4, "{v}");
+    let w = v["warnings"].to_string();
+    assert!(
+        w.contains("event impact") && w.contains("accumulate"),
+        "{w}"
+    );
+    // at rest on the floor: the last flight's speed is below 1e-8 of the first
+    assert!(num(&v, "state.v").abs() < 1e-8 * v1(), "{v}");
+    // with t_end before t*, the run ends at t_end as before, with no warning
+    let v = run(&ball("", "", "", 0.5 * t_star)).expect("runs");
+    assert_eq!(num(&v, "t_end"), 0.5 * t_star);
+    assert!(v["accumulation"].is_null() && v["warnings"].as_array().unwrap().is_empty());
+}
+
+/// The rocking block of scenes/rocking_block.toml, read with its fields set.
+fn rocking(set: &[(&str, f64)]) -> String {
+    let mut t: toml::Table = toml::from_str(
+        &std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/rocking_block.toml"),
+        )
+        .expect("reads"),
+    )
+    .expect("TOML");
+    for (f, v) in set {
+        scene::set_field(&mut t, f, *v, "rocking").expect("sets");
+    }
+    toml::to_string(&t).expect("writes")
+}
+
+#[test]
+fn a_sign_in_the_right_side_is_held_between_its_zeros() {
+    // the rocking block as written (theta'' = -p^2 sin(alpha sign(theta) - theta)) against the
+    // same block mirrored (phi = |theta| >= 0 always, phi'' = -p^2 sin(alpha - phi), and the
+    // impact map w -> -r w at phi = 0): the same impact times, and the sign costs no more
+    // rejected steps than the mirrored form, which has no discontinuity at all
+    let signed = rocking(&[("solve.t_end", 6.0)]);
+    let mirrored = signed
+        .replace("alpha*sign(th) - th", "alpha - th")
+        .replace("direction = \"any\"", "direction = \"down\"")
+        .replace("w = \"w*(R2/3", "w = \"-w*(R2/3");
+    assert_ne!(signed, mirrored);
+    let outcomes = "t6 = \"t@impact[6]\"\n";
+    let with = |text: &str| text.replace("[outcome]\n", &format!("[outcome]\n{outcomes}"));
+    let a = run(&with(&signed)).expect("signed");
+    let b = run(&with(&mirrored)).expect("mirrored");
+    let (ta, tb) = (num(&a, "outcome.t6"), num(&b, "outcome.t6"));
+    assert!((ta - tb).abs() < 1e-9 * tb, "{ta} vs {tb}");
+    let rejected = |v: &Value| num(v, "stats.rejected");
+    assert!(
+        rejected(&a) <= rejected(&b) + 2.0,
+        "signed {} rejected, mirrored {}",
+        rejected(&a),
+        rejected(&b)
+    );
+    // each impact is also the sign's zero: one switch per impact
+    assert_eq!(num(&a, "switches"), num(&a, "event_counts.impact"));
+    assert_eq!(num(&b, "switches"), 0.0);
+}
+
+#[test]
+fn a_rocking_block_comes_to_rest_where_its_impacts_accumulate() {
+    // a squat block (b = h/2: r = 1 - 1.5 sin^2(atan(1/2)) = 0.7) loses half its energy at each
+    // impact; its impacts accumulate long before 30 s, where the run ends with the warning
+    let v = run(&rocking(&[("parameters.b", 0.5)])).expect("runs");
+    let acc = &v["accumulation"];
+    assert_eq!(acc["event"], "impact", "{v}");
+    assert!(num(&v, "t_end") < 30.0);
+    assert!((num(&v, "outcome.r1") - 0.7).abs() < 1e-12, "{v}");
+    // the intervals shrink by r near rest (theta'' -> -p^2 alpha sign(theta), a bouncing ball)
+    assert!((num(&v, "accumulation.ratio") - 0.7).abs() < 1e-3, "{v}");
+}

@@ -427,6 +427,16 @@ mod tests {
     }
 
     #[test]
+    fn an_array_sized_only_on_one_side_is_not_taken_with_its_brackets() {
+        // `\left( 2 [array] \right)`: the brackets belong to the product, not to the array (a
+        // bracket is the array's own only when it closes right after it and opens right before)
+        let m = read(r"\mathbf{C} = \left( 2 \begin{array}{cc} a & 0 \\ 0 & b \end{array} \right)");
+        same(&m, &[&["2*a", "0"], &["0", "2*b"]]);
+        let m = read(r"\mathbf{C} = \left( \begin{array}{cc} a & 0 \\ 0 & b \end{array} \right)");
+        same(&m, &[&["a", "0"], &["0", "b"]]);
+    }
+
+    #[test]
     fn vmatrix_times_scalars() {
         let m = read(
             r"\mathbf{B}^{*} = m^{-1} \rho^{-2} \begin{vmatrix} a_{1}^{2} & a_{1} a_{2} \\ a_{1} a_{2} & a_{2}^{2} \end{vmatrix}",

@@ -305,7 +305,14 @@ impl<'e, 'a> Tracker<'e, 'a> {
             }
             found.sort_by(|a, b| a.t.total_cmp(&b.t));
             if let Some(k) = found.iter().position(|h| h.terminal) {
-                found.truncate(k + 1);
+                // the hits at the same time as the first terminal one stay (two events on one
+                // `when`): the caller acts on each
+                let tk = found[k].t;
+                let last = found
+                    .iter()
+                    .rposition(|h| h.t.to_bits() == tk.to_bits())
+                    .unwrap_or(k);
+                found.truncate(last + 1);
                 let term = found[k].clone();
                 self.hits.extend(found);
                 return Ok(Some(term));

@@ -787,6 +787,36 @@ mod tests {
     }
 
     #[test]
+    fn an_undetermined_relation_gets_no_claim_and_says_why() {
+        // a = b c with only a declared: b and c stay free, the relation undetermined
+        let (blocks, doc) = paper_blocks("\\begin{equation} a = b c \\end{equation}");
+        let u = units(&[("a", "m")]);
+        let a = audit(&blocks, doc.as_ref(), &u);
+        assert_eq!(a.relations[0].status, "undetermined");
+        let init = init_claims(&a, &["1".into()], "p", "p.tex", "T", &u);
+        let want = format!("# (1): no claim: {}\n", a.relations[0].detail);
+        assert!(init.contains(&want), "{init}");
+        assert!(!init.contains("[[claim]]"), "{init}");
+    }
+
+    #[test]
+    fn the_index_counts_each_seeds_relations_by_status() {
+        // the counts of tests/audit.rs's the_seeds_audit (reviewed relation by relation)
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("verify");
+        let papers = crate::verify::load_claims(&dir).expect("loads");
+        let s = index_section(&papers);
+        for row in [
+            "| [000](audit/000.md) | 51 | 36 | 8 | 2 | 5 |",
+            "| [001](audit/001.md) | 83 | 54 | 1 | 8 | 20 |",
+            "| [002](audit/002.md) | 141 | 89 | 7 | 33 | 12 |",
+        ] {
+            assert!(s.contains(row), "{row} not in {s}");
+        }
+        assert!(s.starts_with("## Units of every relation"));
+        assert_eq!(index_section(&[]), "");
+    }
+
+    #[test]
     fn the_title_on_one_line() {
         assert_eq!(
             title_of("x \\title{The  impact\n of {a} body} y").as_deref(),

@@ -294,3 +294,13 @@ fn hyperbolic_functions_and_inverses_as_papers_print_them() {
     same("\\sinh^{2} x", "sinh(x)^2");
     same("\\exp^{-1} x", "exp(x)^(-1)");
 }
+
+#[test]
+fn a_tie_is_a_space_an_application_in_sized_brackets_and_fractions_of_d() {
+    same("a~b", "a*b");
+    let e = read_formula("P\\left(t\\right) + 1", &TexSymbols::default()).unwrap();
+    assert_eq!(e.symbols(), ["{P(t)}"]);
+    // `d` over something that is not a differential, and a differential only below: quotients
+    same("\\frac{d}{2}", "d/2");
+    same("\\frac{x}{d t}", "x/(d*t)");
+}

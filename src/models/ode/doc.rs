@@ -8,8 +8,12 @@ pub const DOC: d::ModelDoc = d::ModelDoc {
     summary: "Any model as text: a paper's equations of motion written in the scene (parameters, units, states, equations, events with impact maps, outcomes), integrated like a built-in model. Units are checked equation by equation before anything runs; formulas are compiled once to flat programs; Radau5's Jacobian is their symbolic derivative. The format is in the module doc of src/models/ode/mod.rs.",
     conventions: &[
         "the signs and axes are the scene's own: the formulas say them",
-        "an outcome `formula@event` is evaluated where the event fires, before its jump; `@event[k]` at its k-th firing (from 1), `@event[last]` at its last; `hits@event` counts firings; an event that never fired gives null and a warning",
+        "an outcome `formula@event` is evaluated where the event fires, before its jump, `formula@+event` just after it; `@event[k]` at its k-th firing (from 1), `@event[last]` at its last; `hits@event` counts firings; an event that never fired gives null and a warning",
+        "an outcome may be a formula of reads at firings (each `@` applies to the name or (group) before it: `(v^2)@+impact[1]/(v^2)@impact[1]`), of the state at the end and of other outcomes by name (`ke2/ke1`)",
+        "events on the same `when` all fire, in the order written, each jump after the one before",
+        "an event with a jump whose firings accumulate (their intervals shrinking by one factor) ends the run at the accumulation time, with a warning: a bouncing ball or a rocking block comes to rest there",
         "a literal 0 has every unit (`max(z, 0)`)",
+        "a `sign(g)` or `heaviside(g)` of the states in a right side is held between the zeros of g, each located as an event; after a jump or at a zero the side is the one the motion goes into",
     ],
     example: "scenes/hertz_ode.toml",
     keys: &[&[
@@ -37,14 +41,14 @@ pub const DOC: d::ModelDoc = d::ModelDoc {
         d::Key {
             key: "definitions.*",
             unit: "derived",
-            range: "formulas of t, the states, the parameters and earlier definitions",
+            range: "formulas of t, the states, the parameters and other definitions, in any order (no cycle)",
             default: "none",
             meaning: "named formulas, expanded where used",
         },
         d::Key {
             key: "state.*",
             unit: "as [units] says",
-            range: "numbers or formulas of the parameters",
+            range: "numbers (in the state's unit) or formulas of the parameters",
             default: "required (at least one)",
             meaning: "the states, in order, with their initial values",
         },
@@ -91,9 +95,16 @@ pub const DOC: d::ModelDoc = d::ModelDoc {
             meaning: "state updates where it fires: an impact map (at most 100,000 jumps per run)",
         },
         d::Key {
+            key: "event[].stop_after",
+            unit: "-",
+            range: "an integer >= 1",
+            default: "none",
+            meaning: "stop the run at this firing, after its jump",
+        },
+        d::Key {
             key: "outcome.*",
             unit: "derived",
-            range: "formula, formula@event, formula@event[k], formula@event[last], hits@event",
+            range: "formula, formula@event, formula@+event, formula@event[k], formula@event[last], hits@event; formulas of name@event[k], (group)@+event[k] and other outcomes",
             default: "none",
             meaning: "named results",
         },
@@ -168,6 +179,36 @@ pub const DOC: d::ModelDoc = d::ModelDoc {
                 path: "jumps",
                 unit: "-",
                 meaning: "jumps applied",
+            },
+            d::Out {
+                path: "switches",
+                unit: "-",
+                meaning: "zeros crossed of the formulas whose sign the right sides read (each held between its zeros, located as an event)",
+            },
+            d::Out {
+                path: "accumulation",
+                unit: "-",
+                meaning: "where an event's firings accumulated and the run ended (null: they did not)",
+            },
+            d::Out {
+                path: "accumulation.event",
+                unit: "-",
+                meaning: "the event",
+            },
+            d::Out {
+                path: "accumulation.firings",
+                unit: "-",
+                meaning: "its firings",
+            },
+            d::Out {
+                path: "accumulation.t",
+                unit: "s",
+                meaning: "the accumulation time: the last firing plus the geometric sum of the intervals left",
+            },
+            d::Out {
+                path: "accumulation.ratio",
+                unit: "1",
+                meaning: "the ratio of its last two intervals",
             },
             d::Out {
                 path: "method",

@@ -14,9 +14,9 @@
 //! v0 = "m/s"
 //! z = "m"
 //! v = "m/s"
-//! [definitions]                # named formulas, expanded where they are used
+//! [definitions]                # named formulas, expanded where they are used (any order)
 //! F = "k*max(z, 0)^(3/2)"
-//! [state]                      # initial values: numbers or formulas of the parameters
+//! [state]                      # initial values: numbers in the state's unit, or formulas
 //! z = 0.0
 //! v = "v0"
 //! [equations]                  # dz/dt, dv/dt
@@ -28,8 +28,10 @@
 //! direction = "down"           # "up", "down" or "any"
 //! action = "stop"              # "stop" or "record"
 //! jump = { v = "-e*v" }        # optional: state updates applied where it fires
+//! stop_after = 3               # optional: the run stops at this firing
 //! [outcome]                    # at the end, or at an event's first firing
 //! duration = "t@contact-end"
+//! rebound = "-v@+contact-end/v0"   # just after the jump
 //! [solve]                      # as every model: rtol, atol, method, t_end (required here)
 //! t_end = 1.0
 //! ```
@@ -45,17 +47,28 @@
 //! crosses zero in `direction` (located on the dense output, as every model's events are). An
 //! event with a `jump` stops the integrator, replaces the states it names (every right side is
 //! evaluated in the state before the jump) and, with `action = "record"`, restarts from there: an
-//! impact map. At most [`MAX_RESTARTS`] jumps per run, so that a Zeno sequence of impacts is an
+//! impact map. Events on the same `when` all fire, in the order written, each jump applied to
+//! the state the one before left. `stop_after = N` ends the run at the N-th firing (after its
+//! jump). An event with a jump whose last [`ACC_FIRINGS`] firings come at intervals that shrink
+//! by one factor q (within 2 %) accumulates: infinitely many firings fit before t* = t_n + d_n
+//! q/(1 - q). The run ends there once t* is within [`ACCUMULATED`] of the last firing (or when
+//! the integrator cannot resolve the flights left), in the state just after the last firing,
+//! with a warning and `accumulation` in the JSON: a bouncing ball or a rocking block comes to
+//! rest at t*, and the model as written has nothing to say after it. At most [`MAX_RESTARTS`]
+//! jumps per run, so that a sequence that accumulates without shrinking geometrically is an
 //! error that says so, not an endless loop.
 //!
 //! Outcomes: `name = "formula"` is evaluated at the end of the run; `"formula@event"` in the
-//! state where `event` first fires (before its jump), `"formula@event[k]"` at its k-th firing
-//! (from 1) and `"formula@event[last]"` at its last; `hits@event` is how many times it fired. An
-//! outcome whose event never fired is `null` in the JSON, with a warning. Every outcome's unit
-//! is derived from the formula and `[units]` (`outcome_units` in the JSON).
+//! state where `event` first fires (before its jump), `"formula@+event"` just after its jump,
+//! `"formula@event[k]"` at its k-th firing (from 1) and `"formula@event[last]"` at its last;
+//! `hits@event` is how many times it fired. An outcome may also be a formula of several reads,
+//! each `@` applying to the name or (group) just before it (`"(v^2)@+impact[1]/(v^2)@impact[1]"`,
+//! `"t@impact[2] - t@impact[1]"`), and of other outcomes by name (`"ke2/ke1"`; [`outcomes`]).
+//! An outcome whose event never fired is `null` in the JSON, with a warning. Every outcome's
+//! unit is derived from the formula and `[units]` (`outcome_units` in the JSON).
 //!
 //! Here the model's types, its integration and its run; apart: `scene` (reading the scene's
-//! tables in named steps), `formulas` (parsing a formula with the definitions expanded),
+//! tables in named steps), `outcomes` (reading and evaluating `[outcome]`), `formulas` (parsing a formula with the definitions expanded),
 //! `units` (checking every formula's units), `compile` (formulas to [`program`]s, the
 //! Jacobian's symbolic derivative), `taylor` (the exact Taylor series of the solution) and
 //! `doc` (the model's reference).
@@ -64,8 +77,10 @@ use crate::models::doc as d;
 mod compile;
 mod doc;
 mod formulas;
+mod outcomes;
 pub mod program;
 mod scene;
+mod switch;
 mod taylor;
 mod units;
 
@@ -84,6 +99,45 @@ pub const MAX_RESTARTS: usize = 100_000;
 /// buffer for every evaluation.
 pub const MAX_VARS: usize = 256;
 
+/// The run ends at an accumulation of firings when the time left to it, predicted from the
+/// geometric shrinking of their intervals, is at most this share of it.
+pub const ACCUMULATED: f64 = 1e-9;
+/// The firings whose intervals must shrink by one factor (within [`RATIO_SPREAD`]) before an
+/// accumulation is predicted.
+const ACC_FIRINGS: usize = 8;
+/// How far (relative) the ratios of successive intervals may spread.
+const RATIO_SPREAD: f64 = 0.02;
+
+/// Where an event's firings accumulate: their intervals shrink geometrically, by `ratio`, so
+/// that infinitely many fit before `t` (a bouncing ball, a rocking block coming to rest).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Accumulation {
+    /// The event.
+    pub event: String,
+    /// Its firings.
+    pub firings: usize,
+    /// The accumulation time (s): the last firing plus the geometric sum of the intervals left.
+    pub t: f64,
+    /// The ratio of its last two intervals.
+    pub ratio: f64,
+    /// The state just after the last firing.
+    #[serde(skip)]
+    state: Vec<f64>,
+}
+
+impl Accumulation {
+    fn warning(&self, err: Option<&crate::integrate::IntegrateError>) -> String {
+        let why = match err {
+            Some(e) => format!(" (the integrator could not go on: {e})"),
+            None => String::new(),
+        };
+        format!(
+            "event {}: its {} firings accumulate, each interval {:.6} times the one before, at t = {:.12e} s; the run ends there, in the state just after the last firing{why} (a bouncing ball or a rocking block comes to rest at that time)",
+            self.event, self.firings, self.ratio, self.t
+        )
+    }
+}
+
 /// An event function over the states.
 type EventFn<'a> = Box<dyn Fn(f64, &[f64]) -> f64 + 'a>;
 
@@ -94,8 +148,6 @@ enum Firing {
     Nth(usize),
     /// The last.
     Last,
-    /// How many times it fired (`hits@event`).
-    Count,
 }
 
 #[derive(Clone, Debug)]
@@ -104,18 +156,17 @@ struct EventSpec {
     when: Program,
     direction: Direction,
     stop: bool,
+    /// Stop the run at this firing (`stop_after = N`).
+    stop_after: Option<usize>,
     /// (state index, new value).
     jump: Vec<(usize, Program)>,
 }
 
-#[derive(Clone, Debug)]
-struct OutcomeSpec {
-    name: String,
-    text: String,
-    program: Program,
-    at: Option<(usize, Firing)>,
-    /// Its unit, as the JSON writes it.
-    unit_text: String,
+impl EventSpec {
+    /// Whether the integrator stops where it fires: to stop, to jump, or to count.
+    fn halts(&self) -> bool {
+        self.stop || !self.jump.is_empty() || self.stop_after.is_some()
+    }
 }
 
 /// What a text model compiles to: fixed once read, shared by the points of a sweep.
@@ -132,7 +183,9 @@ pub struct Compiled {
     /// The Jacobian, row-major, when the method uses one.
     jac: Option<Vec<Program>>,
     events: Vec<EventSpec>,
-    outcomes: Vec<OutcomeSpec>,
+    /// The formulas whose sign the right sides read, held between their zeros.
+    switches: Vec<switch::Switch>,
+    outcomes: Vec<outcomes::OutcomeSpec>,
     /// The unit of every state (for the JSON).
     state_units: Vec<String>,
     /// The end of the interval (s).
@@ -183,6 +236,10 @@ pub struct OdeOutcome {
     pub event_counts: BTreeMap<String, usize>,
     /// Jumps applied.
     pub jumps: usize,
+    /// Zeros of the formulas whose sign the right sides read, crossed ([`switch`]).
+    pub switches: usize,
+    /// Where an event's firings accumulated and the run ended, if they did.
+    pub accumulation: Option<Accumulation>,
     /// The method.
     pub method: &'static str,
     /// States integrated.
@@ -193,9 +250,11 @@ pub struct OdeOutcome {
     pub stats: Stats,
 }
 
-/// The variables every program reads: `t`, the states, the parameters.
+/// The variables every program reads: `t`, the states, the parameters, the held values of
+/// the switches ([`switch`]; empty for a program that reads none).
 struct Vars<'a> {
     m: &'a OdeScene,
+    held: &'a [f64],
 }
 
 impl Vars<'_> {
@@ -203,7 +262,7 @@ impl Vars<'_> {
     /// short model does not clear a long buffer on every evaluation).
     #[inline]
     fn with<R>(&self, t: f64, y: &[f64], f: impl FnOnce(&[f64]) -> R) -> R {
-        match 1 + y.len() + self.m.params.len() {
+        match 1 + y.len() + self.m.params.len() + self.held.len() {
             0..=16 => self.fill::<16, R>(t, y, f),
             17..=64 => self.fill::<64, R>(t, y, f),
             _ => self.fill::<MAX_VARS, R>(t, y, f),
@@ -213,34 +272,49 @@ impl Vars<'_> {
     #[inline]
     fn fill<const N: usize, R>(&self, t: f64, y: &[f64], f: impl FnOnce(&[f64]) -> R) -> R {
         let n = y.len();
-        let total = 1 + n + self.m.params.len();
+        let p = 1 + n + self.m.params.len();
+        let total = p + self.held.len();
         let mut buf = [0.0f64; N];
         buf[0] = t;
         buf[1..=n].copy_from_slice(y);
-        for (slot, v) in buf[1 + n..total].iter_mut().zip(&self.m.params) {
+        for (slot, v) in buf[1 + n..p].iter_mut().zip(&self.m.params) {
             *slot = *v;
         }
+        buf[p..total].copy_from_slice(self.held);
         f(&buf[..total])
     }
 }
 
-impl OdeSystem for OdeScene {
-    fn dim(&self) -> usize {
-        self.states.len()
+impl OdeScene {
+    /// The held values as `sign` reads them at `(t, y)`: the right sides as written.
+    fn signs(&self, t: f64, y: &[f64]) -> Vec<f64> {
+        let vars = Vars { m: self, held: &[] };
+        self.switches
+            .iter()
+            .map(|s| vars.with(t, y, |v| s.arg.eval(v)).signum())
+            .collect()
     }
-    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-        Vars { m: self }.with(t, y, |v| {
+
+    fn rhs_held(&self, held: &[f64], t: f64, y: &[f64], dy: &mut [f64]) {
+        Vars { m: self, held }.with(t, y, |v| {
             for (d, p) in dy.iter_mut().zip(&self.rhs) {
                 *d = p.eval(v);
             }
         });
     }
-    fn jacobian(&self, t: f64, y: &[f64], jac: &mut nalgebra::DMatrix<f64>) -> bool {
+
+    fn jacobian_held(
+        &self,
+        held: &[f64],
+        t: f64,
+        y: &[f64],
+        jac: &mut nalgebra::DMatrix<f64>,
+    ) -> bool {
         let Some(progs) = &self.jac else {
             return false;
         };
         let n = self.states.len();
-        Vars { m: self }.with(t, y, |v| {
+        Vars { m: self, held }.with(t, y, |v| {
             for i in 0..n {
                 for j in 0..n {
                     jac[(i, j)] = progs[i * n + j].eval(v);
@@ -248,6 +322,94 @@ impl OdeSystem for OdeScene {
             }
         });
         true
+    }
+
+    /// The side each switch is on at `(t, y)`, starting from `held` ([`switch::side`]).
+    fn sides(&self, t: f64, y: &[f64], held: &mut [f64]) {
+        for j in 0..held.len() {
+            let sw = &self.switches[j];
+            let g = Vars { m: self, held: &[] }.with(t, y, |v| sw.arg.eval(v));
+            let rate = |s: f64| {
+                let mut h = held.to_vec();
+                h[j] = s;
+                Vars { m: self, held: &h }.with(t, y, |v| sw.rate.eval(v))
+            };
+            held[j] = switch::side(t, g, &rate);
+        }
+    }
+}
+
+/// A text model with its switches held ([`switch`]): what the run integrates.
+struct Held<'a> {
+    m: &'a OdeScene,
+    held: Vec<f64>,
+}
+
+impl OdeSystem for Held<'_> {
+    fn dim(&self) -> usize {
+        self.m.states.len()
+    }
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.m.rhs_held(&self.held, t, y, dy);
+    }
+    fn jacobian(&self, t: f64, y: &[f64], jac: &mut nalgebra::DMatrix<f64>) -> bool {
+        self.m.jacobian_held(&self.held, t, y, jac)
+    }
+}
+
+/// The model as written: each `sign` read where it is evaluated.
+impl OdeSystem for OdeScene {
+    fn dim(&self) -> usize {
+        self.states.len()
+    }
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        if self.switches.is_empty() {
+            self.rhs_held(&[], t, y, dy);
+        } else {
+            self.rhs_held(&self.signs(t, y), t, y, dy);
+        }
+    }
+    fn jacobian(&self, t: f64, y: &[f64], jac: &mut nalgebra::DMatrix<f64>) -> bool {
+        let held = if self.switches.is_empty() {
+            Vec::new()
+        } else {
+            self.signs(t, y)
+        };
+        self.jacobian_held(&held, t, y, jac)
+    }
+}
+
+impl OdeScene {
+    /// The earliest accumulation of the firings of an event with a jump, if the last
+    /// [`ACC_FIRINGS`] of one shrink geometrically.
+    fn accumulating(&self, hits: &[Vec<outcomes::Hit>]) -> Option<Accumulation> {
+        let mut best: Option<Accumulation> = None;
+        for (e, list) in self.events.iter().zip(hits) {
+            if e.jump.is_empty() || list.len() < ACC_FIRINGS {
+                continue;
+            }
+            let last = &list[list.len() - ACC_FIRINGS..];
+            let d: Vec<f64> = last.windows(2).map(|w| w[1].t - w[0].t).collect();
+            let q: Vec<f64> = d.windows(2).map(|w| w[1] / w[0]).collect();
+            let r = q[q.len() - 1];
+            let steady = q
+                .iter()
+                .all(|x| *x > 0.0 && *x < 1.0 && (x - r).abs() <= RATIO_SPREAD * r);
+            if !steady {
+                continue;
+            }
+            let end = list[list.len() - 1].t + d[d.len() - 1] * r / (1.0 - r);
+            if end <= self.t_end && best.as_ref().is_none_or(|b| end < b.t) {
+                best = Some(Accumulation {
+                    event: e.name.clone(),
+                    firings: list.len(),
+                    t: end,
+                    ratio: r,
+                    state: list[list.len() - 1].after.clone(),
+                });
+            }
+        }
+        best
     }
 }
 
@@ -288,8 +450,150 @@ impl Model for OdeScene {
 
     fn run(&self) -> Result<(OdeOutcome, Curves), RunError> {
         let n = self.states.len();
-        let vars = Vars { m: self };
-        let mut y: Vec<f64> = vars.with(0.0, &vec![0.0; n], |v| {
+        let mut y = self.initial_state()?;
+        let user = self.events.len();
+        let gs: Vec<EventFn> = self
+            .events
+            .iter()
+            .map(|e| &e.when)
+            .chain(self.switches.iter().map(|s| &s.arg))
+            .map(|p| {
+                let vars = Vars { m: self, held: &[] };
+                Box::new(move |t: f64, y: &[f64]| vars.with(t, y, |v| p.eval(v))) as EventFn
+            })
+            .collect();
+        // the user's events, then each switch's zero (stopping, either way)
+        let events: Vec<Event> = gs
+            .iter()
+            .enumerate()
+            .map(|(i, g)| {
+                let (name, when, direction, halts) = match self.events.get(i) {
+                    Some(e) => (e.name.clone(), &e.when, e.direction, e.halts()),
+                    None => {
+                        let sw = &self.switches[i - user];
+                        (
+                            format!("switch of sign({})", sw.text),
+                            &sw.arg,
+                            Direction::Both,
+                            true,
+                        )
+                    }
+                };
+                let event = Event::new(&name, g.as_ref(), direction, halts);
+                // a bare state (`when = "z"`, slot 1 + i after t) is read without a call
+                match when.variable() {
+                    Some(slot) if (1..=n).contains(&slot) => event.reading(slot - 1),
+                    _ => event,
+                }
+            })
+            .collect();
+        let opts = Options {
+            rtol: self.solve.rtol,
+            atol: self.solve.atol,
+            method: self.solve.method,
+            events,
+            ..Options::default()
+        };
+        let mut sys = Held {
+            m: self,
+            held: vec![0.0; self.switches.len()],
+        };
+        self.sides(0.0, &y, &mut sys.held);
+        let mut r = Runs {
+            t: 0.0,
+            hits: vec![Vec::new(); user],
+            stats: Stats::default(),
+            stopped_by: None,
+            jumps: 0,
+            switches: 0,
+            warnings: Vec::new(),
+            accumulation: None,
+        };
+        while r.t < self.t_end {
+            let sol = match crate::integrate::solve(&sys, r.t, &y, self.t_end, &opts) {
+                Ok(sol) => sol,
+                Err(err) => {
+                    // impacts that accumulate: the integrator cannot resolve the last flights
+                    if let Some(acc) = self.accumulating(&r.hits) {
+                        (r.t, y) = (acc.t, acc.state.clone());
+                        r.warnings.push(acc.warning(Some(&err)));
+                        r.accumulation = Some(acc);
+                        break;
+                    }
+                    return Err(err.into());
+                }
+            };
+            r.stats = r.stats + sol.stats;
+            r.t = sol.t;
+            y = sol.y;
+            let stop_t = match sol.stop {
+                Stop::Event { t, .. } => Some(t),
+                Stop::End => None,
+            };
+            // the firings that go on (no jump, no stop), as located; those at the stop below
+            let mut halting: Vec<usize> = Vec::new();
+            for h in sol.events {
+                let halts = self.events.get(h.index).is_none_or(EventSpec::halts);
+                if stop_t.is_some_and(|s| s.to_bits() == h.t.to_bits()) && halts {
+                    halting.push(h.index);
+                } else if h.index < user {
+                    r.hits[h.index].push(outcomes::Hit {
+                        t: h.t,
+                        before: h.y.clone(),
+                        after: h.y,
+                    });
+                }
+            }
+            if stop_t.is_none() {
+                break;
+            }
+            halting.sort_unstable();
+            halting.dedup();
+            r.switches += halting.iter().filter(|i| **i >= user).count();
+            if self.fire(&mut r, &mut y, &halting)? {
+                break;
+            }
+            // every switch on the side the motion goes into, after the jumps
+            self.sides(r.t, &y, &mut sys.held);
+            if let Some(acc) = self.accumulating(&r.hits)
+                && acc.t - r.t <= ACCUMULATED * acc.t.abs()
+            {
+                (r.t, y) = (acc.t, acc.state.clone());
+                r.warnings.push(acc.warning(None));
+                r.accumulation = Some(acc);
+                break;
+            }
+            if r.jumps >= MAX_RESTARTS {
+                return Err(RunError::BadArgument {
+                    arg: format!("event {}", self.events[halting[0]].name),
+                    message: format!(
+                        "{MAX_RESTARTS} jumps by t = {:e} s without reaching t_end = {:e} s: the impacts accumulate (a Zeno sequence) but not geometrically; stop at an event (stop_after) or shorten t_end",
+                        r.t, self.t_end
+                    ),
+                });
+            }
+        }
+        Ok((self.outcome(r, y), vec![]))
+    }
+}
+
+/// What a run has gathered so far.
+struct Runs {
+    t: f64,
+    hits: Vec<Vec<outcomes::Hit>>,
+    stats: Stats,
+    stopped_by: Option<String>,
+    jumps: usize,
+    switches: usize,
+    warnings: Vec<String>,
+    accumulation: Option<Accumulation>,
+}
+
+impl OdeScene {
+    /// The initial values, each a number set by a sweep or its formula of the parameters.
+    fn initial_state(&self) -> Result<Vec<f64>, RunError> {
+        let n = self.states.len();
+        let y: Vec<f64> = Vars { m: self, held: &[] }.with(0.0, &vec![0.0; n], |v| {
             self.init
                 .iter()
                 .zip(&self.init_set)
@@ -305,65 +609,25 @@ impl Model for OdeScene {
                 ),
             });
         }
-        let gs: Vec<EventFn> = self
-            .events
-            .iter()
-            .map(|e| {
-                let vars = Vars { m: self };
-                Box::new(move |t: f64, y: &[f64]| vars.with(t, y, |v| e.when.eval(v))) as EventFn
-            })
-            .collect();
-        let events: Vec<Event> = self
-            .events
-            .iter()
-            .zip(&gs)
-            .map(|(e, g)| {
-                let event = Event::new(
-                    &e.name,
-                    g.as_ref(),
-                    e.direction,
-                    e.stop || !e.jump.is_empty(),
-                );
-                // a bare state (`when = "z"`, slot 1 + i after t) is read without a call
-                match e.when.variable() {
-                    Some(slot) if (1..=y.len()).contains(&slot) => event.reading(slot - 1),
-                    _ => event,
-                }
-            })
-            .collect();
-        let opts = Options {
-            rtol: self.solve.rtol,
-            atol: self.solve.atol,
-            method: self.solve.method,
-            events,
-            ..Options::default()
-        };
-        let mut t = 0.0;
-        let mut hits: Vec<Vec<(f64, Vec<f64>)>> = vec![Vec::new(); self.events.len()];
-        let mut stats = Stats::default();
-        let mut stopped_by = None;
-        let mut jumps = 0usize;
-        let mut warnings = Vec::new();
-        while t < self.t_end {
-            let sol = crate::integrate::solve(self, t, &y, self.t_end, &opts)?;
-            stats = stats + sol.stats;
-            for h in &sol.events {
-                hits[h.index].push((h.t, h.y.clone()));
-            }
-            t = sol.t;
-            y = sol.y;
-            let Stop::Event { index, .. } = sol.stop else {
-                break;
-            };
+        Ok(y)
+    }
+
+    /// Every user event that fires at the stop, in the order written, each jump applied to the
+    /// state the one before left; whether the run stops here.
+    fn fire(&self, r: &mut Runs, y: &mut [f64], halting: &[usize]) -> Result<bool, RunError> {
+        let t = r.t;
+        let mut stop = false;
+        for &index in halting.iter().filter(|i| **i < self.events.len()) {
             let ev = &self.events[index];
+            let before = y.to_vec();
             if !ev.jump.is_empty() {
-                let new: Vec<(usize, f64)> = vars.with(t, &y, |v| {
+                let new: Vec<(usize, f64)> = Vars { m: self, held: &[] }.with(t, y, |v| {
                     ev.jump.iter().map(|(k, p)| (*k, p.eval(v))).collect()
                 });
                 for (k, x) in new {
                     y[k] = x;
                 }
-                jumps += 1;
+                r.jumps += 1;
                 if let Some(i) = y.iter().position(|x| !x.is_finite()) {
                     return Err(RunError::BadArgument {
                         arg: format!("event {}: jump of {}", ev.name, self.states[i]),
@@ -371,52 +635,63 @@ impl Model for OdeScene {
                     });
                 }
             }
-            if ev.stop {
-                stopped_by = Some(ev.name.clone());
-                break;
-            }
-            if jumps >= MAX_RESTARTS {
-                return Err(RunError::BadArgument {
-                    arg: format!("event {}", ev.name),
-                    message: format!(
-                        "{MAX_RESTARTS} jumps by t = {t:e} s without reaching t_end = {:e} s: the impacts accumulate (a Zeno sequence); stop at an event or shorten t_end",
-                        self.t_end
-                    ),
-                });
+            r.hits[index].push(outcomes::Hit {
+                t,
+                before,
+                after: y.to_vec(),
+            });
+            if ev.stop || ev.stop_after == Some(r.hits[index].len()) {
+                stop = true;
+                r.stopped_by.get_or_insert_with(|| ev.name.clone());
             }
         }
-        let mut outcome = BTreeMap::new();
-        let mut outcome_units = BTreeMap::new();
-        for o in &self.outcomes {
-            let value = match o.at {
-                None => Some(vars.with(t, &y, |v| o.program.eval(v))),
-                Some((e, Firing::Count)) => Some(hits[e].len() as f64),
-                Some((e, firing)) => {
-                    let list = &hits[e];
-                    let hit = match firing {
-                        Firing::Nth(k) => list.get(k),
-                        _ => list.last(),
-                    };
-                    match hit {
-                        Some((th, yh)) => Some(vars.with(*th, yh, |v| o.program.eval(v))),
-                        None => {
-                            warnings.push(format!(
-                                "outcome.{} = \"{}\": the event {} fired {} time(s), so it has no value",
-                                o.name,
-                                o.text,
-                                self.events[e].name,
-                                list.len()
-                            ));
-                            None
-                        }
-                    }
+        Ok(stop)
+    }
+
+    /// The run's outcome: the named outcomes, the end state, the counts.
+    fn outcome(&self, r: Runs, y: Vec<f64>) -> OdeOutcome {
+        let Runs {
+            t,
+            hits,
+            stats,
+            stopped_by,
+            jumps,
+            switches,
+            mut warnings,
+            accumulation,
+        } = r;
+        let n = self.states.len();
+        let vars = Vars { m: self, held: &[] };
+        let names: Vec<String> = self.events.iter().map(|e| e.name.clone()).collect();
+        let param = |s: &str| {
+            self.param_names
+                .iter()
+                .position(|p| p == s)
+                .map(|i| self.params[i])
+        };
+        let state = |s: &str| self.states.iter().position(|x| x == s).map(|i| y[i]);
+        let outcome = outcomes::evaluate(
+            &self.outcomes,
+            &hits,
+            &names,
+            &|p| vars.with(t, &y, |v| p.eval(v)),
+            &|p, th, yh| vars.with(th, yh, |v| p.eval(v)),
+            &|s| {
+                if s == "t" {
+                    Some(t)
+                } else {
+                    state(s).or_else(|| param(s))
                 }
-            };
-            outcome.insert(o.name.clone(), value);
-            outcome_units.insert(o.name.clone(), o.unit_text.clone());
-        }
-        let out = OdeOutcome {
-            model: Self::NAME,
+            },
+            &mut warnings,
+        );
+        let outcome_units = self
+            .outcomes
+            .iter()
+            .map(|o| (o.name.clone(), o.unit_text.clone()))
+            .collect();
+        OdeOutcome {
+            model: <Self as Model>::NAME,
             outcome,
             outcome_units,
             t_end: t,
@@ -435,11 +710,12 @@ impl Model for OdeScene {
                 .map(|(e, h)| (e.name.clone(), h.len()))
                 .collect(),
             jumps,
+            switches,
+            accumulation,
             method: self.solve.method.name(),
             state_size: n,
             warnings,
             stats,
-        };
-        Ok((out, vec![]))
+        }
     }
 }

@@ -2,10 +2,10 @@
 
 use super::compile::Program;
 use super::formulas::{Reader, table_of};
+use super::outcomes::read_outcomes;
 use super::units::read_units;
-use super::{Compiled, EventSpec, Firing, MAX_VARS, OdeScene, OutcomeSpec};
+use super::{Compiled, EventSpec, MAX_VARS, OdeScene};
 use crate::algebra::expr::Expr;
-use crate::algebra::units::Unit;
 use crate::integrate::{Direction, Method};
 use crate::models::params::{Fields, SceneError};
 use std::collections::BTreeMap;
@@ -33,6 +33,7 @@ struct RawEvent {
     direction: Option<Value>,
     action: Option<Value>,
     jump: Option<Value>,
+    stop_after: Option<Value>,
 }
 
 /// The tables of an `ode` scene; `[definitions]` and `[outcome]` may be absent (empty).
@@ -87,7 +88,8 @@ pub(super) fn read(root: &toml::Table, path: &str) -> Result<OdeScene, SceneErro
     read_definitions(&mut r, t.definitions)?;
     let (init, init_exprs) = read_initial(&r, t.state, &states, &params)?;
     let rhs_exprs = read_equations(&r, t.equations, &states)?;
-    let rhs = rhs_exprs
+    let (held, switches) = hold_switches(&mut r, &rhs_exprs, &states)?;
+    let rhs = held
         .iter()
         .zip(&states)
         .map(|(e, s)| r.compile(e, &format!("equations.{s}")))
@@ -99,7 +101,7 @@ pub(super) fn read(root: &toml::Table, path: &str) -> Result<OdeScene, SceneErro
         allowed: "a time > 0 in s (an event with action = \"stop\" may end the run sooner)".into(),
     })?;
     let jac = if matches!(solve.method, Method::Radau5 | Method::Auto) {
-        Some(r.jacobian(&rhs_exprs, &states)?)
+        Some(r.jacobian(&held, &states)?)
     } else {
         None
     };
@@ -115,6 +117,7 @@ pub(super) fn read(root: &toml::Table, path: &str) -> Result<OdeScene, SceneErro
             rhs,
             jac,
             events,
+            switches,
             outcomes,
             state_units,
             t_end,
@@ -282,6 +285,36 @@ fn read_definitions(r: &mut Reader, table: &toml::Table) -> Result<(), SceneErro
     Ok(())
 }
 
+/// The right sides with each `sign` of a state read from a held value ([`super::switch`]), and
+/// the switches; the right sides as written when a switch has no symbolic derivative.
+fn hold_switches(
+    r: &mut Reader,
+    rhs: &[Expr],
+    states: &[String],
+) -> Result<(Vec<Expr>, Vec<super::switch::Switch>), SceneError> {
+    let mut args = Vec::new();
+    let held: Vec<Expr> = rhs
+        .iter()
+        .map(|e| super::switch::hold(e, states, &mut args))
+        .collect();
+    if args.is_empty() {
+        return Ok((held, Vec::new()));
+    }
+    if r.slots.len() + args.len() > MAX_VARS {
+        return Ok((rhs.to_vec(), Vec::new()));
+    }
+    let before = r.slots.len();
+    r.slots
+        .extend((0..args.len()).map(super::switch::held_name));
+    match r.switches(&args, &held, states) {
+        Some(sw) => Ok((held, sw)),
+        None => {
+            r.slots.truncate(before);
+            Ok((rhs.to_vec(), Vec::new()))
+        }
+    }
+}
+
 /// `[state]`: each initial value, a formula of the parameters in its state's unit, compiled and
 /// as a formula.
 fn read_initial(
@@ -357,7 +390,12 @@ fn read_events(
         .as_array()
         .ok_or_else(|| r.bad("event", &v.to_string(), "[[event]] tables"))?;
     for (i, ev) in list.iter().enumerate() {
-        let event = read_event(r, &format!("event.{i}"), ev, states, &events)?;
+        // an event is named in messages by its name, when it has a usable one
+        let at = match ev.get("name").and_then(Value::as_str) {
+            Some(n) if name_ok(&n.replace('-', "_")) => format!("event.{n}"),
+            _ => format!("event.{i}"),
+        };
+        let event = read_event(r, &at, ev, states, &events)?;
         events.push(event);
     }
     Ok(events)
@@ -446,94 +484,23 @@ fn read_event(
             jump.push((k, r.compile(&e, &field)?));
         }
     }
+    let stop_after = match &re.stop_after {
+        None => None,
+        Some(Value::Integer(n)) if *n >= 1 => Some(*n as usize),
+        Some(other) => {
+            return Err(r.bad(
+                &format!("{at}.stop_after"),
+                &other.to_string(),
+                "an integer >= 1: the run stops at this firing",
+            ));
+        }
+    };
     Ok(EventSpec {
+        stop_after,
         name,
         when: r.compile(&when, &format!("{at}.when"))?,
         direction,
         stop: action == "stop",
         jump,
     })
-}
-
-/// `[outcome]`: each named formula, at the end or at a firing of an event, with its unit.
-fn read_outcomes(
-    r: &Reader,
-    table: &toml::Table,
-    events: &[EventSpec],
-) -> Result<Vec<OutcomeSpec>, SceneError> {
-    let mut outcomes = Vec::new();
-    for (k, v) in table {
-        let field = format!("outcome.{k}");
-        let text = v
-            .as_str()
-            .ok_or_else(|| r.bad(&field, &v.to_string(), "a formula, or formula@event"))?;
-        let (body, at) = match text.rsplit_once('@') {
-            None => (text.to_string(), None),
-            Some((body, ev)) => {
-                let (i, firing) = read_firing(r, &field, text, ev, events)?;
-                let firing = if body.trim() == "hits" {
-                    Firing::Count
-                } else {
-                    firing
-                };
-                (body.to_string(), Some((i, firing)))
-            }
-        };
-        let (program, unit) = if matches!(at, Some((_, Firing::Count))) {
-            (Program::from_constant(0.0), Unit::one())
-        } else {
-            let (e, text) = r.formula_text(&Value::String(body.clone()), &field)?;
-            let u = r.unit_of(&e, &field, &text)?;
-            (r.compile(&e, &field)?, u)
-        };
-        outcomes.push(OutcomeSpec {
-            name: k.clone(),
-            text: text.to_string(),
-            program,
-            at,
-            unit_text: unit.to_string(),
-        });
-    }
-    Ok(outcomes)
-}
-
-/// The event and firing `ev` of an outcome `text` (`contact-end`, `impact[2]`, `impact[last]`):
-/// the event's index and which firing.
-fn read_firing(
-    r: &Reader,
-    field: &str,
-    text: &str,
-    ev: &str,
-    events: &[EventSpec],
-) -> Result<(usize, Firing), SceneError> {
-    let (ev_name, firing) = match ev.trim().split_once('[') {
-        None => (ev.trim().to_string(), Firing::Nth(0)),
-        Some((n, rest)) => {
-            let idx = rest.trim_end_matches(']').trim();
-            let firing = if idx == "last" {
-                Firing::Last
-            } else {
-                match idx.parse::<usize>() {
-                    Ok(k) if k >= 1 => Firing::Nth(k - 1),
-                    _ => return Err(r.bad_formula(field, text, "allowed: formula, formula@event, formula@event[k] (k >= 1), formula@event[last], hits@event".into())),
-                }
-            };
-            (n.trim().to_string(), firing)
-        }
-    };
-    let i = events
-        .iter()
-        .position(|e| e.name == ev_name)
-        .ok_or_else(|| {
-            let names: Vec<&str> = events.iter().map(|e| e.name.as_str()).collect();
-            r.bad_formula(
-                field,
-                text,
-                format!(
-                    "`{ev_name}` is not an event; the events of [[event]]: {}",
-                    names.join(", ")
-                ),
-            )
-        })?;
-    Ok((i, firing))
 }
