@@ -383,6 +383,39 @@ pub fn merge(paths: &[std::path::PathBuf], format: Format) -> Result<String, Run
 /// memory stays bounded at any sweep size.
 const SWEEP_BLOCK: usize = 8192;
 
+/// A varied `parameters.X` or `state.X` of a text model (`model = "ode"`) that the scene does
+/// not have: an error naming it and listing what the scene has (setting it would add a
+/// parameter without a unit, and the message would be about its unit).
+fn unknown_text_field(table: &toml::Table, param: &str, label: &str) -> Result<(), RunError> {
+    if table.get("model").and_then(toml::Value::as_str) != Some("ode") {
+        return Ok(());
+    }
+    let Some((section, key)) = param.split_once('.') else {
+        return Ok(());
+    };
+    if !matches!(section, "parameters" | "state") {
+        return Ok(());
+    }
+    let have: Vec<&str> = table
+        .get(section)
+        .and_then(toml::Value::as_table)
+        .map(|t| t.keys().map(String::as_str).collect())
+        .unwrap_or_default();
+    if have.contains(&key) {
+        return Ok(());
+    }
+    Err(RunError::BadArgument {
+        arg: "--vary".into(),
+        message: format!(
+            "`{param}` is not in {label}: its {section}: {}",
+            have.iter()
+                .map(|k| format!("{section}.{k}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    })
+}
+
 /// Runs `scene` once per value of the varied field, in parallel, and writes the rows to `out`
 /// as they finish (in index order, one block of [`SWEEP_BLOCK`] points at a time). The base
 /// scene is validated once; a model that sets the field on its typed parameters
@@ -399,6 +432,7 @@ pub fn sweep(
     let label = path.display().to_string();
     let param = sv.param.as_str();
     let base = crate::scene::parse_table(&base_table, &label)?;
+    unknown_text_field(&base_table, param, &label)?;
     let scene_at = |v: f64| -> Result<crate::scene::Scene, RunError> {
         let at = || format!("{label} with {param} = {v}");
         if let Some(r) = base.with_number(param, v, &label) {

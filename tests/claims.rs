@@ -1120,3 +1120,38 @@ rtol = 1e-3
         v[0].2
     );
 }
+
+/// Every key a claim must have is in the guide's list (verify/README.md), and a claim without
+/// it is exit 2 naming it, with nothing written.
+#[test]
+fn every_required_key_is_in_the_guide_and_named_when_missing() {
+    let guide =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("verify/README.md"))
+            .expect("the guide");
+    let at = guide
+        .find("Required in every claim:")
+        .expect("the guide lists the required keys");
+    let list = &guide[at..at + guide[at..].find("\n\n").expect("a paragraph")];
+    let full = "[[claim]]\nid = \"t.req\"\nequation = \"(1)\"\nreading = \"r\"\nkind = \"identity\"\nprinted = \"x\"\nderived = \"x\"";
+    let (code, err, _) = verify_bad("req-none", full);
+    assert_eq!(code, 0, "the full claim is valid: {err}");
+    for (key, says) in [
+        ("id", "id"),
+        ("equation", "equation"),
+        ("kind", "kind"),
+        ("reading", "reading"),
+    ] {
+        assert!(list.contains(&format!("`{key}`")), "{key} not in: {list}");
+        let body: Vec<&str> = full
+            .lines()
+            .filter(|l| !l.starts_with(&format!("{key} =")))
+            .collect();
+        let (code, err, wrote) = verify_bad(&format!("req-{key}"), &body.join("\n"));
+        assert_eq!(code, 2, "{key}: {err}");
+        assert!(err.contains(says), "{key}: {err}");
+        assert!(!wrote, "{key}");
+    }
+    for key in ["paper", "title", "report"] {
+        assert!(list.contains(&format!("`{key}`")), "{key} not in: {list}");
+    }
+}

@@ -300,3 +300,58 @@ fn a_rocking_block_comes_to_rest_where_its_impacts_accumulate() {
     // the intervals shrink by r near rest (theta'' -> -p^2 alpha sign(theta), a bouncing ball)
     assert!((num(&v, "accumulation.ratio") - 0.7).abs() < 1e-3, "{v}");
 }
+
+#[test]
+fn a_varied_parameter_the_text_model_lacks_is_named_with_those_it_has() {
+    // a typo in --vary: exit 2 naming the key and listing the parameters, not a missing unit
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args([
+            "sweep",
+            "scenes/rocking_block.toml",
+            "--vary",
+            "parameters.bb=0.1:0.2:2",
+        ])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("impact runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("`parameters.bb`"), "{err}");
+    assert!(
+        err.contains("parameters.b, parameters.f0, parameters.g, parameters.h"),
+        "{err}"
+    );
+    assert!(!err.contains("units."), "{err}");
+    // a state likewise; a parameter it has sweeps
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args([
+            "sweep",
+            "scenes/rocking_block.toml",
+            "--vary",
+            "state.x=0:1:2",
+        ])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("impact runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("state.th, state.w"), "{err}");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args([
+            "sweep",
+            "scenes/rocking_block.toml",
+            "--vary",
+            "parameters.b=0.1:0.2:2",
+            "--format",
+            "csv",
+        ])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("impact runs");
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

@@ -232,13 +232,15 @@ pub fn render(papers: &[PaperInfo], outcomes: &[Outcome]) -> Vec<(String, String
     files.push(("README.md".to_string(), readme));
     // one report per paper
     for p in papers {
-        let source = if p.file.ends_with(".txt") {
-            format!("../shared/seeds/{}", p.file)
+        let source = if p.file.is_empty() {
+            "No source named (the claims file has no `file`).".to_string()
+        } else if p.file.ends_with(".txt") {
+            format!("Source: `../shared/seeds/{}`.", p.file)
         } else {
-            p.file.clone()
+            format!("Source: `{}`.", p.file)
         };
         let mut md = format!(
-            "# {} — {}\n\nSource: `{source}`. Each claim: what the paper (or the catalogue) states, what impactcheck \
+            "# {} — {}\n\n{source} Each claim: what the paper (or the catalogue) states, what impactcheck \
              computes, and the verdict.\n\n",
             p.paper, p.title
         );
@@ -773,6 +775,17 @@ mod tests {
         assert!(text("p.md").contains(
             "Printed side typed by hand, not read from the paper's LaTeX: stated in the text"
         ));
+        assert!(text("p.md").contains("Source: `../shared/seeds/p.txt`."));
+        // a claims file without `file`: said so, not an empty source
+        let mut none = papers.clone();
+        none[0].file = String::new();
+        let files = render(&none, &out);
+        let p = &files.iter().find(|(n, _)| n == "p.md").expect("p.md").1;
+        assert!(
+            p.contains("No source named (the claims file has no `file`)."),
+            "{p}"
+        );
+        assert!(!p.contains("Source: ``"), "{p}");
     }
 
     #[test]
