@@ -561,6 +561,7 @@ vary = ["contact.damping=1:120:13", "impactor.mass=0.1:2:11"]
     let csv = &out[0].files[1].1;
     let rows: Vec<&str> = csv.lines().skip(1).collect();
     assert_eq!(rows.len(), 143, "{csv}");
+    assert!(csv.starts_with("contact.damping,impactor.mass,left,right,left_minus_right,inside\n"));
     for row in rows {
         let f: Vec<&str> = row.split(',').collect();
         let (c, m): (f64, f64) = (f[0].parse().expect("c"), f[1].parse().expect("m"));
@@ -569,7 +570,50 @@ vary = ["contact.damping=1:120:13", "impactor.mass=0.1:2:11"]
         } else {
             "0"
         };
-        assert_eq!(f[2], want, "{row}");
+        assert_eq!(f[5], want, "{row}");
+        // the model's restitution beside the bound, and their difference
+        let zeta = c / (2.0 * (1e4 * m).sqrt());
+        // (overdamped, zeta >= 1: the body creeps back and never leaves with any speed)
+        let e = if zeta < 1.0 {
+            (-zeta * std::f64::consts::PI / (1.0 - zeta * zeta).sqrt()).exp()
+        } else {
+            0.0
+        };
+        let (l, r, d): (f64, f64, f64) = (
+            f[2].parse().expect("left"),
+            f[3].parse().expect("right"),
+            f[4].parse().expect("difference"),
+        );
+        assert!((l - e).abs() < 1e-6, "{row}: {e}");
+        assert_eq!((r, d), (0.5, l - 0.5), "{row}");
+    }
+    // where the boundary lies: the first damping whose column changes, by the closed form, and
+    // the two masses it changes between (inside from m = (c/(2 zeta*))^2/1e4 on)
+    let (c, j) = (0..13)
+        .find_map(|i| {
+            let c = 1.0 + 119.0 * i as f64 / 12.0;
+            let m_star = (c / (2.0 * zeta_star)).powi(2) / 1e4;
+            let j = (1..11).find(|j| {
+                let (a, b) = (0.1 + 0.19 * (*j - 1) as f64, 0.1 + 0.19 * *j as f64);
+                a < m_star && m_star <= b
+            })?;
+            Some((c, j))
+        })
+        .expect("a column crosses");
+    let (a, b) = (0.1 + 0.19 * (j - 1) as f64, 0.1 + 0.19 * j as f64);
+    let d = &out[0].detail;
+    let at = d
+        .find("the boundary along impactor.mass: at contact.damping = ")
+        .unwrap_or_else(|| panic!("no boundary in {d}"));
+    // "at contact.damping = X: enters between A and B": the numbers as printed (4 digits)
+    let words: Vec<&str> = d[at..]
+        .split([' ', ':', ';'])
+        .filter(|w| !w.is_empty())
+        .collect();
+    let num = |k: usize| -> f64 { words[k].parse().unwrap_or_else(|_| panic!("{k} in {d}")) };
+    assert_eq!((words[8], words[9]), ("enters", "between"), "{d}");
+    for (got, want) in [(num(7), c), (num(10), a), (num(12), b)] {
+        assert!((got - want).abs() < 1e-3 * want, "{got} vs {want} in {d}");
     }
 }
 

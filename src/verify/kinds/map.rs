@@ -179,6 +179,7 @@ impl Kind for Map {
         if ran < points.len() {
             detail.push_str(&format!("; {} point(s) did not run", points.len() - ran));
         }
+        detail.push_str(&boundary(axes, &cells));
         let verdict = if valid == points.len() {
             Verdict::Holds
         } else {
@@ -187,7 +188,9 @@ impl Kind for Map {
         let mut o = outcome(cx.file, c, verdict, detail);
         o.extra
             .insert("valid_fraction".into(), serde_json::json!(share));
-        self.figure(c, &mut o, &cells, &points);
+        let values: Vec<Option<(f64, f64)>> =
+            rows.iter().map(|r| r.as_ref().ok().copied()).collect();
+        self.figure(c, &mut o, &cells, &points, &values);
         Ok(o)
     }
 
@@ -217,14 +220,17 @@ impl Map {
         }
     }
 
-    /// The region as a map (SVG) and its data: every grid point, inside (1), outside (0) or
-    /// not run (empty).
+    /// The region as a map (SVG) and its data: every grid point with the two sides compared
+    /// (the model's value and the printed one, or the inequality's sides), their difference
+    /// (relative to the model's value for a tolerance, left - right for an inequality) and
+    /// inside (1), outside (0) or not run (empty).
     fn figure(
         &self,
         c: &Head,
         o: &mut Outcome,
         cells: &[Option<bool>],
         points: &[Vec<(String, f64)>],
+        values: &[Option<(f64, f64)>],
     ) {
         let axes = &self.axes;
         let what = self.what();
@@ -254,7 +260,14 @@ impl Map {
         ));
         o.files.push((name, svg));
         let csv_name = format!("{}.csv", c.id.replace('.', "_"));
-        let mut csv = format!("{},{},inside\n", axes[0].field, axes[1].field);
+        let (left, right, diff) = match &self.region {
+            Region::Holds(_) => ("left", "right", "left_minus_right"),
+            Region::Within { .. } => ("model", "printed", "relative_difference"),
+        };
+        let mut csv = format!(
+            "{},{},{left},{right},{diff},inside\n",
+            axes[0].field, axes[1].field
+        );
         for (idx, pt) in points.iter().enumerate() {
             let (i, j) = (idx / ny, idx % ny);
             let cell = match cells[j * nx + i] {
@@ -262,8 +275,64 @@ impl Map {
                 Some(false) => "0",
                 None => "",
             };
-            csv.push_str(&format!("{:e},{:e},{cell}\n", pt[0].1, pt[1].1));
+            let sides = match values.get(idx).copied().flatten() {
+                Some((l, r)) => {
+                    let d = match &self.region {
+                        Region::Holds(_) => l - r,
+                        Region::Within { .. } => (r - l) / l.abs(),
+                    };
+                    format!("{l:e},{r:e},{d:e}")
+                }
+                None => ",,".to_string(),
+            };
+            csv.push_str(&format!("{:e},{:e},{sides},{cell}\n", pt[0].1, pt[1].1));
         }
         o.files.push((csv_name, csv));
     }
+}
+
+/// Where the region's boundary lies on the grid: for each value of the first axis whose column
+/// changes between inside and outside, the neighbouring values of the second axis it changes
+/// between (the first four such columns, and how many more).
+fn boundary(axes: &[Axis], cells: &[Option<bool>]) -> String {
+    let (nx, ny) = (axes[0].values.len(), axes[1].values.len());
+    let mut found = Vec::new();
+    for i in 0..nx {
+        let mut changes = Vec::new();
+        for j in 1..ny {
+            if let (Some(a), Some(b)) = (cells[(j - 1) * nx + i], cells[j * nx + i])
+                && a != b
+            {
+                changes.push(format!(
+                    "{} between {} and {}",
+                    if b { "enters" } else { "leaves" },
+                    g4(axes[1].values[j - 1]),
+                    g4(axes[1].values[j])
+                ));
+            }
+        }
+        if !changes.is_empty() {
+            found.push(format!(
+                "at {} = {}: {}",
+                axes[0].field,
+                g4(axes[0].values[i]),
+                changes.join(", ")
+            ));
+        }
+    }
+    if found.is_empty() {
+        return String::new();
+    }
+    let more = found.len().saturating_sub(4);
+    found.truncate(4);
+    format!(
+        "; the boundary along {}: {}{}",
+        axes[1].field,
+        found.join("; "),
+        if more > 0 {
+            format!("; and {more} more value(s) of {}", axes[0].field)
+        } else {
+            String::new()
+        }
+    )
 }
