@@ -146,8 +146,11 @@ flight = "t@impact[2] - t@impact[1]"
 count = "2*hits@impact - hits@impact"
 late = "v@+impact[40]"
 "#;
-    let v = run(&ball("", "stop_after = 3", outcomes, 10.0)).expect("runs");
+    // (a definition with `_` in its name read at two firings)
+    let outcomes = format!("{outcomes}loss_d = \"ke_m@+impact[1]/ke_m@impact[1]\"\n");
+    let v = run(&ball("ke_m = \"v^2/2\"", "stop_after = 3", &outcomes, 10.0)).expect("runs");
     let o = |k: &str| num(&v, &format!("outcome.{k}"));
+    assert!((o("loss_d") - E * E).abs() < 1e-12, "{v}");
     assert!((o("before1") + v1()).abs() < 1e-9, "{v}");
     assert!((o("after1") - E * v1()).abs() < 1e-9, "{v}");
     assert!((o("after2") - E * E * v1()).abs() < 1e-9, "{v}");
@@ -286,6 +289,15 @@ fn a_sign_in_the_right_side_is_held_between_its_zeros() {
     // each impact is also the sign's zero: one switch per impact
     assert_eq!(num(&a, "switches"), num(&a, "event_counts.impact"));
     assert_eq!(num(&b, "switches"), 0.0);
+    // the sign held wherever it sits in the formula: under a minus, a product, a function
+    let negated = signed.replace(
+        "\"-p2*sin(alpha*sign(th) - th)\"",
+        "\"-(p2*sin(alpha*sign(th) - th))\"",
+    );
+    assert_ne!(negated, signed);
+    let c = run(&with(&negated)).expect("negated");
+    assert_eq!(num(&c, "switches"), num(&a, "switches"));
+    assert_eq!(rejected(&c), rejected(&a));
 }
 
 #[test]
@@ -354,4 +366,59 @@ fn a_varied_parameter_the_text_model_lacks_is_named_with_those_it_has() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+}
+
+#[test]
+fn a_sweep_sets_parameters_and_initial_states_on_the_compiled_model() {
+    // the typed path of a sweep (no re-reading of the scene): g = 4 m/s^2 puts the first impact
+    // of the ball dropped from z = 1 m at sqrt(2/4) s; z = 9 m with g = 4 at sqrt(18/4) s
+    use impactcheck::models::Model;
+    let text = ball(
+        "",
+        "stop_after = 1",
+        "[outcome]\nt1 = \"t@impact[1]\"",
+        10.0,
+    );
+    let t: toml::Table = toml::from_str(&text).expect("TOML");
+    let mut m = impactcheck::models::ode::OdeScene::from_table(&t, "s").expect("a text model");
+    assert!(matches!(
+        m.set_number("parameters.g", 4.0, "s"),
+        Some(Ok(()))
+    ));
+    let t1 = |m: &impactcheck::models::ode::OdeScene| m.run().expect("runs").0.outcome["t1"];
+    assert!((t1(&m).expect("fired") - 0.5f64.sqrt()).abs() < 1e-10);
+    assert!(matches!(m.set_number("state.z", 9.0, "s"), Some(Ok(()))));
+    assert!((t1(&m).expect("fired") - 4.5f64.sqrt()).abs() < 1e-10);
+    // not finite: an error naming the field; not a parameter or state of the model: not its own
+    for field in ["parameters.g", "state.z"] {
+        match m.set_number(field, f64::NAN, "s") {
+            Some(Err(e)) => assert!(e.to_string().contains(field), "{e}"),
+            other => panic!("{field}: {other:?}"),
+        }
+    }
+    assert!(m.set_number("parameters.gg", 1.0, "s").is_none());
+    assert!(m.set_number("state.zz", 1.0, "s").is_none());
+    assert!(m.set_number("solve.rtol", 1e-6, "s").is_none());
+}
+
+#[test]
+fn names_and_the_number_of_variables_are_checked() {
+    // a parameter's name starts with a letter or `_`; 1k does not
+    let good = ball("", "", "", 1.0);
+    assert!(
+        run(&good
+            .replace("h = 1.0\n", "_h = 1.0\n")
+            .replace("h = \"m\"", "_h = \"m\""))
+        .is_ok()
+    );
+    let err = run(&good.replace("h = 1.0\n", "\"1k\" = 1.0\n")).unwrap_err();
+    assert!(err.contains("parameters.1k"), "{err}");
+    // at most 255 states and parameters: 300 parameters are refused by name, not a crash
+    let many: String = (0..300).map(|i| format!("p{i} = 1.0\n")).collect();
+    let units: String = (0..300).map(|i| format!("p{i} = \"1\"\n")).collect();
+    let text = good
+        .replace("[parameters]\n", &format!("[parameters]\n{many}"))
+        .replace("[units]\n", &format!("[units]\n{units}"));
+    let err = run(&text).unwrap_err();
+    assert!(err.contains("at most 255 states and parameters"), "{err}");
 }

@@ -304,3 +304,9 @@ fn a_tie_is_a_space_an_application_in_sized_brackets_and_fractions_of_d() {
     same("\\frac{d}{2}", "d/2");
     same("\\frac{x}{d t}", "x/(d*t)");
 }
+
+#[test]
+fn a_derivative_over_a_braced_numerator() {
+    // the numerator's own braces are passed over to find `{d t}` after it
+    same("\\frac{d {a t^{2}}}{d t}", "2*a*t");
+}

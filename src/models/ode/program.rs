@@ -437,6 +437,56 @@ mod tests {
     }
 
     #[test]
+    fn folds_and_fused_instructions_leave_the_fewest_instructions() {
+        // by hand: a product by 1, a quotient by 1, a sum with 0 are the bare variable; a
+        // product or quotient by a constant, and with a variable, is one fused instruction after
+        // the left operand; constants fold, in every operation and integer power
+        let names = ["x", "y", "z"];
+        let prog = |text: &str| {
+            Program::compile(&parse(text).expect("parses"), &|s| {
+                names.iter().position(|n| *n == s)
+            })
+            .expect("compiles")
+        };
+        for text in ["1*z", "z*1", "z/1", "z + 0", "0 + z", "z - 0"] {
+            assert_eq!(prog(text).variable(), Some(2), "{text}");
+        }
+        assert_eq!(prog("z*2.5").code, vec![Ins::Var(2), Ins::MulC(2.5)]);
+        assert_eq!(prog("z/4").code, vec![Ins::Var(2), Ins::DivC(4.0)]);
+        assert_eq!(prog("2.5*z").code, vec![Ins::Const(2.5), Ins::MulV(2)]);
+        assert_eq!(prog("z*x").code, vec![Ins::Var(2), Ins::MulV(0)]);
+        assert_eq!(prog("z - 3").code, vec![Ins::Var(2), Ins::AddC(-3.0)]);
+        for (text, value) in [
+            ("7 - 3", 4.0),
+            ("7/2", 3.5),
+            ("7*3", 21.0),
+            ("2^3", 8.0),
+            ("3^2", 9.0),
+            ("2^4", 16.0),
+            ("2^(-2)", 0.25),
+            ("2^(-1)", 0.5),
+            ("2^5", 32.0),
+            ("(5 - 3)^3", 8.0),
+        ] {
+            assert_eq!(prog(text).constant(), Some(value), "{text}");
+        }
+        // the integer powers of a variable, by products
+        let vars = [1.5, -2.0, 3.0];
+        for (text, value) in [
+            ("z^2", 9.0),
+            ("z^3", 27.0),
+            ("z^4", 81.0),
+            ("z^(-1)", 1.0 / 3.0),
+            ("z^(-2)", 1.0 / 9.0),
+            ("z^5", 243.0),
+            ("z^0", 1.0),
+            ("z^1", 3.0),
+        ] {
+            assert!((prog(text).eval(&vars) - value).abs() < 1e-13, "{text}");
+        }
+    }
+
+    #[test]
     fn unknown_names_and_deep_formulas_are_refused() {
         let e = parse("x + q").expect("parses");
         let err = Program::compile(&e, &|s| (s == "x").then_some(0)).unwrap_err();
