@@ -775,6 +775,27 @@ mod tests {
     }
 
     #[test]
+    fn an_inconsistency_through_an_unknown_shows_the_unknown_with_its_base_unit() {
+        // a q + b q^2 + c q^3 with a in m, b in m s, c in s: the first two terms need q in
+        // 1/s, the first and the last q^2 in m/s: no unit of q serves. Each pair alone leaves
+        // q free, so the sides are shown with q: `m [q]` for a q (by hand)
+        let inf = infer(
+            &[rel("y = a*q + b*q^2 + c*q^3")],
+            &units(&[("a", "m"), ("b", "m s"), ("c", "s")]),
+        );
+        let Status::Inconsistent {
+            left_unit,
+            right_unit,
+            ..
+        } = &inf.statuses[0]
+        else {
+            panic!("{:?}", inf.statuses)
+        };
+        let both = format!("{left_unit} | {right_unit}");
+        assert!(both.contains("m [q]"), "{both}");
+    }
+
+    #[test]
     fn a_declared_relation_that_is_wrong_is_inconsistent() {
         let inf = infer(
             &[rel("F = m*x")],
