@@ -403,6 +403,7 @@ mod tests {
             "sin(x)*exp(-y) + sqrt(z)/(1 + x^2)^3 + z^x",
             "2/pi*x + 0*y + 1*z - (y - 0)",
             "gamma(z) + erf(x) + beta(x, z)",
+            "3/(x + y) - 2/(z*x) + 5 - (x + z)",
         ] {
             let e = parse(text).expect("parses");
             let names = ["x", "y", "z"];
