@@ -1199,3 +1199,95 @@ fn every_required_key_is_in_the_guide_and_named_when_missing() {
         assert!(list.contains(&format!("`{key}`")), "{key} not in: {list}");
     }
 }
+
+/// A number in a claim's `where` is a value in the unit [symbols] gives that name, as a number
+/// in a text model's `[state]` is (issue 44): `where = { x = "2" }` with x in m is 2 m, so the
+/// units of the formula are those of x, and a unit the formula does not have still fails.
+#[test]
+fn a_number_in_where_is_a_value_in_the_names_unit() {
+    let p = claims_file(
+        "where-number",
+        r#"
+[[claim]]
+id = "t.sum"
+equation = "(1)"
+reading = "x + y with x = 2 m is a length"
+kind = "dimension"
+printed = "x + y"
+expect = "m"
+where = { x = "2" }
+
+[[claim]]
+id = "t.power"
+equation = "(1)"
+reading = "k x^(3/2) with x = 2.5 m is a force"
+kind = "dimension"
+printed = "k*x^(3/2)"
+expect = "N"
+where = { x = "2.5" }
+
+[[claim]]
+id = "t.wrong"
+equation = "(1)"
+reading = "k x with x = 2.5 m is not a force"
+kind = "dimension"
+printed = "k*x"
+expect = "N"
+where = { x = "2.5" }
+
+[[claim]]
+id = "t.value"
+equation = "(1)"
+reading = "the number is still the value: x + y = y + 2"
+kind = "identity"
+printed = "x + y"
+derived = "y + 2"
+where = { x = "2" }
+
+[[claim]]
+id = "t.defines"
+equation = "(1)"
+reading = "a definition of y by a number and x: y = x + 3, with x = 1 m"
+kind = "definition"
+defines = "y"
+printed = "x + 3*x"
+agrees = [["y", "4*x"]]
+where = { x = "1" }
+
+[[claim]]
+id = "t.model"
+equation = "(1)"
+reading = "the Hertz duration times x = 1 m is a length times a time, not the duration's unit"
+kind = "model"
+scene = "hertz.toml"
+quantity = "contact.duration"
+printed = "3.2181*(m/k)^(2/5)*v0^(-1/5)*x"
+bind = { m = "impactor.mass", k = "contact.k", v0 = "impactor.v0" }
+vary = ["impactor.v0=0.5:2:2"]
+rtol = 1e-3
+where = { x = "1" }
+"#,
+    );
+    let v = verdicts(&p);
+    let by = |id: &str| v.iter().find(|o| o.0 == id).expect(id).clone();
+    let model = by("t.model");
+    assert!(
+        model
+            .2
+            .contains("; units: the formula is m s, the quantity s"),
+        "{model:?}"
+    );
+    assert_eq!(by("t.sum").1, Verdict::Holds, "{:?}", by("t.sum"));
+    assert_eq!(by("t.power").1, Verdict::Holds, "{:?}", by("t.power"));
+    let wrong = by("t.wrong");
+    assert_eq!(wrong.1, Verdict::Fails, "{wrong:?}");
+    // k x: (N/m^1.5) m = kg m^(1/2) s^-2, worked by hand
+    assert!(wrong.2.contains("kg m^(1/2) s^-2"), "{}", wrong.2);
+    assert_eq!(by("t.value").1, Verdict::Holds, "{:?}", by("t.value"));
+    assert_eq!(
+        by("t.defines").1,
+        Verdict::Definition,
+        "{:?}",
+        by("t.defines")
+    );
+}

@@ -6,6 +6,14 @@
 //! the floating-point resolution of $t$. The sign of the last non-zero value is tracked per event:
 //! a root at $t_0$ (or at a previous event) does not fire again; an exact zero at a sample point
 //! fires once. A non-finite $g$ is an error, never an endless loop.
+//!
+//! One pair of crossings closer than $h/8$ is still seen: the one that starts at the step's
+//! start, where $g$ is at (or within rounding of) a zero and heads back to it, as after an impact
+//! map (a ball leaves the floor at $z = -10^{-19}$ and lands again before the first sample: a step
+//! after a jump is long when the flight is a polynomial the method integrates exactly). The
+//! slope of $g$ at the start, $g$ there and at the first sample fix a parabola ([`may_dip`]);
+//! where it dips to the other side, the least $|g|$ of the first sub-interval is searched on the
+//! dense output and both crossings are located.
 
 use super::{IntegrateError, Stepper};
 
@@ -104,7 +112,8 @@ pub(crate) struct Tracker<'e, 'a> {
     hits: Vec<EventHit>,
     g_now: Vec<f64>,
     /// Scratch for [`Tracker::may_cross`]: the Hermite interpolant's four parts, then the
-    /// interpolant and its quadratic part at each of the `SAMPLES - 1` inner samples.
+    /// interpolant and its quadratic part at each of the `SAMPLES - 1` inner samples, then the
+    /// state a nudge along the tangent at the start (a slope of g by difference).
     quad: Vec<f64>,
     g_end: Vec<f64>,
     /// The sign each event's g keeps over a step judged free of crossings.
@@ -153,7 +162,7 @@ impl<'e, 'a> Tracker<'e, 'a> {
             g_end: g_prev.clone(),
             g_prev,
             hits: Vec::new(),
-            quad: vec![0.0; (4 + 2 * (SAMPLES - 1)) * n],
+            quad: vec![0.0; (4 + 2 * SAMPLES - 1) * n],
         })
     }
 
@@ -200,6 +209,7 @@ impl<'e, 'a> Tracker<'e, 'a> {
         }
         let n = buf.len();
         let (parts, samples) = self.quad.split_at_mut(4 * n);
+        let (samples, nudged) = samples.split_at_mut(2 * (SAMPLES - 1) * n);
         let h = st.hermite_parts(parts);
         // the interpolant and its quadratic part at every inner sample, once for all events
         let mut times = [0.0; SAMPLES - 1];
@@ -235,6 +245,17 @@ impl<'e, 'a> Tracker<'e, 'a> {
                 }),
             };
             if may {
+                return Ok(Some(true));
+            }
+        }
+        // a pair of crossings inside the first sub-interval, from the start's slope
+        for (index, e) in self.events.iter().enumerate() {
+            let g0 = self.g_prev[index];
+            let slope = tangent_slope(e, parts, ta, tb - ta, g0, nudged);
+            let first = &samples[..n];
+            let g1 = e.eval(times[0], first);
+            let s0 = self.last_sign[index];
+            if turns_back(s0, self.ref_sign[index], g0, slope / SAMPLES as f64, g1) {
                 return Ok(Some(true));
             }
         }
@@ -274,6 +295,9 @@ impl<'e, 'a> Tracker<'e, 'a> {
                 self.g_now[index] = v;
                 let s0 = self.last_sign[index];
                 let s1 = sign(v);
+                if j == 1 {
+                    self.dip(st, index, (t_left, t_right), v, &mut found)?;
+                }
                 let crossed = s0 != 0 && s1 != s0;
                 if crossed {
                     let rising = s0 < 0;
@@ -321,6 +345,174 @@ impl<'e, 'a> Tracker<'e, 'a> {
             t_left = t_right;
         }
         Ok(None)
+    }
+}
+
+/// The fraction of a step at which a slope of $g$ is taken by difference, along the tangent of
+/// the motion (so that the motion's own curvature, however short its time scale against the
+/// step's, does not enter: only $g$'s).
+const NUDGE: f64 = 1e-8;
+
+/// The slope of $g$ at the start of the step, per unit of the step, from the Hermite `parts`
+/// ([`super::Stepper::hermite_parts`]) of a step of length `h` from `ta`, where `g` is `g0`: a
+/// component's is the interpolant's own; another $g$'s is taken by difference along the tangent
+/// $y_0 + \epsilon h y'_0$ (`scratch` holds that state).
+fn tangent_slope(e: &Event, parts: &[f64], ta: f64, h: f64, g0: f64, scratch: &mut [f64]) -> f64 {
+    let n = scratch.len();
+    let (y0, rest) = parts.split_at(n);
+    let (dy, c1) = rest.split_at(n);
+    match e.component {
+        Some(i) => dy[i] + c1[i],
+        None => {
+            for (m, x) in scratch.iter_mut().enumerate() {
+                *x = y0[m] + NUDGE * (dy[m] + c1[m]);
+            }
+            (e.eval(ta + NUDGE * h, scratch) - g0) / NUDGE
+        }
+    }
+}
+
+/// Whether $g$, with the sign `s0` (0: leaving an exact zero toward `s_end`, the sign it has at
+/// the first sample), the value `g0` and the slope `d0` (per unit of the first sub-interval) at
+/// the start and `g1` at the first sample, may reach the other side and come back inside the
+/// first sub-interval, which no sample would see. The parabola
+/// $u(x) = u_0 + d_0 x + a x^2$ through them (in $u = s_0 g$, positive on the kept side):
+/// heading to zero at the start ($d_0 < 0$), back on the kept side at the sample ($u_1 > 0$), and
+/// turning before it ($0 < x^* < 1$) to a least value below half the start's ($u^* \le u_0/2$). Leaving an exact zero: it heads to the
+/// side other than the one it is on at the sample.
+fn turns_back(s0: i8, s_end: i8, g0: f64, d0: f64, g1: f64) -> bool {
+    if s0 == 0 {
+        return s_end != 0 && sign(d0) == -s_end;
+    }
+    let s = f64::from(s0);
+    let (u0, d0, u1) = (s * g0, s * d0, s * g1);
+    let a = u1 - u0 - d0;
+    // (on the other side at the sample, the samples see the crossing)
+    if !(d0 < 0.0 && a > 0.0 && u1 > 0.0) {
+        return false;
+    }
+    let x = -d0 / (2.0 * a);
+    x < 1.0 && u0 - d0 * d0 / (4.0 * a) <= 0.5 * u0
+}
+
+impl Tracker<'_, '_> {
+    /// The pair of crossings of event `index` inside the first sub-interval `(ta, t1)` of a
+    /// step, where `g` is `g1` at `t1` (see [`turns_back`]): the least $s_0 g$ is searched by golden
+    /// section on the dense output, and where it lies on the other side the two crossings on
+    /// either side of it are located; the wanted ones go to `found`. Leaving an exact zero, the
+    /// one crossing back (from just after the start) is located.
+    fn dip<St: Stepper>(
+        &self,
+        st: &St,
+        index: usize,
+        (ta, t1): (f64, f64),
+        g1: f64,
+        found: &mut Vec<EventHit>,
+    ) -> Result<(), IntegrateError> {
+        let e = &self.events[index];
+        let (s0, g0) = (self.last_sign[index], self.g_prev[index]);
+        let n = st.y().len();
+        let mut y = vec![0.0; n];
+        let mut g_at = |t: f64| -> Result<f64, IntegrateError> {
+            st.dense(t, &mut y);
+            let v = e.eval(t, &y);
+            if v.is_finite() {
+                Ok(v)
+            } else {
+                Err(IntegrateError::EventNonFinite { t, index })
+            }
+        };
+        if s0 != 0 && sign(g1) != s0 {
+            return Ok(());
+        }
+        // the slope at the start, per unit of (ta, t1): the stepper's tangent, or a difference
+        // of the dense output
+        let slope = if st.has_hermite() {
+            let mut parts = vec![0.0; 5 * n];
+            let (parts, scratch) = parts.split_at_mut(4 * n);
+            let h = st.hermite_parts(parts);
+            tangent_slope(e, parts, ta, h, g0, scratch) * (t1 - ta) / h
+        } else {
+            (g_at(ta + NUDGE * (t1 - ta))? - g0) / NUDGE
+        };
+        if !turns_back(s0, sign(g1), g0, slope, g1) {
+            return Ok(());
+        }
+        let wanted = |rising: bool| match e.direction {
+            super::Direction::Both => true,
+            super::Direction::Rising => rising,
+            super::Direction::Falling => !rising,
+        };
+        let push = |t: f64, found: &mut Vec<EventHit>| {
+            let mut y = vec![0.0; n];
+            st.dense(t, &mut y);
+            found.push(EventHit {
+                t,
+                index,
+                y,
+                terminal: e.terminal,
+            });
+        };
+        if s0 == 0 {
+            // left the zero toward the slope's sign, back across it before t1: the crossing
+            // lies after the first time g is seen on that side, halving toward the start
+            let mut tn = ta + 0.5 * (t1 - ta);
+            for _ in 0..1100 {
+                let gn = g_at(tn)?;
+                if sign(gn) == sign(slope) {
+                    if wanted(sign(gn) < 0) {
+                        push(locate(st, e, tn, gn, t1, g1)?, found);
+                    }
+                    break;
+                }
+                if tn <= ta {
+                    break;
+                }
+                tn = ta + 0.5 * (tn - ta);
+            }
+            return Ok(());
+        }
+        // the least u = s0 g on [ta, t1], by golden section
+        let s = f64::from(s0);
+        let r = 0.5 * (5f64.sqrt() - 1.0);
+        let (mut a, mut b) = (ta, t1);
+        let (mut c, mut d) = (b - r * (b - a), a + r * (b - a));
+        let (mut uc, mut ud) = (s * g_at(c)?, s * g_at(d)?);
+        for _ in 0..200 {
+            if (b - a).abs() <= 4.0 * f64::EPSILON * a.abs().max(b.abs()) + f64::MIN_POSITIVE
+                || uc <= 0.0
+                || ud <= 0.0
+            {
+                break;
+            }
+            if uc < ud {
+                (b, d, ud) = (d, c, uc);
+                c = b - r * (b - a);
+                uc = s * g_at(c)?;
+            } else {
+                (a, c, uc) = (c, d, ud);
+                d = a + r * (b - a);
+                ud = s * g_at(d)?;
+            }
+        }
+        let (tm, um) = if uc <= ud { (c, uc) } else { (d, ud) };
+        if um > 0.0 {
+            return Ok(());
+        }
+        // from s0 to the other side, and back
+        let gm = s * um;
+        if wanted(s0 < 0) {
+            let t = if gm == 0.0 {
+                tm
+            } else {
+                locate(st, e, ta, g0, tm, gm)?
+            };
+            push(t, found);
+        }
+        if gm != 0.0 && wanted(s0 > 0) {
+            push(locate(st, e, tm, gm, t1, g1)?, found);
+        }
+        Ok(())
     }
 }
 

@@ -102,7 +102,8 @@ impl Kind for Definition {
             uses.push(([l.clone(), r.clone()], Identity::of(cx, c, spec)?));
         }
         Ok(Definition {
-            printed: cx.expand_all(c, &s.where_, &raw)?,
+            // for its unit: a number in `where` is a value in that name's unit
+            printed: cx.expand_all(c, &cx.where_for_units(&s.where_), &raw)?,
             printed_text: s.printed,
             defines,
             uses,

@@ -41,7 +41,7 @@ impl Kind for Dimension {
 
     fn validate(cx: &Checked, c: &Head, s: DimensionSpec) -> Result<Self, VerifyError> {
         let printed = parse_formula(cx.file, c, "printed", &s.printed)?;
-        let expanded = cx.expand_local(c, &s.where_, &printed)?;
+        let expanded = cx.expand_local(c, &cx.where_for_units(&s.where_), &printed)?;
         cx.units_of(c, "printed", &expanded, &[])?;
         let expect = Unit::parse(&s.expect).map_err(|m| claim_err(cx.file, c, "expect", m))?;
         Ok(Dimension {
@@ -56,7 +56,7 @@ impl Kind for Dimension {
     fn check(&self, cx: &Checked, c: &Head, _: &mut Session) -> Result<Outcome, VerifyError> {
         let (p, want) = (&self.printed, self.expect);
         let unit = |e: &Expr| {
-            let e = cx.expand_local(c, &self.where_, e)?;
+            let e = cx.expand_local(c, &cx.where_for_units(&self.where_), e)?;
             Ok::<_, VerifyError>(units::dimension(&e, &cx.unit_fn()))
         };
         // a definition the formula uses that has no unit of its own is named first

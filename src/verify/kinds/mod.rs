@@ -570,6 +570,19 @@ impl<'a> Checked<'a> {
         ))
     }
 
+    /// `w` for a unit: without the entries that give a number to a name with a unit in
+    /// [symbols], so that the name keeps that unit (`where = { x = "2" }` with x in m is 2 m, as
+    /// a number in a text model's `[state]` is a value in the state's unit).
+    fn where_for_units(&self, w: &Where) -> Where {
+        w.iter()
+            .filter(|(k, v)| {
+                self.units.get(*k).is_none()
+                    || expr::parse(v).map_or(true, |e| !e.symbols().is_empty())
+            })
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect()
+    }
+
     /// The file's definitions expanded in `e`.
     fn expand(&self, e: &Expr) -> Expr {
         e.substitute(&|s: &str| self.defs.get(s).cloned())

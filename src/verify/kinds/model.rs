@@ -78,7 +78,10 @@ impl Kind for Model {
             .and_then(|u| units::Unit::parse(u).ok());
         let units_note = match (
             cx.declared(&s.quantity).or(model_unit),
-            units::dimension(&printed, &cx.unit_fn()),
+            units::dimension(
+                &cx.formula(c, &cx.where_for_units(&s.where_), "printed", &s.printed)?,
+                &cx.unit_fn(),
+            ),
         ) {
             (Some(u), Ok(pu)) if pu != u => {
                 Some(format!("; units: the formula is {pu}, the quantity {u}"))
