@@ -488,3 +488,48 @@ fn the_paper_may_be_elsewhere_or_a_text_with_display_math() {
         ]
     );
 }
+
+/// The main job's `reports/audit/` files (`paper_audits`) hold for each seed the audit that
+/// `verify audit` gives from its extract and its claims file: the statuses counted in
+/// `the_seeds_audit` above, and a Markdown page that names the paper.
+#[test]
+fn the_main_jobs_audit_files_are_the_seeds_audits() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for (paper, claims, want) in [
+        ("000", "verify/000_cone_plate.toml", [36, 8, 2, 5]),
+        ("002", "verify/002_constrained_impact.toml", [89, 7, 33, 12]),
+    ] {
+        let papers = impactcheck::verify::load_claims(&root.join(claims)).expect("loads");
+        let files = impactcheck::verify::audit::paper_audits(&papers);
+        let get = |name: &str| {
+            files
+                .iter()
+                .find(|(f, _)| f == name)
+                .map(|(_, text)| text.clone())
+                .unwrap_or_else(|| {
+                    panic!(
+                        "{name} among {:?}",
+                        files.iter().map(|f| &f.0).collect::<Vec<_>>()
+                    )
+                })
+        };
+        let json: Value = serde_json::from_str(&get(&format!("audit/{paper}.json"))).unwrap();
+        let n = |s: &str| {
+            json["relations"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter(|r| r["status"] == s)
+                .count()
+        };
+        let got = [
+            n("consistent"),
+            n("inconsistent"),
+            n("undetermined"),
+            n("unreadable"),
+        ];
+        assert_eq!(got, want, "{paper}");
+        let md = get(&format!("audit/{paper}.md"));
+        assert!(md.contains(&format!("({paper})")), "{md}");
+    }
+}

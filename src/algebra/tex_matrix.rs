@@ -461,6 +461,9 @@ mod tests {
         same(&m, &[&["2/m", "-2/m*R^2/rho^2"], &["0", "2/m"]]);
         let m = read(r"B = (a + b)\mathbf{E}_2 + c \begin{vmatrix} x & y \\ z & w \end{vmatrix}");
         same(&m, &[&["a + b + c*x", "c*y"], &["c*z", "a + b + c*w"]]);
+        // braced, as 002 prints it: the braces are part of the unit matrix, not left behind
+        let m = read(r"B = (a + b)\mathbf{E}_{2} + c \begin{vmatrix} x & y \\ z & w \end{vmatrix}");
+        same(&m, &[&["a + b + c*x", "c*y"], &["c*z", "a + b + c*w"]]);
     }
 
     #[test]

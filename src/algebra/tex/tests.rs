@@ -133,6 +133,8 @@ fn errors_name_the_column_and_the_construct() {
     assert_eq!(e.column, 17, "{e}");
     let e = read_formula(r"\frac{a}{b", &s).unwrap_err();
     assert!(e.construct.contains('}'), "{e}");
+    // what is missing at the end is missing just past the last character (10 of them here)
+    assert_eq!(e.column, 11, "{e}");
     // nesting from a file from anyone: an error, not a stack overflow
     let deep = format!("{}x{}", "{".repeat(5000), "}".repeat(5000));
     let e = read_formula(&deep, &s).unwrap_err();
@@ -195,6 +197,13 @@ fn a_bad_name_part_applications_integrals_and_the_nesting_limit() {
     assert_eq!(
         (e.column, e.construct.as_str(), e.found.as_str()),
         (5, "a name's part (letters, digits, Greek)", "+")
+    );
+    // unbraced, a comma is no name's part either (inside braces it is passed over: `x_{1,2}`);
+    // the error is at the comma, not past it
+    let e = read("x_,y").unwrap_err();
+    assert_eq!(
+        (e.column, e.construct.as_str(), e.found.as_str()),
+        (3, "a name's part (letters, digits, Greek)", ",")
     );
     // an application whose argument has braces is one opaque symbol
     assert_eq!(read("w(x_{1}, t)").unwrap(), "{w(x_1,t)}");
