@@ -4,6 +4,7 @@
 use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand, ValueEnum};
 use impactcheck::{report, verify};
+use std::collections::BTreeMap;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -192,6 +193,58 @@ fn measured_claims(
         }
         None => Default::default(),
     }
+}
+
+/// The power the main job reuses, and the keys it measured from (`verify::power_cache`).
+struct Reused {
+    power: BTreeMap<String, report::Power>,
+    keys: BTreeMap<String, String>,
+}
+
+impl Reused {
+    fn get(&self, id: &str) -> Option<&report::Power> {
+        self.power.get(id)
+    }
+    fn key(&self, id: &str) -> Option<String> {
+        self.keys.get(id).cloned()
+    }
+}
+
+/// The default run (every claim's power, the project's reports): the power of each claim whose
+/// key is the one `summary.json` in the output folder holds is reused, and the claim is taken
+/// out of `measured`. `--power` measures every claim afresh; other runs reuse nothing.
+fn reusable_power(
+    args: &Args,
+    papers: &[verify::PaperClaims],
+    out_dir: &std::path::Path,
+    measured: &mut std::collections::BTreeSet<String>,
+) -> Reused {
+    let mut r = Reused {
+        power: BTreeMap::new(),
+        keys: BTreeMap::new(),
+    };
+    if measured.is_empty() {
+        return r;
+    }
+    r.keys = verify::power_cache::keys(papers);
+    if args.power || args.power_sample.is_some() || args.check {
+        return r;
+    }
+    let previous: Option<report::Summary> = std::fs::read_to_string(out_dir.join("summary.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str(&t).ok());
+    if let Some(previous) = previous {
+        r.power = verify::power_cache::reuse(&previous, &r.keys, measured);
+    }
+    if !r.power.is_empty() {
+        eprintln!(
+            "verify: the power of {} claims reused (nothing they depend on changed since {}), {} measured; --power measures all",
+            r.power.len(),
+            out_dir.join("summary.json").display(),
+            measured.len()
+        );
+    }
+    r
 }
 
 /// A progress bar over `total` claims on a terminal, hidden elsewhere.
@@ -466,8 +519,16 @@ fn run(args: Args) -> Result<bool> {
         verify::coverage::check_equations(p, args.papers.as_deref())?;
         verify::coverage::check_quotes(p, args.papers.as_deref())?;
     }
-    let measured = measured_claims(&args, &papers, write);
-    let outcomes = check_claims(&papers, &root, &measured, progress)?;
+    let mut measured = measured_claims(&args, &papers, write);
+    let reused = reusable_power(&args, &papers, &out_dir, &mut measured);
+    let mut outcomes = check_claims(&papers, &root, &measured, progress)?;
+    for o in &mut outcomes {
+        match (reused.get(&o.id), o.power.as_mut()) {
+            (Some(p), _) => o.power = Some(p.clone()),
+            (None, Some(p)) => p.key = reused.key(&o.id),
+            (None, None) => {}
+        }
+    }
     let fresh = report::summary(&outcomes);
     print_summary(
         match args.format {

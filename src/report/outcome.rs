@@ -96,6 +96,10 @@ pub struct Power {
     /// misprint survives.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub blind: Option<String>,
+    /// What it was measured from (`verify::power_cache`): the main job reuses it while
+    /// the key is the same.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub key: Option<String>,
 }
 
 fn is_zero(n: &usize) -> bool {

@@ -8,12 +8,19 @@
 pub mod accuracy;
 pub mod audit;
 pub mod coverage;
+/// FNV-1a with a 128-bit state: a stable hash for change detection (the keys of
+/// [`power_cache`]), shared with `build.rs`, which `include!`s this file to hash the
+/// code. Written by hand: it is ten lines, its only job is to notice a change (not to resist an
+/// adversary, where a SHA crate would be the tool), and std's `DefaultHasher` is not stable
+/// across Rust releases, so a key written by one toolchain could not be read by another.
+pub mod fnv;
 pub mod hard_cases;
 pub mod kinds;
 pub mod paper000;
 pub mod paper001;
 pub mod paper002;
 pub mod power;
+pub mod power_cache;
 pub mod series_numeric;
 pub mod tex_claims;
 

@@ -552,6 +552,7 @@ pub fn measure<'s>(
         excused: 0,
         not_measured: None,
         blind: None,
+        key: None,
     };
     for fate in fates {
         match fate {

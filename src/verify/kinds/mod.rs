@@ -576,7 +576,7 @@ impl<'a> Checked<'a> {
     fn where_for_units(&self, w: &Where) -> Where {
         w.iter()
             .filter(|(k, v)| {
-                self.units.get(*k).is_none()
+                !self.units.contains_key(*k)
                     || expr::parse(v).map_or(true, |e| !e.symbols().is_empty())
             })
             .map(|(k, v)| (k.clone(), v.clone()))
