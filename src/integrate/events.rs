@@ -234,28 +234,33 @@ impl<'e, 'a> Tracker<'e, 'a> {
             let kept = v * f64::from(s_ref);
             kept.is_nan() || kept <= 0.0 || kept <= 2.0 * (v - at_quad()).abs()
         }
-        for (e, &s_ref) in self.events.iter().zip(&self.ref_sign) {
+        for (index, (e, &s_ref)) in self.events.iter().zip(&self.ref_sign).enumerate() {
             let mut pairs = samples.chunks_exact(2 * n).zip(times);
+            // g at the first sample, for the pair of crossings below
+            let mut g1 = f64::NAN;
             let may = match e.component {
                 // a component: the samples' own entries, no call
-                Some(i) => pairs.any(|(pair, _)| within(pair[i], s_ref, || pair[n + i])),
+                Some(i) => {
+                    g1 = samples[i];
+                    pairs.any(|(pair, _)| within(pair[i], s_ref, || pair[n + i]))
+                }
                 None => pairs.any(|(pair, t)| {
                     let (out, quad) = pair.split_at(n);
-                    within((e.g)(t, out), s_ref, || (e.g)(t, quad))
+                    let v = (e.g)(t, out);
+                    if g1.is_nan() {
+                        g1 = v;
+                    }
+                    within(v, s_ref, || (e.g)(t, quad))
                 }),
             };
             if may {
                 return Ok(Some(true));
             }
-        }
-        // a pair of crossings inside the first sub-interval, from the start's slope
-        for (index, e) in self.events.iter().enumerate() {
+            // a pair of crossings inside the first sub-interval, from the start's slope
             let g0 = self.g_prev[index];
             let slope = tangent_slope(e, parts, ta, tb - ta, g0, nudged);
-            let first = &samples[..n];
-            let g1 = e.eval(times[0], first);
             let s0 = self.last_sign[index];
-            if turns_back(s0, self.ref_sign[index], g0, slope / SAMPLES as f64, g1) {
+            if turns_back(s0, s_ref, g0, slope / SAMPLES as f64, g1) {
                 return Ok(Some(true));
             }
         }

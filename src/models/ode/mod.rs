@@ -186,8 +186,12 @@ pub struct Compiled {
     /// The formulas whose sign the right sides read, held between their zeros.
     switches: Vec<switch::Switch>,
     outcomes: Vec<outcomes::OutcomeSpec>,
-    /// The unit of every state (for the JSON).
-    state_units: Vec<String>,
+    /// The unit of every state and of every outcome, by name (for the JSON: shared by every
+    /// run's outcome, not built per run of a sweep).
+    state_units: std::sync::Arc<BTreeMap<String, String>>,
+    outcome_units: std::sync::Arc<BTreeMap<String, String>>,
+    /// The events' names, in order.
+    event_names: Vec<String>,
     /// The end of the interval (s).
     t_end: f64,
     /// The initial values and right sides as formulas (definitions expanded), for the exact
@@ -223,7 +227,7 @@ pub struct OdeOutcome {
     /// The named outcomes (`null`: its event never fired).
     pub outcome: BTreeMap<String, Option<f64>>,
     /// Each outcome's unit, derived from its formula.
-    pub outcome_units: BTreeMap<String, String>,
+    pub outcome_units: std::sync::Arc<BTreeMap<String, String>>,
     /// Where the run ended (s).
     pub t_end: f64,
     /// The event that stopped it, if one did.
@@ -231,7 +235,7 @@ pub struct OdeOutcome {
     /// The states at the end.
     pub state: BTreeMap<String, f64>,
     /// The unit of each state.
-    pub state_units: BTreeMap<String, String>,
+    pub state_units: std::sync::Arc<BTreeMap<String, String>>,
     /// How many times each event fired.
     pub event_counts: BTreeMap<String, usize>,
     /// Jumps applied.
@@ -276,11 +280,17 @@ impl Vars<'_> {
         let total = p + self.held.len();
         let mut buf = [0.0f64; N];
         buf[0] = t;
-        buf[1..=n].copy_from_slice(y);
+        // element by element: the slices are a few numbers long, where a call of `memcpy` for
+        // each costs more than the copy (a tenth of a text model's sweep)
+        for (slot, v) in buf[1..=n].iter_mut().zip(y) {
+            *slot = *v;
+        }
         for (slot, v) in buf[1 + n..p].iter_mut().zip(&self.m.params) {
             *slot = *v;
         }
-        buf[p..total].copy_from_slice(self.held);
+        for (slot, v) in buf[p..total].iter_mut().zip(self.held) {
+            *slot = *v;
+        }
         f(&buf[..total])
     }
 }
@@ -343,14 +353,53 @@ impl OdeScene {
 struct Held<'a> {
     m: &'a OdeScene,
     held: Vec<f64>,
+    /// `[t, y..., parameters..., held...]`, the parameters and the held values written once
+    /// ([`Held::new`], [`Held::set_held`]): a right side writes only `t` and `y`.
+    vars: std::cell::RefCell<Vec<f64>>,
+}
+
+impl<'a> Held<'a> {
+    fn new(m: &'a OdeScene) -> Self {
+        let n = m.states.len();
+        let mut vars = vec![0.0; 1 + n + m.params.len() + m.switches.len()];
+        vars[1 + n..1 + n + m.params.len()].copy_from_slice(&m.params);
+        Held {
+            m,
+            held: vec![0.0; m.switches.len()],
+            vars: std::cell::RefCell::new(vars),
+        }
+    }
+
+    /// Sets the held values (each switch's side) from `(t, y)` ([`OdeScene::sides`]).
+    fn set_held(&mut self, t: f64, y: &[f64]) {
+        self.m.sides(t, y, &mut self.held);
+        let k = self.held.len();
+        let vars = self.vars.get_mut();
+        let at = vars.len() - k;
+        vars[at..].copy_from_slice(&self.held);
+    }
 }
 
 impl OdeSystem for Held<'_> {
     fn dim(&self) -> usize {
         self.m.states.len()
     }
+    #[inline(always)]
     fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-        self.m.rhs_held(&self.held, t, y, dy);
+        let Ok(mut vars) = self.vars.try_borrow_mut() else {
+            return self.m.rhs_held(&self.held, t, y, dy);
+        };
+        vars[0] = t;
+        for (slot, v) in vars[1..].iter_mut().zip(y) {
+            *slot = *v;
+        }
+        for (d, p) in dy.iter_mut().zip(&self.m.rhs) {
+            // a bare variable (`z' = v`) read without a call
+            *d = match p.variable() {
+                Some(slot) => vars[slot],
+                None => p.eval(&vars),
+            };
+        }
     }
     fn jacobian(&self, t: f64, y: &[f64], jac: &mut nalgebra::DMatrix<f64>) -> bool {
         self.m.jacobian_held(&self.held, t, y, jac)
@@ -458,8 +507,20 @@ impl Model for OdeScene {
             .map(|e| &e.when)
             .chain(self.switches.iter().map(|s| &s.arg))
             .map(|p| {
-                let vars = Vars { m: self, held: &[] };
-                Box::new(move |t: f64, y: &[f64]| vars.with(t, y, |v| p.eval(v))) as EventFn
+                // `[t, y..., parameters...]`, the parameters written once: a call writes t and y
+                let mut vars = vec![0.0; 1 + n + self.params.len()];
+                vars[1 + n..].copy_from_slice(&self.params);
+                let vars = std::cell::RefCell::new(vars);
+                Box::new(move |t: f64, y: &[f64]| match vars.try_borrow_mut() {
+                    Ok(mut v) => {
+                        v[0] = t;
+                        for (slot, x) in v[1..].iter_mut().zip(y) {
+                            *slot = *x;
+                        }
+                        p.eval(&v)
+                    }
+                    Err(_) => Vars { m: self, held: &[] }.with(t, y, |v| p.eval(v)),
+                }) as EventFn
             })
             .collect();
         // the user's events, then each switch's zero (stopping, either way)
@@ -468,11 +529,16 @@ impl Model for OdeScene {
             .enumerate()
             .map(|(i, g)| {
                 let (name, when, direction, halts) = match self.events.get(i) {
-                    Some(e) => (e.name.clone(), &e.when, e.direction, e.halts()),
+                    Some(e) => (
+                        std::borrow::Cow::Borrowed(e.name.as_str()),
+                        &e.when,
+                        e.direction,
+                        e.halts(),
+                    ),
                     None => {
                         let sw = &self.switches[i - user];
                         (
-                            format!("switch of sign({})", sw.text),
+                            std::borrow::Cow::Owned(format!("switch of sign({})", sw.text)),
                             &sw.arg,
                             Direction::Both,
                             true,
@@ -494,11 +560,8 @@ impl Model for OdeScene {
             events,
             ..Options::default()
         };
-        let mut sys = Held {
-            m: self,
-            held: vec![0.0; self.switches.len()],
-        };
-        self.sides(0.0, &y, &mut sys.held);
+        let mut sys = Held::new(self);
+        sys.set_held(0.0, &y);
         let mut r = Runs {
             t: 0.0,
             hits: vec![Vec::new(); user],
@@ -554,7 +617,7 @@ impl Model for OdeScene {
                 break;
             }
             // every switch on the side the motion goes into, after the jumps
-            self.sides(r.t, &y, &mut sys.held);
+            sys.set_held(r.t, &y);
             if let Some(acc) = self.accumulating(&r.hits)
                 && acc.t - r.t <= ACCUMULATED * acc.t.abs()
             {
@@ -662,7 +725,6 @@ impl OdeScene {
         } = r;
         let n = self.states.len();
         let vars = Vars { m: self, held: &[] };
-        let names: Vec<String> = self.events.iter().map(|e| e.name.clone()).collect();
         let param = |s: &str| {
             self.param_names
                 .iter()
@@ -673,7 +735,7 @@ impl OdeScene {
         let outcome = outcomes::evaluate(
             &self.outcomes,
             &hits,
-            &names,
+            &self.event_names,
             &|p| vars.with(t, &y, |v| p.eval(v)),
             &|p, th, yh| vars.with(th, yh, |v| p.eval(v)),
             &|s| {
@@ -685,24 +747,14 @@ impl OdeScene {
             },
             &mut warnings,
         );
-        let outcome_units = self
-            .outcomes
-            .iter()
-            .map(|o| (o.name.clone(), o.unit_text.clone()))
-            .collect();
         OdeOutcome {
             model: <Self as Model>::NAME,
             outcome,
-            outcome_units,
+            outcome_units: self.outcome_units.clone(),
             t_end: t,
             stopped_by,
             state: self.states.iter().cloned().zip(y.iter().copied()).collect(),
-            state_units: self
-                .states
-                .iter()
-                .cloned()
-                .zip(self.state_units.iter().cloned())
-                .collect(),
+            state_units: self.state_units.clone(),
             event_counts: self
                 .events
                 .iter()

@@ -48,6 +48,11 @@ enum Ins {
     Sqrt,
     Abs,
     Call(Func),
+    /// `max(x, 0)` of a variable, as the reader writes it: `(x + |x|)/2` (one instruction for
+    /// four, the same operations in the same order, so the same bits).
+    RampV(u32),
+    /// `max(x, 0)^(n + 1/2)` of a variable (the Hertz force's `max(z, 0)^(3/2)`).
+    RampPowHalfV(u32, i32),
 }
 
 /// A compiled formula of the variables a slot map names.
@@ -136,11 +141,46 @@ fn binary(op: Ins, a: Part, b: Part) -> Part {
         cb.push(f);
         return Part::Code(cb, db);
     }
+    // a negated variable times a formula (`-k*F`): the formula's code, then `*k` and the sign
+    // (exact: a product does not depend on its order, a negation is exact)
+    if let (Ins::Mul, Part::Code(ca, _)) = (op, &a)
+        && let [Ins::Var(i), Ins::Neg] = ca.as_slice()
+    {
+        let i = *i;
+        let (mut cb, db) = b.into_code();
+        cb.extend([Ins::MulV(i), Ins::Neg]);
+        return Part::Code(cb, db);
+    }
     let (mut ca, da) = a.into_code();
     let (cb, db) = b.into_code();
     ca.extend(cb);
     ca.push(op);
     Part::Code(ca, da.max(db + 1))
+}
+
+/// Common forms fused into one instruction each, in place: `max(x, 0)` of a variable (as the
+/// reader writes it, `(x + |x|)/2`) and its half-integer powers.
+fn fuse(code: &mut Vec<Ins>) {
+    let mut out: Vec<Ins> = Vec::with_capacity(code.len());
+    for ins in code.drain(..) {
+        out.push(ins);
+        loop {
+            let n = out.len();
+            let fused = match out.as_slice() {
+                [.., Ins::Var(i), Ins::Abs, Ins::AddV(j), Ins::DivC(two)]
+                    if i == j && two.to_bits() == 2.0f64.to_bits() =>
+                {
+                    Some((4, Ins::RampV(*i)))
+                }
+                [.., Ins::RampV(i), Ins::PowHalf(k)] => Some((2, Ins::RampPowHalfV(*i, *k))),
+                _ => None,
+            };
+            let Some((len, f)) = fused else { break };
+            out.truncate(n - len);
+            out.push(f);
+        }
+    }
+    *code = out;
 }
 
 fn unary(ins: Ins, a: Part) -> Part {
@@ -161,6 +201,12 @@ fn apply_bin(op: Ins, x: f64, y: f64) -> f64 {
         Ins::Div => x / y,
         _ => x.powf(y),
     }
+}
+
+/// `max(x, 0)` as the reader writes it, `(x + |x|)/2` (NaN stays NaN).
+#[inline(always)]
+fn ramp(x: f64) -> f64 {
+    (x + x.abs()) / 2.0
 }
 
 /// `x^n` by products for the small powers formulas use (no library call), `powi` beyond.
@@ -253,7 +299,8 @@ fn compile_part(e: &Expr, slot: &dyn Fn(&str) -> Option<usize>) -> Result<Part, 
 impl Program {
     /// Compiles `e`; `slot` gives each name's index in the variables [`Program::eval`] reads.
     pub fn compile(e: &Expr, slot: &dyn Fn(&str) -> Option<usize>) -> Result<Program, String> {
-        let (code, depth) = compile_part(e, slot)?.into_code();
+        let (mut code, depth) = compile_part(e, slot)?.into_code();
+        fuse(&mut code);
         if depth > MAX_DEPTH {
             return Err(format!(
                 "`{e}` nests too deeply for a compiled formula ({depth} > {MAX_DEPTH} stack slots): name a part of it in [definitions]"
@@ -271,6 +318,7 @@ impl Program {
     }
 
     /// The variable's slot, if the formula is a bare variable (an event `when = "z"`).
+    #[inline]
     pub fn variable(&self) -> Option<usize> {
         match self.code.as_slice() {
             [Ins::Var(i)] => usize::try_from(*i).ok(),
@@ -289,7 +337,7 @@ impl Program {
     /// The value at `vars` (indexed as the slot map of [`Program::compile`] said). The stack is
     /// an array on the Rust stack sized to the program (no allocation, and no long array to
     /// clear for a short formula).
-    #[inline]
+    #[inline(always)]
     pub fn eval(&self, vars: &[f64]) -> f64 {
         // a bare variable or constant (`z' = v`) without the stack machine
         match self.code.as_slice() {
@@ -298,10 +346,47 @@ impl Program {
             _ => {}
         }
         match self.depth {
-            0..=8 => self.run::<8>(vars),
+            0 | 1 => self.run1(vars),
+            2..=8 => self.run::<8>(vars),
             9..=16 => self.run::<16>(vars),
             _ => self.run::<MAX_DEPTH>(vars),
         }
+    }
+
+    /// A program that never holds two values (a value, then operations on it with variables
+    /// and constants: `k*max(z, 0)^(3/2)/m`) in one register, without the stack.
+    #[inline(always)]
+    fn run1(&self, vars: &[f64]) -> f64 {
+        let mut acc = 0.0;
+        for ins in &self.code {
+            acc = match *ins {
+                Ins::Const(c) => c,
+                Ins::Var(i) => vars[i as usize],
+                Ins::RampV(i) => ramp(vars[i as usize]),
+                Ins::RampPowHalfV(i, n) => {
+                    let r = ramp(vars[i as usize]);
+                    powi(r, n) * r.sqrt()
+                }
+                Ins::AddV(i) => acc + vars[i as usize],
+                Ins::SubV(i) => acc - vars[i as usize],
+                Ins::MulV(i) => acc * vars[i as usize],
+                Ins::DivV(i) => acc / vars[i as usize],
+                Ins::RSubV(i) => vars[i as usize] - acc,
+                Ins::RDivV(i) => vars[i as usize] / acc,
+                Ins::AddC(c) => acc + c,
+                Ins::MulC(c) => acc * c,
+                Ins::DivC(c) => acc / c,
+                Ins::RSubC(c) => c - acc,
+                Ins::RDivC(c) => c / acc,
+                Ins::Neg => -acc,
+                Ins::Sqrt => acc.sqrt(),
+                Ins::Abs => acc.abs(),
+                Ins::Powi(n) => powi(acc, n),
+                Ins::PowHalf(n) => powi(acc, n) * acc.sqrt(),
+                other => apply_un(other, acc),
+            };
+        }
+        acc
     }
 
     #[inline]
@@ -352,6 +437,20 @@ impl Program {
                 Ins::Neg => st[sp - 1] = -st[sp - 1],
                 Ins::Sqrt => st[sp - 1] = st[sp - 1].sqrt(),
                 Ins::Abs => st[sp - 1] = st[sp - 1].abs(),
+                Ins::Powi(n) => st[sp - 1] = powi(st[sp - 1], n),
+                Ins::PowHalf(n) => {
+                    let x = st[sp - 1];
+                    st[sp - 1] = powi(x, n) * x.sqrt();
+                }
+                Ins::RampV(i) => {
+                    st[sp] = ramp(vars[i as usize]);
+                    sp += 1;
+                }
+                Ins::RampPowHalfV(i, n) => {
+                    let r = ramp(vars[i as usize]);
+                    st[sp] = powi(r, n) * r.sqrt();
+                    sp += 1;
+                }
                 _ => st[sp - 1] = apply_un(*ins, st[sp - 1]),
             }
         }
@@ -392,6 +491,43 @@ mod tests {
         assert_eq!(prog("t*2").eval(&vars).to_bits(), 0.5f64.to_bits());
     }
 
+    /// The Hertz force and the peak-force event compile to the fused instructions, in one
+    /// register (depth 1), with the values of the forms they replace, to the bit.
+    #[test]
+    fn the_hertz_forms_fuse_to_one_instruction_each() {
+        let names = ["t", "z", "v", "m", "k"];
+        let slot = |s: &str| names.iter().position(|n| *n == s);
+        let prog =
+            |text: &str| Program::compile(&parse(text).expect("parses"), &slot).expect("compiles");
+        let force = prog("-k*max(z, 0)^(3/2)/m");
+        assert_eq!(
+            force.code,
+            [
+                Ins::RampPowHalfV(1, 1),
+                Ins::MulV(4),
+                Ins::Neg,
+                Ins::DivV(3)
+            ]
+        );
+        assert_eq!(force.depth, 1);
+        let rate = prog("k*max(z, 0)^(1/2)*v");
+        assert_eq!(
+            rate.code,
+            [Ins::RampPowHalfV(1, 0), Ins::MulV(4), Ins::MulV(2)]
+        );
+        assert_eq!(prog("max(z, 0)").code, [Ins::RampV(1)]);
+        for z in [0.3f64, 2.5e-5, 0.0, -0.0, -1e-9, 7.0] {
+            let vars = [0.0, z, -1.25, 0.05, 3e8];
+            // by hand: (z + |z|)/2 is max(z, 0); the power as z*sqrt(z)
+            let r = (z + z.abs()) / 2.0;
+            let want = -(r * r.sqrt() * 3e8) / 0.05;
+            assert_eq!(force.eval(&vars).to_bits(), want.to_bits(), "z = {z}");
+            let want = r.sqrt() * 3e8 * -1.25;
+            assert_eq!(rate.eval(&vars).to_bits(), want.to_bits(), "z = {z}");
+        }
+        assert!(force.eval(&[0.0, f64::NAN, 1.0, 1.0, 1.0]).is_nan());
+    }
+
     #[test]
     fn a_program_gives_the_trees_value() {
         // the reference is the tree walk of the same formula (Expr::eval)
@@ -404,6 +540,11 @@ mod tests {
             "2/pi*x + 0*y + 1*z - (y - 0)",
             "gamma(z) + erf(x) + beta(x, z)",
             "3/(x + y) - 2/(z*x) + 5 - (x + z)",
+            // the fused forms: max(., 0) of a variable, its half-integer powers, a negated
+            // variable times a formula (one register, no stack)
+            "-x*max(z, 0)^(3/2)/y + x*max(y, 0)^(1/2)*z",
+            "max(z, 0)^(5/2) - max(y, 0)^(3/2) + max(x, 0)",
+            "-z*(x + y)",
         ] {
             let e = parse(text).expect("parses");
             let names = ["x", "y", "z"];

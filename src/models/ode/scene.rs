@@ -107,7 +107,19 @@ pub(super) fn read(root: &toml::Table, path: &str) -> Result<OdeScene, SceneErro
     };
     let events = read_events(&r, raw.event.as_ref(), &states)?;
     let outcomes = read_outcomes(&r, t.outcome, &events)?;
-    let state_units = states.iter().map(|s| r.units[s].to_string()).collect();
+    let event_names = events.iter().map(|e| e.name.clone()).collect();
+    let state_units: std::sync::Arc<BTreeMap<String, String>> = std::sync::Arc::new(
+        states
+            .iter()
+            .map(|s| (s.clone(), r.units[s].to_string()))
+            .collect(),
+    );
+    let outcome_units = std::sync::Arc::new(
+        outcomes
+            .iter()
+            .map(|o| (o.name.clone(), o.unit_text.clone()))
+            .collect(),
+    );
     let n = states.len();
     Ok(OdeScene {
         c: std::sync::Arc::new(Compiled {
@@ -118,8 +130,10 @@ pub(super) fn read(root: &toml::Table, path: &str) -> Result<OdeScene, SceneErro
             jac,
             events,
             switches,
+            event_names,
             outcomes,
             state_units,
+            outcome_units,
             t_end,
             init_exprs,
             rhs_exprs,
