@@ -247,7 +247,7 @@ def sweep_path_section(a):
              f"| SciPy `solve_ivp` DOP853 with the same events, a Python loop | {scipy_rate:.0f} | | 1x |",
              "", "The same sweep with the model written as text (`model = \"ode\"`, the force and the three events "
              "as formulas, `--vary parameters.v0=0.5:2:...`, csv):", "",
-             "| path | impacts/s | time against the built-in model (target: at most 3x) |", "|---|---|---|",
+             "| path | impacts/s | time against the built-in model (target: at most 2x, issue 45) |", "|---|---|---|",
              f"| `impact sweep` of the text model | {n / ode_s:.0f} | {ode_s / csv_s:.2f}x |",
              "", "Target (10^5 impacts/s end to end, 20,000 impacts to CSV as issue #28 measures it): "
              + ("met" if csv_rate >= 1e5 else "NOT met") + f" (csv {csv_rate:.0f}/s); JSON rows: "
