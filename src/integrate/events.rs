@@ -8,7 +8,7 @@
 //! fires once. A non-finite $g$ is an error, never an endless loop.
 //!
 //! One pair of crossings closer than $h/8$ is still seen: the one that starts at the step's
-//! start, where $g$ is at (or within rounding of) a zero and heads back to it, as after an impact
+//! start, where $g$ is at (or near: [`near_start`]) a zero and heads back to it, as after an impact
 //! map (a ball leaves the floor at $z = -10^{-19}$ and lands again before the first sample: a step
 //! after a jump is long when the flight is a polynomial the method integrates exactly). The
 //! slope of $g$ at the start, $g$ there and at the first sample fix a parabola ([`may_dip`]);
@@ -257,9 +257,11 @@ impl<'e, 'a> Tracker<'e, 'a> {
                 return Ok(Some(true));
             }
             // a pair of crossings inside the first sub-interval, from the start's slope
-            let g0 = self.g_prev[index];
+            let (g0, s0) = (self.g_prev[index], self.last_sign[index]);
+            if !near_start(s0, g0, g1) {
+                continue;
+            }
             let slope = tangent_slope(e, parts, ta, tb - ta, g0, nudged);
-            let s0 = self.last_sign[index];
             if turns_back(s0, s_ref, g0, slope / SAMPLES as f64, g1) {
                 return Ok(Some(true));
             }
@@ -377,6 +379,16 @@ fn tangent_slope(e: &Event, parts: &[f64], ta: f64, h: f64, g0: f64, scratch: &m
     }
 }
 
+/// Whether the start of a step is near enough to a zero of $g$ for the pair check of
+/// [`turns_back`]: at a zero (`s0 = 0`), or closer to it than $g$ moves by the first sample
+/// ($|g_0| \le |g_1 - g_0|$), as right after an event or a jump. A pair of crossings inside the
+/// first sub-interval from a start farther from zero is, like a pair closer than $h/8$ anywhere
+/// else in the step, not looked for (the slope would cost one more evaluation of $g$ on every
+/// step).
+fn near_start(s0: i8, g0: f64, g1: f64) -> bool {
+    s0 == 0 || g0.abs() <= (g1 - g0).abs()
+}
+
 /// Whether $g$, with the sign `s0` (0: leaving an exact zero toward `s_end`, the sign it has at
 /// the first sample), the value `g0` and the slope `d0` (per unit of the first sub-interval) at
 /// the start and `g1` at the first sample, may reach the other side and come back inside the
@@ -427,7 +439,7 @@ impl Tracker<'_, '_> {
                 Err(IntegrateError::EventNonFinite { t, index })
             }
         };
-        if s0 != 0 && sign(g1) != s0 {
+        if (s0 != 0 && sign(g1) != s0) || !near_start(s0, g0, g1) {
             return Ok(());
         }
         // the slope at the start, per unit of (ta, t1): the stepper's tangent, or a difference
