@@ -428,6 +428,10 @@ impl Tracker<'_, '_> {
     ) -> Result<(), IntegrateError> {
         let e = &self.events[index];
         let (s0, g0) = (self.last_sign[index], self.g_prev[index]);
+        // (before any allocation: most steps of a scan end here)
+        if (s0 != 0 && sign(g1) != s0) || !near_start(s0, g0, g1) {
+            return Ok(());
+        }
         let n = st.y().len();
         let mut y = vec![0.0; n];
         let mut g_at = |t: f64| -> Result<f64, IntegrateError> {
@@ -439,9 +443,6 @@ impl Tracker<'_, '_> {
                 Err(IntegrateError::EventNonFinite { t, index })
             }
         };
-        if (s0 != 0 && sign(g1) != s0) || !near_start(s0, g0, g1) {
-            return Ok(());
-        }
         // the slope at the start, per unit of (ta, t1): the stepper's tangent, or a difference
         // of the dense output
         let slope = if st.has_hermite() {
