@@ -273,6 +273,25 @@ fn bad_units_and_bad_papers_exit_2_naming_them() {
 /// The seeds audited with the units of their claims files (what reports/audit/ holds): the count
 /// of relations per status, reviewed relation by relation (the closing note of issue 43), and the
 /// two dimension findings of 000 found without a claim naming them.
+/// The relations of an audit's JSON per status: consistent, inconsistent, undetermined,
+/// unreadable.
+fn status_counts(audit: &Value) -> [usize; 4] {
+    let n = |s: &str| {
+        audit["relations"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|r| r["status"] == s)
+            .count()
+    };
+    [
+        n("consistent"),
+        n("inconsistent"),
+        n("undetermined"),
+        n("unreadable"),
+    ]
+}
+
 #[test]
 fn the_seeds_audit() {
     let counts = |paper: &str, claims: &str| -> (Value, [usize; 4]) {
@@ -290,20 +309,7 @@ fn the_seeds_audit() {
             String::from_utf8_lossy(&out.stderr)
         );
         let v: Value = serde_json::from_slice(&out.stdout).unwrap();
-        let n = |s: &str| {
-            v["relations"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .filter(|r| r["status"] == s)
-                .count()
-        };
-        let c = [
-            n("consistent"),
-            n("inconsistent"),
-            n("undetermined"),
-            n("unreadable"),
-        ];
+        let c = status_counts(&v);
         (v, c)
     };
     let (v000, c000) = counts("000", "verify/000_cone_plate.toml");
@@ -514,21 +520,7 @@ fn the_main_jobs_audit_files_are_the_seeds_audits() {
                 })
         };
         let json: Value = serde_json::from_str(&get(&format!("audit/{paper}.json"))).unwrap();
-        let n = |s: &str| {
-            json["relations"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .filter(|r| r["status"] == s)
-                .count()
-        };
-        let got = [
-            n("consistent"),
-            n("inconsistent"),
-            n("undetermined"),
-            n("unreadable"),
-        ];
-        assert_eq!(got, want, "{paper}");
+        assert_eq!(status_counts(&json), want, "{paper}");
         let md = get(&format!("audit/{paper}.md"));
         assert!(md.contains(&format!("({paper})")), "{md}");
     }

@@ -774,6 +774,19 @@ mod tests {
         assert_eq!(unit_name("{int_S w dS}"), "{int_S w dS}");
     }
 
+    /// The units of the two sides of an inconsistent relation.
+    fn side_units(s: &Status) -> (&String, &String) {
+        let Status::Inconsistent {
+            left_unit,
+            right_unit,
+            ..
+        } = s
+        else {
+            panic!("not inconsistent: {s:?}")
+        };
+        (left_unit, right_unit)
+    }
+
     #[test]
     fn an_inconsistency_through_an_unknown_shows_the_unknown_with_its_base_unit() {
         // a q + b q^2 + c q^3 with a in m, b in m s, c in s: the first two terms need q in
@@ -783,14 +796,7 @@ mod tests {
             &[rel("y = a*q + b*q^2 + c*q^3")],
             &units(&[("a", "m"), ("b", "m s"), ("c", "s")]),
         );
-        let Status::Inconsistent {
-            left_unit,
-            right_unit,
-            ..
-        } = &inf.statuses[0]
-        else {
-            panic!("{:?}", inf.statuses)
-        };
+        let (left_unit, right_unit) = side_units(&inf.statuses[0]);
         let both = format!("{left_unit} | {right_unit}");
         assert!(both.contains("m [q]"), "{both}");
     }
@@ -801,14 +807,7 @@ mod tests {
             &[rel("F = m*x")],
             &units(&[("F", "N"), ("m", "kg"), ("x", "m")]),
         );
-        let Status::Inconsistent {
-            left_unit,
-            right_unit,
-            ..
-        } = &inf.statuses[0]
-        else {
-            panic!("{:?}", inf.statuses)
-        };
+        let (left_unit, right_unit) = side_units(&inf.statuses[0]);
         assert_eq!(
             (left_unit.as_str(), right_unit.as_str()),
             ("kg m s^-2", "kg m")
