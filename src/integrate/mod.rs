@@ -336,26 +336,10 @@ pub fn solve<S: OdeSystem>(
             let st = dopri5::Dopri5::<0>::new(sys, t0, y0, t_end, opts);
             drive(sys, st, (t0, y0, t_end), opts, None)
         }
-        Method::Dop853 if n == 2 => {
-            let st = dop853::Dop853::<2>::new(sys, t0, y0, t_end, opts);
-            drive(sys, st, (t0, y0, t_end), opts, None)
-        }
-        Method::Dop853 => {
-            let st = dop853::Dop853::<0>::new(sys, t0, y0, t_end, opts);
-            drive(sys, st, (t0, y0, t_end), opts, None)
-        }
-        Method::Radau5 => {
-            let st = radau5::Radau5::new(sys, t0, y0, t_end, opts);
-            drive(sys, st, (t0, y0, t_end), opts, None)
-        }
+        Method::Dop853 => drive_dop853(sys, (t0, y0, t_end), opts, None),
+        Method::Radau5 => drive_radau5(sys, (t0, y0, t_end), opts),
         Method::Auto => {
-            let first = if n == 2 {
-                let st = dop853::Dop853::<2>::new(sys, t0, y0, t_end, opts);
-                drive(sys, st, (t0, y0, t_end), opts, Some(()))?
-            } else {
-                let st = dop853::Dop853::<0>::new(sys, t0, y0, t_end, opts);
-                drive(sys, st, (t0, y0, t_end), opts, Some(()))?
-            };
+            let first = drive_dop853(sys, (t0, y0, t_end), opts, Some(()))?;
             if first.switched_at.is_none() {
                 return Ok(first);
             }
@@ -381,8 +365,7 @@ pub fn solve<S: OdeSystem>(
             // the events carry borrowed closures: re-borrow them for the second leg
             let events: Vec<Event> = opts.events.iter().map(|e| e.reborrow()).collect();
             rest_opts.events = events;
-            let st = radau5::Radau5::new(sys, ts, &first.y, t_end, &rest_opts);
-            let mut second = drive(sys, st, (ts, &first.y, t_end), &rest_opts, None)?;
+            let mut second = drive_radau5(sys, (ts, &first.y, t_end), &rest_opts)?;
             let mut merged = first;
             merged.stats = merged.stats + second.stats;
             merged.t = second.t;
@@ -394,6 +377,53 @@ pub fn solve<S: OdeSystem>(
             Ok(merged)
         }
     }
+}
+
+/// Evaluates `$body` with the constant `$N` set to the state's length `$n` where a stepper has
+/// stages of that fixed size (2 and 4 states: one or two contact coordinates and their rates, the
+/// small systems of impact models), to 0 (a size known at run time) otherwise.
+macro_rules! with_fixed_dim {
+    ($n:expr, $N:ident => $body:expr) => {
+        match $n {
+            2 => {
+                const $N: usize = 2;
+                $body
+            }
+            4 => {
+                const $N: usize = 4;
+                $body
+            }
+            _ => {
+                const $N: usize = 0;
+                $body
+            }
+        }
+    };
+}
+
+/// DOP853 from `(t0, y0)` to `t_end` (returning at stiffness when `auto`).
+fn drive_dop853<S: OdeSystem>(
+    sys: &S,
+    (t0, y0, t_end): (f64, &[f64], f64),
+    opts: &Options,
+    auto: Option<()>,
+) -> Result<Solution, IntegrateError> {
+    with_fixed_dim!(y0.len(), N => {
+        let st = dop853::Dop853::<N>::new(sys, t0, y0, t_end, opts);
+        drive(sys, st, (t0, y0, t_end), opts, auto)
+    })
+}
+
+/// Radau5 from `(t0, y0)` to `t_end`.
+fn drive_radau5<S: OdeSystem>(
+    sys: &S,
+    (t0, y0, t_end): (f64, &[f64], f64),
+    opts: &Options,
+) -> Result<Solution, IntegrateError> {
+    with_fixed_dim!(y0.len(), N => {
+        let st = radau5::Radau5::<N>::new(sys, t0, y0, t_end, opts);
+        drive(sys, st, (t0, y0, t_end), opts, None)
+    })
 }
 
 /// The common loop: steps, dense output, events, trajectory. With `auto = Some(())` it returns
@@ -523,17 +553,6 @@ impl StiffnessTest {
             }
         }
     }
-}
-
-/// Weighted RMS norm used by all methods: $\sqrt{\frac1n\sum (e_i/s_i)^2}$.
-pub(crate) fn rms(e: &[f64], scale: &[f64]) -> f64 {
-    let n = e.len().max(1) as f64;
-    (e.iter()
-        .zip(scale)
-        .map(|(a, s)| (a / s) * (a / s))
-        .sum::<f64>()
-        / n)
-        .sqrt()
 }
 
 /// Where a solve starts, for [`initial_step`]: the time, state and slope there, the method's
