@@ -42,7 +42,14 @@ pub struct Event<'a> {
     /// the tracker then reads the component and the interpolant's parts directly, without a
     /// call through `g` (two in three of the Hertz impact's event evaluations).
     pub component: Option<usize>,
+    /// $g$ at several points in one call (set by [`Event::batched`]): the times, the states one
+    /// after another (the state's length each) and the values to write; what `g` gives at each
+    /// point, to the bit. [`Tracker::may_cross`] asks it for all its samples at once.
+    pub batch: Option<BatchFn<'a>>,
 }
+
+/// $g$ at several points: `(ts, ys, out)` as [`Event::batch`] says.
+pub type BatchFn<'a> = &'a (dyn Fn(&[f64], &[f64], &mut [f64]) + 'a);
 
 impl<'a> Event<'a> {
     /// A new event.
@@ -58,7 +65,16 @@ impl<'a> Event<'a> {
             direction,
             terminal,
             component: None,
+            batch: None,
         }
+    }
+
+    /// Declares `batch`, which gives $g$ at several points in one call (an interpreted formula
+    /// pays its dispatch once for all of them). [`Tracker`] checks at the start of every solve
+    /// that it agrees with `g` there, to the bit, and refuses a solve where it does not.
+    pub fn batched(mut self, batch: BatchFn<'a>) -> Self {
+        self.batch = Some(batch);
+        self
     }
 
     /// Declares that `g` is the state's component `index`, $g(t, y) = y_{index}$, so that the
@@ -86,6 +102,7 @@ impl<'a> Event<'a> {
             direction: self.direction,
             terminal: self.terminal,
             component: self.component,
+            batch: self.batch,
         }
     }
 }
@@ -118,6 +135,10 @@ pub(crate) struct Tracker<'e, 'a> {
     g_end: Vec<f64>,
     /// The sign each event's g keeps over a step judged free of crossings.
     ref_sign: Vec<i8>,
+    /// The times of the interpolant and its quadratic part at the inner samples (each twice),
+    /// and g there, for an event's [`Event::batch`].
+    batch_ts: [f64; 2 * (SAMPLES - 1)],
+    batch_g: [f64; 2 * (SAMPLES - 1)],
 }
 
 fn sign(v: f64) -> i8 {
@@ -152,6 +173,20 @@ impl<'e, 'a> Tracker<'e, 'a> {
                     allowed: "a state component i with g(t, y) = y[i]",
                 });
             }
+            if let Some(b) = e.batch {
+                let mut w = [f64::NAN];
+                b(&[t0], y0, &mut w);
+                if w[0].to_bits() != v.to_bits() {
+                    return Err(IntegrateError::BadOption {
+                        field: "events[].batch",
+                        value: format!(
+                            "{} for event {index} ({}), whose g(t0, y0) = {v}",
+                            w[0], e.name
+                        ),
+                        allowed: "g at each point, to the bit",
+                    });
+                }
+            }
             g_prev.push(v);
         }
         Ok(Tracker {
@@ -163,6 +198,8 @@ impl<'e, 'a> Tracker<'e, 'a> {
             g_prev,
             hits: Vec::new(),
             quad: vec![0.0; (4 + 2 * SAMPLES - 1) * n],
+            batch_ts: [0.0; 2 * (SAMPLES - 1)],
+            batch_g: [0.0; 2 * (SAMPLES - 1)],
         })
     }
 
@@ -238,13 +275,25 @@ impl<'e, 'a> Tracker<'e, 'a> {
             let mut pairs = samples.chunks_exact(2 * n).zip(times);
             // g at the first sample, for the pair of crossings below
             let mut g1 = f64::NAN;
-            let may = match e.component {
+            let may = match (e.component, e.batch) {
                 // a component: the samples' own entries, no call
-                Some(i) => {
+                (Some(i), _) => {
                     g1 = samples[i];
                     pairs.any(|(pair, _)| within(pair[i], s_ref, || pair[n + i]))
                 }
-                None => pairs.any(|(pair, t)| {
+                // every sample in one call: the interpolant at the even points, its quadratic
+                // part at the odd ones
+                (None, Some(gb)) => {
+                    for (pair, t) in self.batch_ts.chunks_exact_mut(2).zip(times) {
+                        pair.fill(t);
+                    }
+                    gb(&self.batch_ts, samples, &mut self.batch_g);
+                    g1 = self.batch_g[0];
+                    self.batch_g
+                        .chunks_exact(2)
+                        .any(|v| within(v[0], s_ref, || v[1]))
+                }
+                (None, None) => pairs.any(|(pair, t)| {
                     let (out, quad) = pair.split_at(n);
                     let v = (e.g)(t, out);
                     if g1.is_nan() {
@@ -721,6 +770,26 @@ mod tests {
             let mut tr = Tracker::new(&events, 0.0, &[0.0, 0.0], 2).expect("finite");
             let got = tr.may_cross(&st, 0.0, 1.0, &mut buf).expect("finite");
             assert_eq!(got, Some(expect), "g(0) = {}", g(0.0, &[0.0, 0.0]));
+            // the same g asked for every sample in one call: the same answer
+            let batch = |ts: &[f64], ys: &[f64], out: &mut [f64]| {
+                for (p, o) in out.iter_mut().enumerate() {
+                    *o = g(ts[p], &ys[2 * p..2 * p + 2]);
+                }
+            };
+            let events = [Event::new("g", g, Direction::Both, false).batched(&batch)];
+            let mut tr = Tracker::new(&events, 0.0, &[0.0, 0.0], 2).expect("finite");
+            let got = tr.may_cross(&st, 0.0, 1.0, &mut buf).expect("finite");
+            assert_eq!(got, Some(expect), "batched, g(0) = {}", g(0.0, &[0.0, 0.0]));
         }
+        // a batch that is not g is refused at the start
+        let wrong = |_: &[f64], _: &[f64], out: &mut [f64]| out.fill(0.5);
+        let events = [Event::new("g", &far, Direction::Both, false).batched(&wrong)];
+        assert!(matches!(
+            Tracker::new(&events, 0.0, &[0.0, 0.0], 2),
+            Err(IntegrateError::BadOption {
+                field: "events[].batch",
+                ..
+            })
+        ));
     }
 }

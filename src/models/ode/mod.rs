@@ -140,6 +140,8 @@ impl Accumulation {
 
 /// An event function over the states.
 type EventFn<'a> = Box<dyn Fn(f64, &[f64]) -> f64 + 'a>;
+/// An event formula at several points in one call ([`Event::batched`]).
+type BatchBox<'a> = Box<dyn Fn(&[f64], &[f64], &mut [f64]) + 'a>;
 
 /// Which firing of an event an outcome reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -523,6 +525,22 @@ impl Model for OdeScene {
                 }) as EventFn
             })
             .collect();
+        // the same formulas at several points in one call, where the program allows it
+        let batches: Vec<Option<BatchBox>> = self
+            .events
+            .iter()
+            .map(|e| &e.when)
+            .chain(self.switches.iter().map(|s| &s.arg))
+            .map(|p| {
+                p.batchable().then(|| {
+                    let mut base = vec![0.0; 1 + n + self.params.len()];
+                    base[1 + n..].copy_from_slice(&self.params);
+                    Box::new(move |ts: &[f64], ys: &[f64], out: &mut [f64]| {
+                        p.eval_batch(&base, n, ts, ys, out)
+                    }) as BatchBox
+                })
+            })
+            .collect();
         // the user's events, then each switch's zero (stopping, either way)
         let events: Vec<Event> = gs
             .iter()
@@ -547,8 +565,9 @@ impl Model for OdeScene {
                 };
                 let event = Event::new(&name, g.as_ref(), direction, halts);
                 // a bare state (`when = "z"`, slot 1 + i after t) is read without a call
-                match when.variable() {
-                    Some(slot) if (1..=n).contains(&slot) => event.reading(slot - 1),
+                match (when.variable(), &batches[i]) {
+                    (Some(slot), _) if (1..=n).contains(&slot) => event.reading(slot - 1),
+                    (_, Some(b)) => event.batched(b.as_ref()),
                     _ => event,
                 }
             })

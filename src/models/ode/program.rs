@@ -193,6 +193,57 @@ fn unary(ins: Ins, a: Part) -> Part {
     }
 }
 
+impl Ins {
+    /// The variable's slot the instruction reads, if it reads one.
+    #[inline(always)]
+    fn slot(self) -> Option<u32> {
+        match self {
+            Ins::Var(i)
+            | Ins::AddV(i)
+            | Ins::SubV(i)
+            | Ins::MulV(i)
+            | Ins::DivV(i)
+            | Ins::RSubV(i)
+            | Ins::RDivV(i)
+            | Ins::RampV(i)
+            | Ins::RampPowHalfV(i, _) => Some(i),
+            _ => None,
+        }
+    }
+}
+
+/// One instruction of a program that never holds two values, on the value `acc`, with `var`
+/// reading a variable's slot.
+#[inline(always)]
+fn apply1(ins: Ins, acc: f64, var: impl Fn(u32) -> f64) -> f64 {
+    match ins {
+        Ins::Const(c) => c,
+        Ins::Var(i) => var(i),
+        Ins::RampV(i) => ramp(var(i)),
+        Ins::RampPowHalfV(i, n) => {
+            let r = ramp(var(i));
+            powi(r, n) * r.sqrt()
+        }
+        Ins::AddV(i) => acc + var(i),
+        Ins::SubV(i) => acc - var(i),
+        Ins::MulV(i) => acc * var(i),
+        Ins::DivV(i) => acc / var(i),
+        Ins::RSubV(i) => var(i) - acc,
+        Ins::RDivV(i) => var(i) / acc,
+        Ins::AddC(c) => acc + c,
+        Ins::MulC(c) => acc * c,
+        Ins::DivC(c) => acc / c,
+        Ins::RSubC(c) => c - acc,
+        Ins::RDivC(c) => c / acc,
+        Ins::Neg => -acc,
+        Ins::Sqrt => acc.sqrt(),
+        Ins::Abs => acc.abs(),
+        Ins::Powi(n) => powi(acc, n),
+        Ins::PowHalf(n) => powi(acc, n) * acc.sqrt(),
+        other => apply_un(other, acc),
+    }
+}
+
 fn apply_bin(op: Ins, x: f64, y: f64) -> f64 {
     match op {
         Ins::Add => x + y,
@@ -359,34 +410,63 @@ impl Program {
     fn run1(&self, vars: &[f64]) -> f64 {
         let mut acc = 0.0;
         for ins in &self.code {
-            acc = match *ins {
-                Ins::Const(c) => c,
-                Ins::Var(i) => vars[i as usize],
-                Ins::RampV(i) => ramp(vars[i as usize]),
-                Ins::RampPowHalfV(i, n) => {
-                    let r = ramp(vars[i as usize]);
-                    powi(r, n) * r.sqrt()
-                }
-                Ins::AddV(i) => acc + vars[i as usize],
-                Ins::SubV(i) => acc - vars[i as usize],
-                Ins::MulV(i) => acc * vars[i as usize],
-                Ins::DivV(i) => acc / vars[i as usize],
-                Ins::RSubV(i) => vars[i as usize] - acc,
-                Ins::RDivV(i) => vars[i as usize] / acc,
-                Ins::AddC(c) => acc + c,
-                Ins::MulC(c) => acc * c,
-                Ins::DivC(c) => acc / c,
-                Ins::RSubC(c) => c - acc,
-                Ins::RDivC(c) => c / acc,
-                Ins::Neg => -acc,
-                Ins::Sqrt => acc.sqrt(),
-                Ins::Abs => acc.abs(),
-                Ins::Powi(n) => powi(acc, n),
-                Ins::PowHalf(n) => powi(acc, n) * acc.sqrt(),
-                other => apply_un(other, acc),
-            };
+            acc = apply1(*ins, acc, |i| vars[i as usize]);
         }
         acc
+    }
+
+    /// Whether [`Program::eval_batch`] takes this program (one that never holds two values).
+    pub fn batchable(&self) -> bool {
+        self.depth <= 1
+    }
+
+    /// The values at several points at once, each instruction applied to every point before the
+    /// next (one pass of the dispatch for all points): point `p` has `t = ts[p]`, the state
+    /// `ys[p n .. (p + 1) n]`, and the other variables (parameters) of `base` (the slots of
+    /// [`Program::compile`]: `t`, then the `n` states, then the rest). The same operations in
+    /// the same order as [`Program::eval`] at each point, so the same bits. Only for a
+    /// [`Program::batchable`] program.
+    pub fn eval_batch(&self, base: &[f64], n: usize, ts: &[f64], ys: &[f64], out: &mut [f64]) {
+        debug_assert!(self.batchable() && ys.len() == ts.len() * n && out.len() == ts.len());
+        const CHUNK: usize = 16;
+        for (c, out) in out.chunks_mut(CHUNK).enumerate() {
+            let (first, k) = (c * CHUNK, out.len());
+            // the variable an instruction reads, gathered for every point before it runs
+            let mut col = [0.0f64; CHUNK];
+            out.fill(0.0);
+            for &ins in &self.code {
+                match ins.slot().map(|i| i as usize) {
+                    Some(0) => col[..k].copy_from_slice(&ts[first..first + k]),
+                    Some(i) if i <= n => {
+                        for (p, x) in col[..k].iter_mut().enumerate() {
+                            *x = ys[(first + p) * n + i - 1];
+                        }
+                    }
+                    Some(i) => col[..k].fill(base[i]),
+                    None => {}
+                }
+                // one loop per common instruction (the match inside `apply1` then folds away),
+                // the others through the same loop with the match inside
+                macro_rules! each {
+                    () => {
+                        for (acc, x) in out.iter_mut().zip(&col[..k]) {
+                            *acc = apply1(ins, *acc, |_| *x);
+                        }
+                    };
+                }
+                match ins {
+                    Ins::RampPowHalfV(..) => each!(),
+                    Ins::RampV(_) => each!(),
+                    Ins::MulV(_) => each!(),
+                    Ins::DivV(_) => each!(),
+                    Ins::AddV(_) => each!(),
+                    Ins::SubV(_) => each!(),
+                    Ins::MulC(_) => each!(),
+                    Ins::Neg => each!(),
+                    _ => each!(),
+                }
+            }
+        }
     }
 
     #[inline]
@@ -641,5 +721,52 @@ mod tests {
         let e = parse("2/pi*3").expect("parses");
         let p = Program::compile(&e, &|_| None).expect("compiles");
         assert_eq!(p.constant(), Some(6.0 / std::f64::consts::PI));
+    }
+
+    /// A batch gives, at each point, the bits `eval` gives there (the reference: one point at a
+    /// time through `eval`, with t, the state and the parameters written into the variables),
+    /// for a program of every instruction a one-register program can hold, at more points than
+    /// one chunk and with the state on both sides of zero; a two-value program is not batchable.
+    #[test]
+    fn a_batch_gives_the_bits_of_one_point_at_a_time() {
+        let names = ["t", "z", "v", "m", "k"];
+        let slot = |s: &str| names.iter().position(|n| *n == s);
+        let prog =
+            |text: &str| Program::compile(&parse(text).expect("parses"), &slot).expect("compiles");
+        let texts = [
+            "k*max(z, 0)^(1/2)*v",
+            "-k*max(z, 0)^(3/2)/m",
+            "max(z, 0) - t",
+            "((z + m)*t - k)/v",
+            "2.5 - 3/(v + 1)",
+            "(1 - t)/z + 0.5",
+            "sqrt(abs(z))^3*0.25",
+            "sin((k - z)^(5/2))",
+            "(v/3)^1.7",
+            "t",
+            "1.25",
+        ];
+        let (n, points) = (2, 21);
+        let ts: Vec<f64> = (0..points).map(|p| 0.1 * p as f64 - 0.7).collect();
+        let ys: Vec<f64> = (0..points)
+            .flat_map(|p| [0.3 * (p as f64 - 9.5), 1.0 + 0.05 * p as f64])
+            .collect();
+        let base = [f64::NAN, f64::NAN, f64::NAN, 0.05, 3.0];
+        for text in texts {
+            let p = prog(text);
+            assert!(p.batchable(), "{text}");
+            let mut out = vec![f64::NAN; points];
+            p.eval_batch(&base, n, &ts, &ys, &mut out);
+            for q in 0..points {
+                let vars = [ts[q], ys[2 * q], ys[2 * q + 1], base[3], base[4]];
+                let one = p.eval(&vars);
+                assert_eq!(
+                    out[q].to_bits(),
+                    one.to_bits(),
+                    "{text} at point {q}: {one}"
+                );
+            }
+        }
+        assert!(!prog("(z + v)*(t - m)").batchable());
     }
 }
