@@ -197,7 +197,15 @@ impl<'e, 'a> Tracker<'e, 'a> {
             g_end: g_prev.clone(),
             g_prev,
             hits: Vec::new(),
-            quad: vec![0.0; (4 + 2 * SAMPLES - 1) * n],
+            // no scratch (no allocation) for a solve without events
+            quad: vec![
+                0.0;
+                if events.is_empty() {
+                    0
+                } else {
+                    (4 + 2 * SAMPLES - 1) * n
+                }
+            ],
             batch_ts: [0.0; 2 * (SAMPLES - 1)],
             batch_g: [0.0; 2 * (SAMPLES - 1)],
         })

@@ -438,7 +438,8 @@ fn drive<S: OdeSystem, St: Stepper>(
     let n = sys.dim();
     let mut sol = Solution {
         t: t0,
-        y: y0.to_vec(),
+        // set where the solve ends (the loop runs at least once: t_end > t0)
+        y: Vec::new(),
         stop: Stop::End,
         stats: Stats::default(),
         events: vec![],
@@ -457,7 +458,12 @@ fn drive<S: OdeSystem, St: Stepper>(
         sol.dense.push((t0, y0.to_vec()));
         next_dense += 1;
     }
-    let mut buf = vec![0.0; n];
+    // the dense output's scratch, for events and dense times only (no allocation without them)
+    let mut buf = if opts.events.is_empty() && opts.dense_times.is_empty() {
+        Vec::new()
+    } else {
+        vec![0.0; n]
+    };
     let mut steps = 0usize;
     while st.t() < t_end {
         if steps >= opts.max_steps {
