@@ -53,6 +53,9 @@ enum Ins {
     RampV(u32),
     /// `max(x, 0)^(n + 1/2)` of a variable (the Hertz force's `max(z, 0)^(3/2)`).
     RampPowHalfV(u32, i32),
+    /// `-(x*v)`: a product with a variable, negated (the `-k*F` of a restoring force: one
+    /// instruction for two, the same operations in the same order).
+    MulNegV(u32),
 }
 
 /// A compiled formula of the variables a slot map names.
@@ -159,7 +162,8 @@ fn binary(op: Ins, a: Part, b: Part) -> Part {
 }
 
 /// Common forms fused into one instruction each, in place: `max(x, 0)` of a variable (as the
-/// reader writes it, `(x + |x|)/2`) and its half-integer powers.
+/// reader writes it, `(x + |x|)/2`), its half-integer powers, and a product with a variable
+/// negated.
 fn fuse(code: &mut Vec<Ins>) {
     let mut out: Vec<Ins> = Vec::with_capacity(code.len());
     for ins in code.drain(..) {
@@ -173,6 +177,7 @@ fn fuse(code: &mut Vec<Ins>) {
                     Some((4, Ins::RampV(*i)))
                 }
                 [.., Ins::RampV(i), Ins::PowHalf(k)] => Some((2, Ins::RampPowHalfV(*i, *k))),
+                [.., Ins::MulV(i), Ins::Neg] => Some((2, Ins::MulNegV(*i))),
                 _ => None,
             };
             let Some((len, f)) = fused else { break };
@@ -202,6 +207,7 @@ impl Ins {
             | Ins::AddV(i)
             | Ins::SubV(i)
             | Ins::MulV(i)
+            | Ins::MulNegV(i)
             | Ins::DivV(i)
             | Ins::RSubV(i)
             | Ins::RDivV(i)
@@ -227,6 +233,7 @@ fn apply1(ins: Ins, acc: f64, var: impl Fn(u32) -> f64) -> f64 {
         Ins::AddV(i) => acc + var(i),
         Ins::SubV(i) => acc - var(i),
         Ins::MulV(i) => acc * var(i),
+        Ins::MulNegV(i) => -(acc * var(i)),
         Ins::DivV(i) => acc / var(i),
         Ins::RSubV(i) => var(i) - acc,
         Ins::RDivV(i) => var(i) / acc,
@@ -458,6 +465,7 @@ impl Program {
                     Ins::RampPowHalfV(..) => each!(),
                     Ins::RampV(_) => each!(),
                     Ins::MulV(_) => each!(),
+                    Ins::MulNegV(_) => each!(),
                     Ins::DivV(_) => each!(),
                     Ins::AddV(_) => each!(),
                     Ins::SubV(_) => each!(),
@@ -506,6 +514,7 @@ impl Program {
                 Ins::AddV(i) => st[sp - 1] += vars[i as usize],
                 Ins::SubV(i) => st[sp - 1] -= vars[i as usize],
                 Ins::MulV(i) => st[sp - 1] *= vars[i as usize],
+                Ins::MulNegV(i) => st[sp - 1] = -(st[sp - 1] * vars[i as usize]),
                 Ins::DivV(i) => st[sp - 1] /= vars[i as usize],
                 Ins::RSubV(i) => st[sp - 1] = vars[i as usize] - st[sp - 1],
                 Ins::RDivV(i) => st[sp - 1] = vars[i as usize] / st[sp - 1],
@@ -582,12 +591,7 @@ mod tests {
         let force = prog("-k*max(z, 0)^(3/2)/m");
         assert_eq!(
             force.code,
-            [
-                Ins::RampPowHalfV(1, 1),
-                Ins::MulV(4),
-                Ins::Neg,
-                Ins::DivV(3)
-            ]
+            [Ins::RampPowHalfV(1, 1), Ins::MulNegV(4), Ins::DivV(3)]
         );
         assert_eq!(force.depth, 1);
         let rate = prog("k*max(z, 0)^(1/2)*v");
@@ -625,6 +629,9 @@ mod tests {
             "-x*max(z, 0)^(3/2)/y + x*max(y, 0)^(1/2)*z",
             "max(z, 0)^(5/2) - max(y, 0)^(3/2) + max(x, 0)",
             "-z*(x + y)",
+            // a negated product with a variable, alone and inside a two-value program
+            "-(z*y) + 1",
+            "(x + y)*-(z*y) - x",
         ] {
             let e = parse(text).expect("parses");
             let names = ["x", "y", "z"];
