@@ -153,3 +153,64 @@ fn attempt<S: OdeSystem>(
     }
     h.abs() * err5 * (1.0 / (n as f64 * deno)).sqrt()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrate::{OdeSystem, Options, Stats, Stepper};
+
+    /// Two coupled oscillators (4 states) with a nonlinear coupling, and the unit Hertz impact
+    /// (2 states).
+    struct Coupled;
+    impl OdeSystem for Coupled {
+        fn dim(&self) -> usize {
+            4
+        }
+        fn rhs(&self, _t: f64, y: &[f64], dy: &mut [f64]) {
+            dy[0] = y[2];
+            dy[1] = y[3];
+            dy[2] = -y[0] + 0.3 * (y[1] - y[0]).powi(3);
+            dy[3] = -2.0 * y[1] - 0.3 * (y[1] - y[0]).powi(3);
+        }
+    }
+    struct Hertz;
+    impl OdeSystem for Hertz {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&self, _t: f64, y: &[f64], dy: &mut [f64]) {
+            let z = y[0].max(0.0);
+            dy[0] = y[1];
+            dy[1] = -z * z.sqrt();
+        }
+    }
+
+    fn run<const N: usize, S: OdeSystem>(sys: &S, y0: &[f64], t_end: f64) -> (Vec<f64>, Stats) {
+        let opts = Options {
+            rtol: 1e-10,
+            atol: 1e-10,
+            ..Options::default()
+        };
+        let mut st = Dop853::<N>::new(sys, 0.0, y0, t_end, &opts);
+        while st.t() < t_end {
+            st.step(sys, t_end).expect("solves");
+        }
+        (st.y().to_vec(), st.stats())
+    }
+
+    /// The stages of a fixed size (2 and 4 states) do the arithmetic of the run-time size in the
+    /// same order: the same steps, rejections and end state to the bit (the reference is the
+    /// run-time-size stepper, which tests/integrate.rs checks against closed forms and orders).
+    #[test]
+    fn fixed_size_stages_take_the_steps_of_the_run_time_size() {
+        let y0 = [1.0, -0.5, 0.0, 0.8];
+        let (yf, sf) = run::<4, _>(&Coupled, &y0, 20.0);
+        let (yd, sd) = run::<0, _>(&Coupled, &y0, 20.0);
+        assert!(sf.steps > 50, "{sf}");
+        assert_eq!((yf, format!("{sf}")), (yd, format!("{sd}")));
+        let (yf, sf) = run::<2, _>(&Hertz, &[0.0, 1.0], 3.2);
+        let (yd, sd) = run::<0, _>(&Hertz, &[0.0, 1.0], 3.2);
+        assert!(sf.rejected > 0, "a run with rejections: {sf}");
+        assert_eq!((yf, format!("{sf}")), (yd, format!("{sd}")));
+    }
+}
