@@ -157,7 +157,7 @@ fn attempt<S: OdeSystem>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::integrate::{OdeSystem, Options, Stats, Stepper};
+    use crate::integrate::{OdeSystem, Stats, step_to_end};
 
     /// Two coupled oscillators (4 states) with a nonlinear coupling, and the unit Hertz impact
     /// (2 states).
@@ -186,16 +186,9 @@ mod tests {
     }
 
     fn run<const N: usize, S: OdeSystem>(sys: &S, y0: &[f64], t_end: f64) -> (Vec<f64>, Stats) {
-        let opts = Options {
-            rtol: 1e-10,
-            atol: 1e-10,
-            ..Options::default()
-        };
-        let mut st = Dop853::<N>::new(sys, 0.0, y0, t_end, &opts);
-        while st.t() < t_end {
-            st.step(sys, t_end).expect("solves");
-        }
-        (st.y().to_vec(), st.stats())
+        step_to_end(sys, 1e-10, t_end, |o| {
+            Dop853::<N>::new(sys, 0.0, y0, t_end, o)
+        })
     }
 
     /// The stages of a fixed size (2 and 4 states) do the arithmetic of the run-time size in the

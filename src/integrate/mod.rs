@@ -379,6 +379,27 @@ pub fn solve<S: OdeSystem>(
     }
 }
 
+/// Makes a stepper with rtol = atol = `tol` and steps it to `t_end`: its end state and work
+/// (the tests that compare a stepper of a fixed size with the one of the run-time size).
+#[cfg(test)]
+pub(crate) fn step_to_end<S: OdeSystem, St: Stepper>(
+    sys: &S,
+    tol: f64,
+    t_end: f64,
+    make: impl FnOnce(&Options) -> St,
+) -> (Vec<f64>, Stats) {
+    let opts = Options {
+        rtol: tol,
+        atol: tol,
+        ..Options::default()
+    };
+    let mut st = make(&opts);
+    while st.t() < t_end {
+        st.step(sys, t_end).expect("solves");
+    }
+    (st.y().to_vec(), st.stats())
+}
+
 /// Evaluates `$body` with the constant `$N` set to the state's length `$n` where a stepper has
 /// stages of that fixed size (2 and 4 states: one or two contact coordinates and their rates, the
 /// small systems of impact models), to 0 (a size known at run time) otherwise.

@@ -736,6 +736,7 @@ impl<const N: usize> Stepper for Radau5<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::integrate::step_to_end;
 
     #[test]
     fn transformation_block_diagonalises_inverse_radau_matrix() {
@@ -822,16 +823,9 @@ mod tests {
     }
 
     fn run<const N: usize, S: OdeSystem>(sys: &S, y0: &[f64], t_end: f64) -> (Vec<f64>, Stats) {
-        let opts = Options {
-            rtol: 1e-9,
-            atol: 1e-9,
-            ..Options::default()
-        };
-        let mut st = Radau5::<N>::new(sys, 0.0, y0, t_end, &opts);
-        while st.t() < t_end {
-            st.step(sys, t_end).expect("solves");
-        }
-        (st.y().to_vec(), st.stats())
+        step_to_end(sys, 1e-9, t_end, |o| {
+            Radau5::<N>::new(sys, 0.0, y0, t_end, o)
+        })
     }
 
     /// The stages and matrices of a fixed size do the same arithmetic in the same order as the
