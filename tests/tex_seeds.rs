@@ -102,9 +102,13 @@ fn the_seeds_display_equations_are_read() {
     // relation; 243 of 285 since matrices are read: 002's (2.5), the B~ after (3.9) and the
     // two displays before (4.8), whose matrix rows were counted as relations of their own; 253
     // of 284 since the spacing `\,` no longer splits a row: 002's (2.6) `m\rho^2 \,\Omega = ..`
-    // was two relations, `m\rho^2 \` and `\Omega = ..`); more unread relations is a regression
-    assert!(total - read <= 31, "read {read} of {total}");
-    assert!(total >= 284, "fewer relations found: {total}");
+    // was two relations, `m\rho^2 \` and `\Omega = ..`; 259 of 281 since the reader of issue 51:
+    // an environment nests like a brace, so the `\\` of a `vmatrix` inside a display no longer
+    // splits the display's row (002's (2.5), and the matrices before (4.8)), a continuation
+    // row after `\quad` joins its relation, and the sums, limits, norms, cases and increments
+    // of the seeds are read); more unread relations is a regression
+    assert!(total - read <= 22, "read {read} of {total}");
+    assert!(total >= 281, "fewer relations found: {total}");
 }
 
 #[test]

@@ -119,7 +119,7 @@ impl Expr {
             Expr::Bin(op, a, b) => Expr::Bin(*op, Box::new(a.lower()?), Box::new(b.lower()?)),
             Expr::Calc(Calc::Diff, body, x, _) => derivative(&body.lower()?, x)?,
             Expr::Calc(Calc::At, body, x, v) => at(&body.lower()?, x, &v[0].lower()?),
-            Expr::Calc(Calc::Sum, body, i, b) => {
+            Expr::Calc(c @ (Calc::Sum | Calc::Prod), body, i, b) => {
                 let bound = |e: &Expr| -> Result<f64, String> {
                     let v = e.lower()?.exact_constant().ok_or_else(|| {
                         format!("`{self}`: the bounds of `sum` must be integers once the formula's values are in (`{e}` is not)")
@@ -134,11 +134,25 @@ impl Expr {
                 };
                 let (lo, hi) = sum_range(bound(&b[0])?, bound(&b[1])?, body)?;
                 let body = body.lower()?;
-                let mut acc = num(0);
-                for k in lo..=hi {
-                    acc = add(acc, at(&body, i, &num(k)));
+                if *c == Calc::Prod {
+                    let mut acc = num(1);
+                    for k in lo..=hi {
+                        acc = mul(acc, at(&body, i, &num(k)));
+                    }
+                    acc
+                } else {
+                    let mut acc = num(0);
+                    for k in lo..=hi {
+                        acc = add(acc, at(&body, i, &num(k)));
+                    }
+                    acc
                 }
-                acc
+            }
+            Expr::Calc(c @ (Calc::Max | Calc::Min | Calc::Lim | Calc::Mean | Calc::Region), ..) => {
+                return Err(format!(
+                    "`{self}`: a `{}` read from a paper is not computed (its unit is that of its formula)",
+                    c.name()
+                ));
             }
             Expr::Calc(Calc::Int, body, x, b) => Expr::Calc(
                 Calc::Int,
@@ -175,7 +189,9 @@ fn contains_sum(e: &Expr) -> bool {
         Expr::Neg(a) | Expr::Call(_, a) => contains_sum(a),
         Expr::Bin(_, a, b) => contains_sum(a) || contains_sum(b),
         Expr::Calc(c, body, _, extra) => {
-            *c == Calc::Sum || contains_sum(body) || extra.iter().any(contains_sum)
+            matches!(c, Calc::Sum | Calc::Prod)
+                || contains_sum(body)
+                || extra.iter().any(contains_sum)
         }
     }
 }

@@ -26,7 +26,7 @@
 
 use super::expr::{Calc, Expr, Func, Op};
 use super::poly::Q;
-use super::units::Unit;
+use super::units::{ELLIPSIS, INFINITY, Unit, every_unit};
 use num_traits::{One, ToPrimitive, Zero};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -80,8 +80,19 @@ pub struct Relation {
     /// Its sides, left to right (each pair equal in unit).
     pub sides: Vec<Expr>,
     /// `(dotted, base, order)`: the symbol `dotted` is the `order`-th time derivative of `base`
-    /// (`("zd", "z", 1)` from `\dot{z}`).
+    /// (`("zd", "z", 1)` from `\dot{z}`); order 0: an increment, in the unit of its base
+    /// (`("Deltat", "t", 0)` from `\Delta t`).
     pub dots: Vec<(String, String, u32)>,
+    /// The relation signs between the sides (`=`, `<=`, `propto`); a pair of sides joined by
+    /// `propto` or `sim` claims no unit of the factor between them and is not linked. Empty:
+    /// every pair is linked.
+    pub rels: Vec<&'static str>,
+}
+
+/// Whether a relation sign claims its two sides are in one unit (all but a proportionality
+/// `\propto` and a scaling `\sim`).
+pub fn links_units(rel: &str) -> bool {
+    !matches!(rel, "propto" | "sim")
 }
 
 /// What the inference says of one relation.
@@ -211,6 +222,10 @@ fn walk_in(
             if let Some((_, local)) = scope.bound.iter().rev().find(|(b, _)| b == s) {
                 return Form::var(local);
             }
+            // an ellipsis or infinity: whatever unit its place needs, tied to nothing else
+            if s == ELLIPSIS || s == INFINITY {
+                return Form::var(&scope.local("any"));
+            }
             let name = unit_name(s);
             match declared(&name) {
                 Some(u) => Form::constant(u),
@@ -233,11 +248,14 @@ fn walk_in(
         Expr::Calc(c, body, x, extra) => {
             // the variable of an integral with bounds and the index of a sum are bound: an
             // unknown of their own
-            let bound = matches!(c, Calc::Sum) || (matches!(c, Calc::Int) && !extra.is_empty());
+            let bound = match c {
+                Calc::Int => !extra.is_empty(),
+                other => other.binds(),
+            };
             let fx = if bound {
                 let local = scope.local(x);
                 let fx = Form::var(&local);
-                if matches!(c, Calc::Sum) {
+                if matches!(c, Calc::Sum | Calc::Prod) {
                     pure(&Expr::Sym(x.clone()), fx.clone(), "the index of a sum", out);
                 }
                 scope.bound.push((x.clone(), local));
@@ -247,8 +265,8 @@ fn walk_in(
             };
             for v in extra {
                 let fv = walk_in(v, declared, out, scope);
-                // a literal 0 bound has every unit
-                if matches!(v, Expr::Num(c) if c.is_zero()) {
+                // a literal 0 bound has every unit, as has infinity
+                if every_unit(v) {
                     continue;
                 }
                 out.push(Constraint::new(
@@ -263,8 +281,15 @@ fn walk_in(
             }
             match c {
                 Calc::Diff => fb.plus(&fx, &-Q::one()),
-                Calc::Int => fb.plus(&fx, &Q::one()),
-                Calc::At | Calc::Sum => fb,
+                Calc::Int | Calc::Region => fb.plus(&fx, &Q::one()),
+                Calc::At | Calc::Sum | Calc::Max | Calc::Min | Calc::Lim | Calc::Mean => fb,
+                // n factors: the factor's unit n times, when the bounds give n
+                Calc::Prod => match (extra[0].exact_constant(), extra[1].exact_constant()) {
+                    (Some(lo), Some(hi)) if (&hi - &lo).is_integer() => {
+                        fb.scaled(&(hi - lo + Q::one()))
+                    }
+                    _ => Form::var(&scope.local("power")),
+                },
             }
         }
         Expr::Bin(op, a, b) => {
@@ -273,7 +298,7 @@ fn walk_in(
             match op {
                 Op::Add | Op::Sub => {
                     // a literal 0 has every unit
-                    let zero = |x: &Expr| matches!(x, Expr::Num(c) if c.is_zero());
+                    let zero = every_unit;
                     if zero(a) {
                         return fb;
                     }
@@ -456,10 +481,16 @@ fn constraints(
         .iter()
         .map(|s| walk_in(s, declared, &mut out, &mut scope))
         .collect();
+    // `a = b = 0` says that both vanish, not that a and b are one quantity
+    let all_vanish = r.sides.len() > 2
+        && r.sides.last().is_some_and(every_unit)
+        && r.rels.iter().all(|rel| *rel == "=");
     for k in 1..forms.len() {
-        // a side that is a literal 0 has every unit
-        if matches!(&r.sides[k], Expr::Num(c) if c.is_zero())
-            || matches!(&r.sides[k - 1], Expr::Num(c) if c.is_zero())
+        // a side that is a literal 0 has every unit; a proportionality links no units
+        if all_vanish
+            || every_unit(&r.sides[k])
+            || every_unit(&r.sides[k - 1])
+            || r.rels.get(k - 1).is_some_and(|rel| !links_units(rel))
         {
             continue;
         }
@@ -469,7 +500,12 @@ fn constraints(
             "the sides",
         ));
     }
-    let second = Form::constant(Unit::parse("s").expect("the second is a unit"));
+    // a dot differentiates by the paper's time `t`: in seconds when `t` is declared so, and in
+    // whatever unit `t` has otherwise (a nondimensional paper's `\dot{x} = x` is consistent)
+    let second = match declared("t") {
+        Some(u) => Form::constant(u),
+        None => Form::var("t"),
+    };
     for (dotted, base, order) in &r.dots {
         let fd = walk_in(
             &Expr::Sym(dotted.clone()),
@@ -486,7 +522,7 @@ fn constraints(
         out.push(Constraint::new(
             (dotted.clone(), fd),
             (
-                format!("{base}/s^{order}"),
+                format!("{base}/t^{order}"),
                 fb.plus(&second, &-Q::from_integer((*order).into())),
             ),
             "a time derivative and its base",
@@ -569,7 +605,12 @@ pub fn infer(relations: &[Option<Relation>], declared: &BTreeMap<String, Unit>) 
         .collect();
     for r in relations.iter().flatten() {
         for s in &r.sides {
-            names.extend(s.symbols().iter().map(|x| unit_name(x)));
+            names.extend(
+                s.symbols()
+                    .iter()
+                    .filter(|x| *x != ELLIPSIS && *x != INFINITY)
+                    .map(|x| unit_name(x)),
+            );
         }
     }
     let symbols = names
@@ -635,6 +676,7 @@ mod tests {
         Some(Relation {
             sides,
             dots: vec![],
+            rels: vec![],
         })
     }
 
@@ -746,6 +788,19 @@ mod tests {
     }
 
     #[test]
+    fn a_sign_or_step_of_a_dimensional_argument_is_a_pure_number() {
+        // y = a sign(v) with v in m/s: sign takes any unit and gives 1, as heaviside does
+        let d = units(&[("y", "m"), ("a", "m"), ("v", "m/s")]);
+        for text in ["y = a*sign(v)", "y = a*heaviside(v)"] {
+            let inf = infer(&[rel(text)], &d);
+            assert_eq!(inf.statuses[0], Status::Consistent, "{text}");
+        }
+        // and a sign is no length: y = sign(v) is a unit error
+        let inf = infer(&[rel("y = sign(v)")], &d);
+        assert!(matches!(inf.statuses[0], Status::Inconsistent { .. }));
+    }
+
+    #[test]
     fn nothing_fixes_a_lone_ratio() {
         // a = b c with only a known: b and c are open, named
         let inf = infer(&[rel("a = b*c")], &units(&[("a", "m")]));
@@ -758,18 +813,37 @@ mod tests {
 
     #[test]
     fn applications_and_dots_take_their_base_unit() {
-        // m zdd = -P with z in m, P in N: m is kg; zd = z per second
+        // m zdd = -P with z in m, P in N and t in s: m is kg; zd = z per second
         let mut r = Relation {
             sides: vec![
                 parse("m*zdd").unwrap(),
                 Expr::Neg(Box::new(Expr::Sym("{P(t)}".into()))),
             ],
             dots: vec![],
+            rels: vec![],
         };
         r.dots = vec![("zdd".into(), "z".into(), 2), ("zd".into(), "z".into(), 1)];
-        let inf = infer(&[Some(r)], &units(&[("z", "m"), ("P", "N")]));
+        let inf = infer(
+            &[Some(r.clone())],
+            &units(&[("z", "m"), ("P", "N"), ("t", "s")]),
+        );
         assert_eq!(unit_of(&inf, "m").as_deref(), Some("kg"));
         assert_eq!(unit_of(&inf, "zd").as_deref(), Some("m s^-1"));
+        // a dot is per unit of t, whatever it is: with t declared in kg (any other unit), zd
+        // is m/kg, as z/t is
+        let inf = infer(
+            &[Some(r.clone())],
+            &units(&[("z", "m"), ("P", "N"), ("t", "kg")]),
+        );
+        assert_eq!(unit_of(&inf, "zd").as_deref(), Some("kg^-1 m"));
+        // and with t undeclared, a nondimensional `zd = z` is consistent (t a pure number)
+        let own = Relation {
+            sides: vec![parse("zd").unwrap(), parse("z").unwrap()],
+            dots: vec![("zd".into(), "z".into(), 1)],
+            rels: vec![],
+        };
+        let inf = infer(&[Some(own)], &BTreeMap::new());
+        assert!(!matches!(inf.statuses[0], Status::Inconsistent { .. }));
         assert_eq!(unit_name("{w(x,y,t)}"), "w");
         assert_eq!(unit_name("{int_S w dS}"), "{int_S w dS}");
     }

@@ -153,6 +153,24 @@ pub enum DimError {
     Exponent(String),
 }
 
+/// Whether `e` has every unit: a literal 0 as written, and the ellipsis (`\ldots`) and
+/// infinity (`\infty`) a paper's formula may hold, alone or negated.
+pub fn every_unit(e: &Expr) -> bool {
+    match e {
+        Expr::Num(c) => c.is_zero(),
+        Expr::Sym(s) => s == ELLIPSIS || s == INFINITY,
+        Expr::Neg(a) => every_unit(a),
+        _ => false,
+    }
+}
+
+/// The symbol the LaTeX reader reads `\ldots` and `\cdots` as (a term that stands for the
+/// terms left out).
+pub const ELLIPSIS: &str = "...";
+
+/// The symbol the LaTeX reader reads `\infty` as.
+pub const INFINITY: &str = "infinity";
+
 /// The unit of a formula, given each symbol's unit; `pi` and numbers are dimensionless.
 pub fn dimension(e: &Expr, unit: &dyn Fn(&str) -> Option<Unit>) -> Result<Unit, DimError> {
     let pure = |x: &Expr, what: &str, term: &Expr| -> Result<(), DimError> {
@@ -184,12 +202,20 @@ pub fn dimension(e: &Expr, unit: &dyn Fn(&str) -> Option<Unit>) -> Result<Unit, 
             }
         },
         Expr::Calc(c, body, x, extra) => {
-            let zero = |v: &Expr| matches!(v, Expr::Num(c) if c.is_zero());
+            let zero = |v: &Expr| every_unit(v);
             // the index of a sum is a pure number; the variable of an integral with bounds has
             // the unit of its bounds (a literal 0 bound has every unit), whatever a symbol of
             // its name has outside it
             let bound = match c {
-                Calc::Sum => Some(Unit::one()),
+                Calc::Sum | Calc::Prod => Some(Unit::one()),
+                // over an index set the paper does not give: the index's unit does not matter
+                Calc::Max | Calc::Min | Calc::Mean if x.is_empty() || extra.is_empty() => {
+                    Some(Unit::one())
+                }
+                Calc::Lim => match extra.iter().find(|v| !zero(v)) {
+                    Some(v) => Some(dimension(v, unit)?),
+                    None => unit(x).or(Some(Unit::one())),
+                },
                 Calc::Int if !extra.is_empty() => match extra.iter().find(|v| !zero(v)) {
                     Some(v) => Some(dimension(v, unit)?),
                     None => unit(x),
@@ -218,21 +244,33 @@ pub fn dimension(e: &Expr, unit: &dyn Fn(&str) -> Option<Unit>) -> Result<Unit, 
             };
             Ok(match c {
                 Calc::Diff => ub.times(ux, (-1).into()),
-                Calc::Int => ub.times(ux, 1.into()),
-                Calc::At | Calc::Sum => ub,
+                Calc::Int | Calc::Region => ub.times(ux, 1.into()),
+                Calc::At | Calc::Sum | Calc::Max | Calc::Min | Calc::Lim | Calc::Mean => ub,
+                // a product of n factors: the factor's unit to the n-th, when n is known
+                Calc::Prod => match (extra[0].exact_constant(), extra[1].exact_constant()) {
+                    _ if ub.is_one() => ub,
+                    (Some(lo), Some(hi)) if (&hi - &lo).is_integer() => {
+                        let n = (hi - lo).to_integer() + num_bigint::BigInt::from(1);
+                        let n: i64 = num_traits::ToPrimitive::to_i64(&n).unwrap_or(0);
+                        Unit::one().times(ub, Rational64::from_integer(n))
+                    }
+                    _ => return Err(DimError::Exponent(e.to_string())),
+                },
             })
         }
         Expr::Bin(op, a, b) => match op {
             Op::Add | Op::Sub => {
-                let (ua, ub) = (dimension(a, unit)?, dimension(b, unit)?);
                 // a literal 0 has every unit (`max(z, 0)`, `x + 0`); only the number as
                 // written, not a term that happens to vanish (`diff(F, x)` of a constant F
-                // keeps the unit of F/x)
-                let zero = |x: &Expr| matches!(x, Expr::Num(c) if c.is_zero());
-                if zero(a) {
-                    return Ok(ub);
+                // keeps the unit of F/x); so have an ellipsis and infinity read from a paper
+                if every_unit(a) {
+                    return dimension(b, unit);
                 }
-                if zero(b) || ua == ub {
+                if every_unit(b) {
+                    return dimension(a, unit);
+                }
+                let (ua, ub) = (dimension(a, unit)?, dimension(b, unit)?);
+                if ua == ub {
                     Ok(ua)
                 } else {
                     Err(DimError::Mismatch {

@@ -49,6 +49,11 @@ enum Command {
         /// file serves as it is.
         #[arg(long, value_name = "FILE")]
         units: Option<PathBuf>,
+        /// A file of LaTeX macros the paper uses without holding them (a Markdown note's
+        /// `\newcommand`s kept apart); repeat for more. The paper's own preamble and its
+        /// `\input` files (inside its folder) are read without it.
+        #[arg(long, value_name = "FILE")]
+        preamble: Vec<PathBuf>,
         /// text (a line per relation), json or markdown (a report: the inconsistent first).
         #[arg(long, value_enum, default_value = "text")]
         format: AuditFmt,
@@ -62,6 +67,9 @@ enum Command {
         /// The units file (as for audit).
         #[arg(long, value_name = "FILE")]
         units: Option<PathBuf>,
+        /// Files of LaTeX macros (as for audit).
+        #[arg(long, value_name = "FILE")]
+        preamble: Vec<PathBuf>,
         /// The paper's short name: the first part of every claim id.
         #[arg(long = "paper", value_name = "ID")]
         id: String,
@@ -436,8 +444,19 @@ fn write_reports(
 /// `verify audit` and `verify init`: the paper read, its units audited, the audit or a claims
 /// file printed.
 fn run_paper(command: &Command) -> Result<bool> {
-    let (paper, units) = match command {
-        Command::Audit { paper, units, .. } | Command::Init { paper, units, .. } => (paper, units),
+    let (paper, units, preamble) = match command {
+        Command::Audit {
+            paper,
+            units,
+            preamble,
+            ..
+        }
+        | Command::Init {
+            paper,
+            units,
+            preamble,
+            ..
+        } => (paper, units, preamble),
     };
     let text = std::fs::read_to_string(paper)
         .with_context(|| format!("reading the paper {}", paper.display()))?;
@@ -445,7 +464,21 @@ fn run_paper(command: &Command) -> Result<bool> {
         Some(u) => verify::audit::read_units(u)?,
         None => Default::default(),
     };
-    let (blocks, doc) = verify::audit::paper_blocks(&text);
+    let mut macros = String::new();
+    for p in preamble {
+        macros.push_str(
+            &std::fs::read_to_string(p)
+                .with_context(|| format!("reading the preamble {}", p.display()))?,
+        );
+        macros.push('\n');
+    }
+    let (blocks, doc) = verify::tex_claims::blocks_at(&text, paper.parent(), &macros);
+    for problem in doc.iter().flat_map(|d| &d.problems) {
+        if problem.contains(verify::tex_claims::OUTSIDE) {
+            bail!("{}: {problem}", paper.display());
+        }
+        eprintln!("verify: {}: {problem}", paper.display());
+    }
     if blocks.is_empty() {
         bail!(
             "{}: no display math found ($$ ... $$, \\[ ... \\], equation, align, gather, multline, eqnarray)",

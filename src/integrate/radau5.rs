@@ -763,6 +763,51 @@ mod tests {
         assert!((ti * t - nalgebra::Matrix3::identity()).abs().max() < 1e-14);
     }
 
+    /// $y' = \lambda y$ with its Jacobian, $\lambda$ set after the stepper is made.
+    struct Growth(std::cell::Cell<f64>);
+    impl OdeSystem for Growth {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn rhs(&self, _t: f64, y: &[f64], dy: &mut [f64]) {
+            dy[0] = self.0.get() * y[0];
+        }
+        fn jacobian(&self, _t: f64, _y: &[f64], jac: &mut DMatrix<f64>) -> bool {
+            jac[(0, 0)] = self.0.get();
+            true
+        }
+    }
+
+    /// Hairer's NSING rule: a singular iteration matrix halves the step, and the fifth in one
+    /// solve ends it with a Newton failure at the step that met it. The matrix u1/h - lambda
+    /// is made exactly singular for the first step (lambda = u1/h0, computed as the stepper
+    /// computes it); the count is the stepper's own, so four earlier ones are set by hand.
+    #[test]
+    fn the_fifth_singular_matrix_ends_the_solve() {
+        let opts = Options {
+            h0: Some(0.01),
+            ..Options::default()
+        };
+        let sys = Growth(std::cell::Cell::new(1.0));
+        let mut st = Radau5::<0>::new(&sys, 0.0, &[1.0], 100.0, &opts);
+        sys.0.set(st.k.u1 / st.h);
+        let h0 = st.h;
+        // the first singular matrix: the step is halved and taken
+        st.step(&sys, 100.0)
+            .expect("one singular matrix halves the step");
+        assert_eq!(st.nsing, 1);
+        assert!(st.h_old <= 0.5 * h0, "h = {}", st.h_old);
+        // the fifth: the solve ends where it met it
+        let mut st = Radau5::<0>::new(&sys, 0.0, &[1.0], 100.0, &opts);
+        st.nsing = 4;
+        match st.step(&sys, 100.0) {
+            Err(IntegrateError::NewtonFailure { t, h }) => {
+                assert_eq!((t, h), (0.0, h0));
+            }
+            other => panic!("expected a Newton failure, got {other:?}"),
+        }
+    }
+
     /// Van der Pol's oscillator, $\mu y_2' = (1 - y_1^2) y_2 - y_1$, stiff for small $\mu$.
     struct VanDerPol(f64);
     impl OdeSystem for VanDerPol {

@@ -78,6 +78,9 @@ pub struct AuditRelation {
     pub number: Option<String>,
     /// Its `\label`, if any.
     pub label: Option<String>,
+    /// The line of the paper where its display opens (`null` for a displays extract).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub line: Option<usize>,
     /// The row's LaTeX.
     pub latex: String,
     /// `consistent`, `inconsistent`, `undetermined` or `unreadable`.
@@ -169,10 +172,12 @@ fn dots(tex: &str, syms: &TexSymbols) -> Vec<(String, String, u32)> {
 
 /// Audits the relations of `blocks` with the units given.
 pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units: &Units) -> Audit {
-    let syms = TexSymbols::new(units.tex_symbols.clone());
+    let syms = TexSymbols::new(units.tex_symbols.clone())
+        .with_functions_of(blocks.iter().map(|(_, tex)| tex.as_str()));
     let mut rels: Vec<AuditRelation> = Vec::new();
     let mut inputs: Vec<Option<Relation>> = Vec::new();
-    for (after, tex) in blocks {
+    for (k, (after, tex)) in blocks.iter().enumerate() {
+        let line = doc.and_then(|d| d.displays.get(k)).map(|d| d.line);
         for row in read_display(tex, &syms) {
             let number = row.tag.clone().or_else(|| after.clone());
             let label = number
@@ -184,6 +189,7 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
                 let base = AuditRelation {
                     number: number.clone(),
                     label: label.clone(),
+                    line,
                     latex: row.tex.clone(),
                     status: "unreadable",
                     detail: String::new(),
@@ -197,8 +203,9 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
                 };
                 match rel {
                     Err(e) => {
+                        let place = line.map_or_else(String::new, |l| format!("line {l}, "));
                         rels.push(AuditRelation {
-                            detail: format!("the LaTeX reader: {e}"),
+                            detail: format!("the LaTeX reader: {place}{e}"),
                             ..base
                         });
                         inputs.push(None);
@@ -206,12 +213,10 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
                     // a bare formula is no relation
                     Ok(r) if r.sides.len() < 2 => {}
                     Ok(r) => {
-                        let read = r
-                            .sides
-                            .iter()
-                            .map(ToString::to_string)
-                            .collect::<Vec<_>>()
-                            .join(" = ");
+                        let mut read = r.sides[0].to_string();
+                        for (rel, side) in r.rels.iter().zip(&r.sides[1..]) {
+                            read.push_str(&format!(" {rel} {side}"));
+                        }
                         let opaque = r
                             .sides
                             .iter()
@@ -224,9 +229,12 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
                             sides: r.sides.clone(),
                             ..base
                         });
+                        let mut dots = row_dots.clone();
+                        dots.extend(r.links.iter().filter(|l| !row_dots.contains(l)).cloned());
                         inputs.push(Some(Relation {
                             sides: r.sides.clone(),
-                            dots: row_dots.clone(),
+                            dots,
+                            rels: r.rels.clone(),
                         }));
                     }
                 }
@@ -326,12 +334,16 @@ fn judge(rels: &mut [AuditRelation], inputs: &[Option<Relation>], inf: &Inferenc
         });
         r.side_unit = left;
         r.right_unit = right;
+        // the unit the sides share: of the first that is not a bare 0 (or infinity)
+        let shared = input
+            .sides
+            .iter()
+            .filter(|e| !crate::algebra::units::every_unit(e))
+            .find_map(|e| crate::algebra::units::dimension(e, &|s| unit_of(&unit_name(s))).ok());
         match &inf.statuses[i] {
             Status::Consistent => {
                 r.status = "consistent";
-                r.detail = r
-                    .side_unit
-                    .map_or_else(String::new, |u| format!("every side in {u}"));
+                r.detail = shared.map_or_else(String::new, |u| format!("every side in {u}"));
             }
             Status::Inconsistent {
                 left,
@@ -347,6 +359,16 @@ fn judge(rels: &mut [AuditRelation], inputs: &[Option<Relation>], inf: &Inferenc
                         format!("`{left}` is {left_unit} but `{right}` is {right_unit} ({what})")
                     }
                 };
+                // with no unit declared, a relation that only contradicts the units other
+                // relations gave (one letter, two quantities in a long text) is no finding:
+                // nothing says which of them is right
+                if units.symbols.is_empty() && !contradicts_itself(input) {
+                    r.status = "undetermined";
+                    r.detail = format!(
+                        "its units conflict with those other relations give ({}); no declared unit decides",
+                        r.detail
+                    );
+                }
             }
             Status::Undetermined(open) => {
                 r.status = "undetermined";
@@ -354,6 +376,13 @@ fn judge(rels: &mut [AuditRelation], inputs: &[Option<Relation>], inf: &Inferenc
             }
         }
     }
+}
+
+/// Whether a relation is inconsistent on its own (with no unit declared and no other relation):
+/// `x + x^2`, `\dot{x} = x`.
+fn contradicts_itself(r: &Relation) -> bool {
+    let alone = infer(std::slice::from_ref(&Some(r.clone())), &BTreeMap::new());
+    matches!(alone.statuses.first(), Some(Status::Inconsistent { .. }))
 }
 
 /// The top-level terms of a relation's sides grouped by unit, when they fall in more than one
@@ -806,9 +835,9 @@ mod tests {
         let papers = crate::verify::load_claims(&dir).expect("loads");
         let s = index_section(&papers);
         for row in [
-            "| [000](audit/000.md) | 51 | 36 | 8 | 2 | 5 |",
-            "| [001](audit/001.md) | 83 | 54 | 1 | 8 | 20 |",
-            "| [002](audit/002.md) | 141 | 89 | 7 | 33 | 12 |",
+            "| [000](audit/000.md) | 51 | 38 | 8 | 1 | 4 |",
+            "| [001](audit/001.md) | 83 | 67 | 1 | 4 | 11 |",
+            "| [002](audit/002.md) | 142 | 95 | 7 | 29 | 11 |",
         ] {
             assert!(s.contains(row), "{row} not in {s}");
         }

@@ -45,14 +45,77 @@ pub type PaperDisplays = (
     std::path::PathBuf,
 );
 
+/// The words a refused `\input` is named with (a path that leaves the paper's folder).
+pub const OUTSIDE: &str = "outside the paper's folder";
+
+/// How a paper in `dir` reads its `\input{name}`: `dir/name` (or `dir/name.tex`), refused
+/// when the path is absolute or leads out of `dir` (a paper from anyone must not make the tool
+/// read elsewhere), an error naming the file when it cannot be read.
+pub fn folder_loader(dir: &std::path::Path) -> impl Fn(&str) -> Result<String, String> + '_ {
+    move |name: &str| {
+        let refuse = || {
+            format!(
+                "`\\input{{{name}}}`: {name} is {OUTSIDE} {} (refused)",
+                dir.display()
+            )
+        };
+        let rel = std::path::Path::new(name);
+        if rel.is_absolute()
+            || rel.components().any(|c| {
+                !matches!(
+                    c,
+                    std::path::Component::Normal(_) | std::path::Component::CurDir
+                )
+            })
+        {
+            return Err(refuse());
+        }
+        let mut path = dir.join(rel);
+        if !path.is_file() {
+            path = dir.join(format!("{name}.tex"));
+        }
+        let root = dir
+            .canonicalize()
+            .map_err(|e| format!("{}: {e}", dir.display()))?;
+        let real = path
+            .canonicalize()
+            .map_err(|_| format!("`\\input{{{name}}}`: no file {} in {}", name, dir.display()))?;
+        if !real.starts_with(&root) {
+            return Err(refuse());
+        }
+        std::fs::read_to_string(&real)
+            .map_err(|e| format!("`\\input{{{name}}}`: {}: {e}", real.display()))
+    }
+}
+
 /// A paper's displays from its text: a displays extract of `%% block N` sections (the seeds'
 /// cache, `verify/tex/`), or a LaTeX source (or a text with display math) read as LaTeX numbers
 /// it, with its document.
 pub fn blocks_of(text: &str) -> (Vec<(Option<String>, String)>, Option<Document>) {
+    blocks_at(text, None, "")
+}
+
+/// As [`blocks_of`], for a paper in the folder `dir`: its `\input` files read from that folder
+/// (a path that leaves it refused, [`folder_loader`]), the macros of `preamble` made first.
+pub fn blocks_at(
+    text: &str,
+    dir: Option<&std::path::Path>,
+    preamble: &str,
+) -> (Vec<(Option<String>, String)>, Option<Document>) {
     if text.lines().any(|l| l.starts_with("%% block ")) {
         return (display_blocks(text), None);
     }
-    let doc = read_document(text);
+    let doc = match dir {
+        Some(d) => {
+            let here = std::path::Path::new(".");
+            let load = folder_loader(if d.as_os_str().is_empty() { here } else { d });
+            crate::algebra::tex::document::read_document_full(text, preamble, &load)
+        }
+        None if preamble.is_empty() => read_document(text),
+        None => crate::algebra::tex::document::read_document_full(text, preamble, &|name| {
+            Err(format!("`\\input{{{name}}}`: no folder to read it from"))
+        }),
+    };
     let blocks = doc
         .displays
         .iter()
@@ -75,7 +138,7 @@ pub fn paper_displays(file: &PaperClaims) -> Result<PaperDisplays, String> {
             std::fs::read_to_string(&path)
                 .map_err(|e| format!("the paper's source {}: {e}", path.display()))
                 .map(|text| {
-                    let (blocks, doc) = blocks_of(&text);
+                    let (blocks, doc) = blocks_at(&text, path.parent(), "");
                     (blocks, doc, path)
                 }),
         )
@@ -487,7 +550,11 @@ fn read_matrix_side(tex: &str, lhs: &str, syms: &TexSymbols) -> Result<TexMatrix
 
 /// Resolves `printed_tex` and `printed_from` of every claim of `file` into `printed`.
 pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
-    let syms = TexSymbols::new(file.tex_symbols.clone());
+    let mut syms = TexSymbols::new(file.tex_symbols.clone());
+    // the paper's functions and lone increment letters, as the audit reads them
+    if let Ok((blocks, _, _)) = paper_displays(file) {
+        syms = syms.with_functions_of(blocks.iter().map(|(_, tex)| tex.as_str()));
+    }
     let snapshot = file.clone();
     // the file's definitions read from the paper (`[definitions_from]`)
     for (name, spec) in std::mem::take(&mut file.definitions_from) {

@@ -351,6 +351,21 @@ pub enum Calc {
     At,
     /// `sum(e, i, lo, hi)`: the finite sum of `e` over the integers `i` from `lo` to `hi`.
     Sum,
+    /// `prod(e, i, lo, hi)`: the product of `e` over the integers `i` from `lo` to `hi` (read
+    /// from a paper's `\prod`).
+    Prod,
+    /// `max(e, i)`: the largest `e` over the index `i` (a paper's `\max_i`, `\sup`); not
+    /// computed: its unit is that of `e`.
+    Max,
+    /// `min(e, i)`: the least `e` over the index `i` (`\min_i`, `\inf`); not computed.
+    Min,
+    /// `lim(e, x, v)`: the limit of `e` as `x` tends to `v` (`\lim_{x \to v}`); not computed.
+    Lim,
+    /// `mean(e)`: an average of `e` (`\langle e \rangle`); not computed.
+    Mean,
+    /// `region(e, s)`: the integral of `e` over a region with the element `d s` (`\int_V e
+    /// dV`, `\iint e d\xi d\eta` as two); not computed: its unit is that of `e s`.
+    Region,
 }
 
 impl Calc {
@@ -371,7 +386,18 @@ impl Calc {
             Calc::Int => "int",
             Calc::At => "at",
             Calc::Sum => "sum",
+            Calc::Prod => "prod",
+            Calc::Max => "max",
+            Calc::Min => "min",
+            Calc::Lim => "lim",
+            Calc::Mean => "mean",
+            Calc::Region => "region",
         }
+    }
+
+    /// Whether the variable is bound (its own, whatever a symbol of its name is outside).
+    pub fn binds(self) -> bool {
+        !matches!(self, Calc::Diff | Calc::At | Calc::Region)
     }
 
     /// How many arguments follow the formula and the variable.
@@ -380,7 +406,9 @@ impl Calc {
             Calc::Diff => 0,
             Calc::Int => 2,
             Calc::At => 1,
-            Calc::Sum => 2,
+            Calc::Sum | Calc::Prod => 2,
+            Calc::Max | Calc::Min | Calc::Mean | Calc::Region => 0,
+            Calc::Lim => 1,
         }
     }
 }
@@ -553,8 +581,10 @@ impl Expr {
                 out.push_str(c.name());
                 out.push('(');
                 body.write(out);
-                out.push_str(", ");
-                out.push_str(var);
+                if !var.is_empty() {
+                    out.push_str(", ");
+                    out.push_str(var);
+                }
                 for e in extra {
                     out.push_str(", ");
                     e.write(out);
@@ -609,10 +639,10 @@ impl Expr {
                 Expr::Calc(c, body, var, extra) => {
                     let mut inner = Vec::new();
                     go(body, free, &mut inner);
-                    if *c == Calc::Sum {
+                    if matches!(c, Calc::Sum | Calc::Prod) {
                         // the index of a sum is bound and a pure number: it needs no unit
                         inner.retain(|s| s != var);
-                    } else if free && *c != Calc::Diff {
+                    } else if free && !matches!(c, Calc::Diff | Calc::Region) {
                         inner.retain(|s| s != var);
                     } else if !free {
                         inner.push(var.clone());

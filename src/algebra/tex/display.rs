@@ -3,20 +3,149 @@
 
 use super::{TexRow, TexSymbols, read_relation};
 
-/// The environments a display may wrap its rows in: their `\begin{..}`/`\end{..}` are dropped.
+/// The environments a display may wrap its rows in: their `\begin{..}`/`\end{..}` are dropped
+/// (with the column count of `alignat`, `alignedat` and the position of `aligned`).
 pub(super) const ENVIRONMENTS: &[&str] = &[
     "equation",
     "equation*",
     "align",
     "align*",
     "aligned",
+    "alignat",
+    "alignat*",
+    "alignedat",
+    "flalign",
+    "flalign*",
     "gather",
     "gather*",
     "gathered",
     "split",
     "multline",
     "multline*",
+    "eqnarray",
+    "eqnarray*",
+    "subequations",
+    "displaymath",
+    "math",
+    "dmath",
+    "dmath*",
 ];
+
+/// `text` without the `\begin{..}` and `\end{..}` of [`ENVIRONMENTS`] (and their arguments).
+pub(super) fn drop_environments(text: &str) -> String {
+    let mut text = text.to_string();
+    for env in ENVIRONMENTS {
+        let open = format!("\\begin{{{env}}}");
+        while let Some(at) = text.find(&open) {
+            let mut end = at + open.len();
+            // `{2}` of alignat, `[t]` of aligned
+            let rest = &text[end..];
+            let arg = rest.trim_start();
+            let close = match arg.chars().next() {
+                Some('{') if env.starts_with("align") => arg.find('}'),
+                Some('[') => arg.find(']'),
+                _ => None,
+            };
+            if let Some(k) = close {
+                end += rest.len() - arg.len() + k + 1;
+            }
+            text.replace_range(at..end, " ");
+        }
+        text = text.replace(&format!("\\end{{{env}}}"), " ");
+    }
+    text
+}
+
+/// The rows of `text` split at `\\` at the top level, without the space (`\\[2mm]`) or
+/// the `*` that may follow a row's end.
+pub(crate) fn rows_of(text: &str) -> Vec<String> {
+    let mut rows = split_top(text, &["\\\\"]);
+    for row in rows.iter_mut().skip(1) {
+        let t = row.trim_start();
+        let t = t.strip_prefix('*').unwrap_or(t).trim_start();
+        let t = match t.strip_prefix('[') {
+            Some(rest) => match rest.find(']') {
+                Some(k) if is_length(&rest[..k]) => &rest[k + 1..],
+                _ => t,
+            },
+            None => t,
+        };
+        *row = t.to_string();
+    }
+    rows
+}
+
+/// Whether `s` is a TeX length (`2mm`, `-1.5ex`, `3pt`).
+fn is_length(s: &str) -> bool {
+    let s = s.trim().trim_start_matches('-');
+    let unit = s.trim_start_matches(|c: char| c.is_ascii_digit() || c == '.');
+    unit.len() < s.len()
+        && [
+            "pt", "mm", "cm", "in", "ex", "em", "bp", "pc", "dd", "cc", "sp", "mu",
+        ]
+        .contains(&unit.trim())
+}
+
+/// A row's text with what only aligns or spaces it taken from its start (`&`, `\quad`, `\;`,
+/// `\hspace{..}`, `{}`), to see how it starts.
+pub(crate) fn lead(row: &str) -> &str {
+    let mut t = row.trim_start();
+    loop {
+        let before = t;
+        for w in [
+            "&",
+            "{}",
+            "\\quad",
+            "\\qquad",
+            "\\;",
+            "\\,",
+            "\\:",
+            "\\!",
+            "\\ ",
+            "~",
+            "\\displaystyle",
+            "\\nonumber",
+            "\\notag",
+        ] {
+            if let Some(rest) = t.strip_prefix(w)
+                && !(w.ends_with(|c: char| c.is_ascii_alphabetic())
+                    && rest.starts_with(|c: char| c.is_ascii_alphabetic()))
+            {
+                t = rest.trim_start();
+            }
+        }
+        for w in ["\\hspace", "\\hskip", "\\phantom", "\\hphantom"] {
+            if let Some(rest) = t.strip_prefix(w) {
+                let rest = rest.trim_start().strip_prefix('*').unwrap_or(rest);
+                if let Some(r) = rest.trim_start().strip_prefix('{')
+                    && let Some(k) = r.find('}')
+                {
+                    t = r[k + 1..].trim_start();
+                }
+            }
+        }
+        if t == before {
+            return t;
+        }
+    }
+}
+
+/// The operators a continuation row starts with.
+const LEADING_OPERATORS: &[&str] = &[
+    "+", "-", "=", "<", ">", "\\cdot", "\\times", "\\le", "\\ge", "\\leq", "\\geq", "\\approx",
+    "\\equiv", "\\pm", "\\mp", "\\simeq", "\\ne", "\\neq", "\\ll", "\\gg", "\\propto", "\\sim",
+];
+
+/// Whether `row` continues the relation of the row before it: it starts (past its alignment
+/// and spacing) with an operator or a relation sign.
+pub(crate) fn continues(row: &str) -> bool {
+    let t = lead(row);
+    LEADING_OPERATORS.iter().any(|op| {
+        t.starts_with(op)
+            && !(op.ends_with(|c: char| c.is_ascii_alphabetic())
+                && t[op.len()..].starts_with(|c: char| c.is_ascii_alphabetic()))
+    })
+}
 
 /// Splits `text` at the top level (outside braces and parentheses) at each of `seps`.
 pub(crate) fn split_top(text: &str, seps: &[&str]) -> Vec<String> {
@@ -39,10 +168,11 @@ pub(crate) fn split_top(text: &str, seps: &[&str]) -> Vec<String> {
                     .get(i + w.len())
                     .is_some_and(char::is_ascii_alphabetic)
         };
-        // \left\{ ... \right\} nest like the brackets they size
-        if word("\\left") {
+        // \left\{ ... \right\} nest like the brackets they size, and an environment like
+        // braces (the rows of a `cases` inside an `align` are not the align's)
+        if word("\\left") || word("\\begin") {
             depth += 1;
-        } else if word("\\right") {
+        } else if word("\\right") || word("\\end") {
             depth -= 1;
         }
         match c {
@@ -53,7 +183,8 @@ pub(crate) fn split_top(text: &str, seps: &[&str]) -> Vec<String> {
         if depth == 0 {
             for sep in seps {
                 let sp: Vec<char> = sep.chars().collect();
-                let word_end = sep.starts_with('\\')
+                // `\quad` is not the start of `\quadx`; `\\` ends a row whatever follows
+                let word_end = sep.ends_with(|c: char| c.is_ascii_alphabetic())
                     && chars
                         .get(i + sp.len())
                         .is_some_and(char::is_ascii_alphabetic);
@@ -72,47 +203,41 @@ pub(crate) fn split_top(text: &str, seps: &[&str]) -> Vec<String> {
 }
 
 /// The rows of a display (`$$ ... $$` without the dollars): environments dropped, rows split
-/// at `\\`, alignment `&` removed, a row that starts with `+`, `-` or `=` joined to the one
-/// before, `\tag{}` taken out, and each row's relations (separated by `,`, `;` or `\quad` at
-/// the top level) read.
+/// at `\\`, alignment `&` removed, a row that continues a relation ([`continues`]) joined to the
+/// one before, `\tag{}` taken out, and each row's relations read: separated by `,`, `;`,
+/// `\quad`, `\Rightarrow` or a connecting word (`\text{if}`, `\text{and}`) at the top level; a
+/// `cases` made one row of its values and conditions ([`cases_row`]); a relation with `\pm`
+/// read as its two branches.
 pub fn read_display(block: &str, syms: &TexSymbols) -> Vec<TexRow> {
     let mut text = block.to_string();
-    // rows of an array or of cases, often braced by \left\{ ... \right.: the brace and the
-    // column specification go
-    if text.contains("\\begin{array}") || text.contains("\\begin{cases}") {
-        for (open, close) in [
-            ("\\begin{array}", "\\end{array}"),
-            ("\\begin{cases}", "\\end{cases}"),
-        ] {
-            while let Some(at) = text.find(open) {
-                let mut end = at + open.len();
-                if text[end..].starts_with('{') {
-                    end += text[end..].find('}').map_or(0, |k| k + 1);
-                }
-                text.replace_range(at..end, " ");
+    // rows of an array, often braced by \left\{ ... \right.: the brace and the column
+    // specification go
+    if text.contains("\\begin{array}") {
+        while let Some(at) = text.find("\\begin{array}") {
+            let mut end = at + "\\begin{array}".len();
+            if text[end..].starts_with('{') {
+                end += text[end..].find('}').map_or(0, |k| k + 1);
             }
-            text = text.replace(close, " ");
+            text.replace_range(at..end, " ");
         }
+        text = text.replace("\\end{array}", " ");
         for brace in ["\\left\\{", "\\right.", "\\left.", "\\right\\}"] {
             text = text.replace(brace, " ");
         }
     }
-    for env in ENVIRONMENTS {
-        text = text.replace(&format!("\\begin{{{env}}}"), " ");
-        text = text.replace(&format!("\\end{{{env}}}"), " ");
-    }
+    let text = drop_environments(&text);
     let mut rows: Vec<String> = Vec::new();
-    for raw in split_top(&text, &["\\\\"]) {
-        let row = raw.replace('&', " ");
-        let t = row.trim_start();
-        let continues = t.starts_with('+') || t.starts_with('-') || t.starts_with('=');
+    for raw in rows_of(&text) {
+        let row = cases_row(&raw).replace('&', " ");
         match rows.last_mut() {
             // a row that continues a relation joins it, also when the tag was printed on the
             // row before (a long relation tagged on its middle row, 000's (22)); the tag then
             // moves to the end of the joined row
-            Some(prev) if continues && (!prev.contains("\\tag") || !starts_relation(&row)) => {
+            Some(prev)
+                if continues(&row) && (!prev.contains("\\tag") || !starts_relation(&row)) =>
+            {
                 let (body, tag) = take_tag(prev);
-                *prev = format!("{body} {row}");
+                *prev = format!("{}\n{}", body.trim_end(), lead(&row));
                 if let Some(tag) = tag {
                     prev.push_str(&format!(" \\tag{{{tag}}}"));
                 }
@@ -124,10 +249,11 @@ pub fn read_display(block: &str, syms: &TexSymbols) -> Vec<TexRow> {
         .filter(|r| !r.trim().is_empty())
         .map(|row| {
             let (tex, tag) = take_tag(&row);
-            let relations = split_top(&tex, &[";", ",", "\\quad", "\\qquad"])
+            let relations = split_top(&words_as_separators(&tex), RELATION_SEPARATORS)
                 .into_iter()
-                .map(|p| p.trim().trim_end_matches('.').to_string())
+                .map(|p| p.trim().trim_end_matches('.').trim().to_string())
                 .filter(|p| !p.is_empty())
+                .flat_map(|p| branches(&p))
                 .map(|p| read_relation(&p, syms))
                 .collect();
             TexRow {
@@ -137,6 +263,213 @@ pub fn read_display(block: &str, syms: &TexSymbols) -> Vec<TexRow> {
             }
         })
         .collect()
+}
+
+/// What separates the relations of a row at its top level.
+const RELATION_SEPARATORS: &[&str] = &[
+    ";",
+    ",",
+    "\\quad",
+    "\\qquad",
+    "\\Rightarrow",
+    "\\Longrightarrow",
+    "\\Leftrightarrow",
+    "\\Longleftrightarrow",
+    "\\implies",
+    "\\iff",
+    "\\therefore",
+    "\\forall",
+];
+
+/// The words that join relations in a row of math (`\text{if}`, `\mbox{for all}`,
+/// `\text{and}`): a `\text{..}` at the top level that starts with one is a separator.
+const CONNECTIVES: &[&str] = &[
+    "if",
+    "for",
+    "when",
+    "whenever",
+    "where",
+    "with",
+    "and",
+    "or",
+    "otherwise",
+    "else",
+    "elsewhere",
+    "as",
+    "since",
+    "so",
+    "then",
+    "at",
+    "on",
+    "in",
+    "is",
+    "are",
+    "all",
+    "any",
+    "each",
+    "every",
+    "provided",
+    "such",
+    "that",
+    "hence",
+    "thus",
+    "but",
+    "i.e.",
+    "e.g.",
+    "from",
+    "to",
+    "by",
+    "we",
+    "which",
+    "while",
+    "until",
+    "after",
+    "before",
+    "during",
+    "giving",
+    "gives",
+    "yields",
+    "implies",
+    "whence",
+    "because",
+    "unless",
+];
+
+/// `tex` with each `\text{..}` (`\mbox`, `\textrm`, `\textnormal`, `\textit`, `\mathrm`) of
+/// connecting words at the top level replaced by `;`.
+pub(super) fn words_as_separators(tex: &str) -> String {
+    let mut out = tex.to_string();
+    for cmd in [
+        "\\text",
+        "\\mbox",
+        "\\textrm",
+        "\\textnormal",
+        "\\textit",
+        "\\mathrm",
+    ] {
+        let mut from = 0;
+        while let Some(k) = out[from..].find(cmd) {
+            let at = from + k;
+            let after = at + cmd.len();
+            from = after;
+            let rest = &out[after..];
+            let Some(inner) = rest.trim_start().strip_prefix('{') else {
+                continue;
+            };
+            let Some(close) = inner.find('}') else {
+                continue;
+            };
+            let words = inner[..close].trim().to_lowercase();
+            let first = words
+                .split(|c: char| c.is_whitespace() || c == ',' || c == '~')
+                .find(|w| !w.is_empty())
+                .unwrap_or("");
+            if depth_at(&out, at) == 0 && (words.is_empty() || CONNECTIVES.contains(&first)) {
+                let end = after + (rest.len() - rest.trim_start().len()) + 1 + close + 1;
+                out.replace_range(at..end, " ; ");
+                from = at + 3;
+            }
+        }
+    }
+    out
+}
+
+/// How deep in braces and brackets byte `at` of `text` is.
+fn depth_at(text: &str, at: usize) -> i32 {
+    let mut depth = 0;
+    let mut prev = ' ';
+    for c in text[..at].chars() {
+        match c {
+            '{' | '(' | '[' if prev != '\\' => depth += 1,
+            '}' | ')' | ']' if prev != '\\' => depth -= 1,
+            _ => {}
+        }
+        prev = c;
+    }
+    depth
+}
+
+/// A relation with `\pm` or `\mp` as its two branches (`\pm` as `+` then `-`, `\mp` the other
+/// way); any other relation as it is.
+fn branches(rel: &str) -> Vec<String> {
+    if !rel.contains("\\pm") && !rel.contains("\\mp") {
+        return vec![rel.to_string()];
+    }
+    let swap = |first: &str, second: &str| {
+        let mut out = String::new();
+        let mut rest = rel;
+        while let Some(k) = rest.find('\\') {
+            out.push_str(&rest[..k]);
+            let word: String = rest[k + 1..]
+                .chars()
+                .take_while(char::is_ascii_alphabetic)
+                .collect();
+            match word.as_str() {
+                "pm" => out.push_str(first),
+                "mp" => out.push_str(second),
+                _ => {
+                    out.push('\\');
+                    out.push_str(&word);
+                }
+            }
+            rest = &rest[k + 1 + word.len()..];
+        }
+        out.push_str(rest);
+        out
+    };
+    vec![swap(" + ", " - "), swap(" - ", " + ")]
+}
+
+/// A row with a `cases` (`f = \begin{cases} a & x > 0 \\ b & x \le 0 \end{cases}`) as one
+/// row of its relations: each value with what stands before and after the `cases` (`f = a`,
+/// `f = b`), each condition a relation of its own (`x > 0`, `x \le 0`), the words of a
+/// condition (`\text{if}`, `otherwise`) separators; any other display as it is.
+pub(super) fn cases_row(block: &str) -> String {
+    let open = ["\\begin{cases}", "\\begin{dcases}", "\\begin{rcases}"]
+        .iter()
+        .find_map(|o| block.find(o).map(|at| (at, o.len())));
+    let Some((at, len)) = open else {
+        return block.to_string();
+    };
+    let Some(close) = block[at..].find("\\end{").map(|k| at + k) else {
+        return block.to_string();
+    };
+    let close_end = block[close..]
+        .find('}')
+        .map_or(block.len(), |k| close + k + 1);
+    let mut prefix = block[..at].trim_end().to_string();
+    for brace in ["\\left\\{", "\\left.", "\\{"] {
+        if let Some(p) = prefix.strip_suffix(brace) {
+            prefix = p.to_string();
+        }
+    }
+    let mut suffix = block[close_end..].trim_start().to_string();
+    for brace in ["\\right.", "\\right\\}"] {
+        if let Some(s) = suffix.strip_prefix(brace) {
+            suffix = s.to_string();
+        }
+    }
+    // the tag of the whole display stays at its end
+    let (suffix, tag) = take_tag(&suffix);
+    let mut parts = Vec::new();
+    for row in rows_of(&block[at + len..close]) {
+        if row.trim().is_empty() {
+            continue;
+        }
+        let cols = split_top(&row, &["&"]);
+        let value = cols[0].trim().trim_end_matches(',').trim();
+        parts.push(format!("{prefix} {value} {suffix}"));
+        for cond in cols.iter().skip(1) {
+            let words = cond.replace("otherwise", " ").replace("else", " ");
+            parts.push(format!(";{words};"));
+        }
+    }
+    // one cases per row: a second one in the same row stays, and the reader names it
+    format!(
+        "{}{}",
+        parts.join(" ; "),
+        tag.map_or_else(String::new, |t| format!(" \\tag{{{t}}}"))
+    )
 }
 
 /// Whether a row that starts with `-` or `+` is a relation of its own (`-a = b`) rather than the

@@ -16,7 +16,7 @@
 //! finds a relation by the number printed beside it. Comments (`%` to the end of a line, not
 //! `\%`) are dropped first.
 
-use super::display::split_top;
+use super::display::{continues, lead, rows_of, split_top};
 
 /// One display of a document: its LaTeX with every number as a `\tag{..}`, and the label
 /// printed on the line after it (`(2.10)` after a `$$` block), if any.
@@ -28,6 +28,8 @@ pub struct DocDisplay {
     pub after: Option<String>,
     /// The environment (`"equation"`, `"align*"`, `"$$"`, `"\\["`).
     pub environment: String,
+    /// The line (1-based) of the source where the display opens (with `\input` files inlined).
+    pub line: usize,
 }
 
 /// A paper's displays and the numbers and labels found in them.
@@ -39,6 +41,9 @@ pub struct Document {
     pub numbers: Vec<String>,
     /// `(label, number)` for every `\label{..}` of a numbered row, in order.
     pub labels: Vec<(String, String)>,
+    /// What could not be read as LaTeX reads it (an `\input` refused or missing, a macro
+    /// that does not expand), each naming the place; the rest is read all the same.
+    pub problems: Vec<String>,
 }
 
 impl Document {
@@ -170,12 +175,24 @@ struct Numbering {
     within_section: bool,
     section: u32,
     counter: u32,
+    /// Inside `subequations`: how many numbers it has given (`3a`, `3b`, ...).
+    sub: Option<u32>,
     doc: Document,
 }
 
 impl Numbering {
     fn next(&mut self) -> String {
+        if let Some(k) = self.sub.as_mut() {
+            *k += 1;
+            let letter = char::from_u32('a' as u32 + (*k - 1) % 26).unwrap_or('z');
+            return format!("{}{letter}", self.current());
+        }
         self.counter += 1;
+        self.current()
+    }
+
+    /// The counter as printed.
+    fn current(&self) -> String {
         if self.within_section {
             format!("{}.{}", self.section, self.counter)
         } else {
@@ -215,11 +232,7 @@ impl Numbering {
             .find(|(e, _)| *e == base)
             .is_some_and(|(_, r)| *r);
         if per_row {
-            let rows: Vec<String> = split_top(body, &["\\\\"])
-                .iter()
-                .map(|r| self.row(r, !starred))
-                .collect();
-            return rows.join("\\\\");
+            return self.relations_of_rows(body, !starred);
         }
         // one number for the whole display, at its end; a \tag anywhere in it is its label
         let (body, labels) = take_command(body, "label");
@@ -240,6 +253,55 @@ impl Numbering {
             }
         }
         body
+    }
+
+    /// The rows of an environment numbered per row (`align`, `eqnarray`), each relation one
+    /// row: a row that continues the relation before it ([`continues`]) joins it, the relation
+    /// takes the number of its numbered row (the last, where it has several: LaTeX prints one
+    /// per row without `\nonumber`), and a `\label` on any of its rows names that number.
+    fn relations_of_rows(&mut self, body: &str, numbered: bool) -> String {
+        let mut groups: Vec<Vec<String>> = Vec::new();
+        for row in rows_of(body) {
+            match groups.last_mut() {
+                Some(g) if continues(&row) => g.push(row),
+                _ => groups.push(vec![row]),
+            }
+        }
+        let mut out = Vec::new();
+        for group in groups {
+            let mut labels = Vec::new();
+            let mut number = None;
+            let mut texts = Vec::new();
+            for row in &group {
+                let (row, mut l) = take_command(row, "label");
+                labels.append(&mut l);
+                let (row, nonumber) = take_nonumber(&row);
+                let (row, tags) = take_command(&row, "tag");
+                let tag = tags.first().cloned().or_else(|| {
+                    (numbered && !nonumber && !row.trim().is_empty()).then(|| self.next())
+                });
+                if let Some(n) = tag {
+                    self.doc.numbers.push(n.clone());
+                    number = Some(n);
+                }
+                // a continuation's alignment and spacing go, so that it joins the relation
+                // (a `\quad` left in it would split the relation there)
+                texts.push(if texts.is_empty() {
+                    row
+                } else {
+                    lead(&row).to_string()
+                });
+            }
+            let mut joined = texts.join("\n");
+            if let Some(n) = &number {
+                joined = format!("{} \\tag{{{n}}}", joined.trim_end());
+                for l in labels {
+                    self.doc.labels.push((l, n.clone()));
+                }
+            }
+            out.push(joined);
+        }
+        out.join("\\\\")
     }
 
     /// A `$$` or `\[` block: its own `\tag`s count; labels go.
@@ -283,6 +345,8 @@ enum Next {
     Bracket(usize),
     Begin(usize, String),
     Section(usize),
+    /// `\begin{subequations}` (true) or its end (false), with the index after it.
+    Sub(usize, bool),
 }
 
 fn next_item(text: &str, from: usize) -> Option<Next> {
@@ -311,6 +375,14 @@ fn next_item(text: &str, from: usize) -> Option<Next> {
         }
         search = at + 7;
     }
+    for (word, open) in [
+        ("\\begin{subequations}", true),
+        ("\\end{subequations}", false),
+    ] {
+        if let Some(i) = rest.find(word) {
+            offer(from + i, Next::Sub(from + i + word.len(), open));
+        }
+    }
     let mut search = 0;
     while let Some(i) = rest[search..].find("\\section") {
         let at = search + i;
@@ -324,14 +396,143 @@ fn next_item(text: &str, from: usize) -> Option<Next> {
     best.map(|(_, n)| n)
 }
 
-/// Reads a paper's source: every display with its numbers and labels.
+/// Reads a paper's source: every display with its numbers and labels (an `\input` is left
+/// unread and named in [`Document::problems`]; [`read_document_with`] follows it).
 pub fn read_document(source: &str) -> Document {
-    let text = strip_comments(source);
+    read_document_with(source, &|name| {
+        Err(format!("`\\input{{{name}}}`: no folder to read it from"))
+    })
+}
+
+/// How a paper's `\input{name}` is read: its text, or why not (a path outside the paper's
+/// folder is refused by the caller's loader, naming it).
+pub type Loader<'a> = &'a dyn Fn(&str) -> Result<String, String>;
+
+/// The deepest `\input` inside `\input` followed.
+const MAX_INPUT_DEPTH: usize = 8;
+
+/// `text` (comments dropped) with each `\input{..}`, `\include{..}` and `\subfile{..}` replaced
+/// by the text `load` gives (comments dropped, its own inputs followed); each one that cannot
+/// be read is left out and named in `problems`.
+fn inline_inputs(text: &str, load: Loader, depth: usize, problems: &mut Vec<String>) -> String {
+    let text = strip_comments(text);
+    let mut out = String::with_capacity(text.len());
+    let mut pos = 0;
+    while let Some(k) = text[pos..].find('\\') {
+        let at = pos + k;
+        let word: String = text[at + 1..]
+            .chars()
+            .take_while(char::is_ascii_alphabetic)
+            .collect();
+        let after = at + 1 + word.len();
+        // a class or package of the paper's own folder (`\usepackage{mymacros}` beside the
+        // paper) is read for its macros, as LaTeX reads it; the others are LaTeX's
+        if matches!(
+            word.as_str(),
+            "usepackage" | "RequirePackage" | "documentclass"
+        ) {
+            let mut end = after;
+            let rest = &text[after..];
+            let opts = rest.trim_start();
+            if opts.starts_with('[') {
+                end += rest.len() - opts.len() + opts.find(']').map_or(0, |k| k + 1);
+            }
+            out.push_str(&text[pos..after]);
+            pos = after;
+            if let Some((names, close)) = braced(&text, end) {
+                let ext = if word == "documentclass" {
+                    "cls"
+                } else {
+                    "sty"
+                };
+                out.push_str(&text[after..close]);
+                pos = close;
+                for name in names.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+                    if depth < MAX_INPUT_DEPTH
+                        && let Ok(inner) = load(&format!("{name}.{ext}"))
+                    {
+                        // on one line, so that the paper's lines keep their numbers
+                        let inner = inline_inputs(&inner, load, depth + 1, problems);
+                        out.push(' ');
+                        out.push_str(&inner.replace('\n', " "));
+                        out.push(' ');
+                    }
+                }
+            }
+            continue;
+        }
+        if !matches!(word.as_str(), "input" | "include" | "subfile") {
+            out.push_str(&text[pos..after]);
+            pos = after;
+            continue;
+        }
+        let (name, end) = match braced(&text, after) {
+            Some(b) => b,
+            // `\input file` without braces: the name up to the next space
+            None if word == "input" && text[after..].starts_with(' ') => {
+                let rest = &text[after + 1..];
+                let len = rest
+                    .find(|c: char| c.is_whitespace() || c == '\\' || c == '}')
+                    .unwrap_or(rest.len());
+                (rest[..len].to_string(), after + 1 + len)
+            }
+            None => {
+                out.push_str(&text[pos..after]);
+                pos = after;
+                continue;
+            }
+        };
+        out.push_str(&text[pos..at]);
+        let line = text[..at].matches('\n').count() + 1;
+        if depth >= MAX_INPUT_DEPTH {
+            problems.push(format!(
+                "line {line}: `\\{word}{{{name}}}`: inputs nested deeper than {MAX_INPUT_DEPTH}"
+            ));
+        } else {
+            match load(name.trim()) {
+                Ok(inner) => out.push_str(&inline_inputs(&inner, load, depth + 1, problems)),
+                Err(e) => problems.push(format!("line {line}: {e}")),
+            }
+        }
+        pos = end;
+    }
+    out.push_str(&text[pos..]);
+    out
+}
+
+/// Reads a paper's source as LaTeX does: comments dropped, every `\input` read through `load`,
+/// the paper's macros expanded ([`super::macros`]), then every display with its numbers and
+/// labels.
+pub fn read_document_with(source: &str, load: Loader) -> Document {
+    read_document_full(source, "", load)
+}
+
+/// As [`read_document_with`], with the macros of `preamble` (its definitions only: a file of
+/// macros the paper uses without holding them).
+pub fn read_document_full(source: &str, preamble: &str, load: Loader) -> Document {
+    let mut problems = Vec::new();
+    let text = inline_inputs(source, load, 0, &mut problems);
+    let preamble = inline_inputs(preamble, load, 0, &mut problems);
+    let text = drop_verbatim(&text);
+    let text = match super::macros::expand_with(&text, &preamble) {
+        Ok((expanded, _, short)) => {
+            problems.extend(short.iter().map(ToString::to_string));
+            expanded
+        }
+        Err(e) => {
+            problems.push(e.to_string());
+            text
+        }
+    };
     let mut st = Numbering {
         within_section: text.contains("\\numberwithin{equation}{section}"),
         section: 0,
         counter: 0,
-        doc: Document::default(),
+        sub: None,
+        doc: Document {
+            problems,
+            ..Document::default()
+        },
     };
     let mut pos = 0;
     while let Some(item) = next_item(&text, pos) {
@@ -345,6 +546,15 @@ pub fn read_document(source: &str) -> Document {
                     }
                 }
                 pos = at + 8;
+            }
+            Next::Sub(end, open) => {
+                if open {
+                    st.counter += 1;
+                    st.sub = Some(0);
+                } else {
+                    st.sub = None;
+                }
+                pos = end;
             }
             Next::Dollars(at) | Next::Bracket(at) => {
                 let dollars = matches!(item, Next::Dollars(_));
@@ -363,6 +573,7 @@ pub fn read_document(source: &str) -> Document {
                     latex: latex.trim().to_string(),
                     after,
                     environment: (if dollars { "$$" } else { "\\[" }).to_string(),
+                    line: line_of(&text, at),
                 });
                 pos = end;
             }
@@ -378,12 +589,75 @@ pub fn read_document(source: &str) -> Document {
                     latex: format!("{open}{body}{close}"),
                     after: None,
                     environment: env,
+                    line: line_of(&text, at),
                 });
                 pos = start + len + close.len();
             }
         }
     }
     st.doc
+}
+
+/// The environments whose content is no LaTeX math (code, pictures, verbatim text): their
+/// `$` and `\[` are not displays.
+const VERBATIM: &[&str] = &[
+    "verbatim",
+    "Verbatim",
+    "lstlisting",
+    "minted",
+    "comment",
+    "asy",
+    "asydef",
+    "asyinclude",
+    "tikzpicture",
+    "pgfpicture",
+    "filecontents",
+    "filecontents*",
+    "alltt",
+    "code",
+    "python",
+];
+
+/// `text` without the content of [`VERBATIM`] environments and of Markdown's fenced code
+/// blocks (```), their newlines kept so that lines keep their numbers.
+fn drop_verbatim(text: &str) -> String {
+    let blank = |s: &str| "\n".repeat(s.matches('\n').count());
+    let mut out = text.to_string();
+    for env in VERBATIM {
+        let (open, close) = (format!("\\begin{{{env}}}"), format!("\\end{{{env}}}"));
+        let mut from = 0;
+        while let Some(k) = out[from..].find(&open) {
+            let at = from + k;
+            let Some(len) = out[at..].find(&close) else {
+                break;
+            };
+            let end = at + len + close.len();
+            let kept = blank(&out[at..end]);
+            out.replace_range(at..end, &kept);
+            from = at + kept.len();
+        }
+    }
+    if out.contains("```") {
+        let mut fenced = false;
+        let lines: Vec<String> = out
+            .split('\n')
+            .map(|l| {
+                let fence = l.trim_start().starts_with("```");
+                let keep = !fenced && !fence;
+                if fence {
+                    fenced = !fenced;
+                }
+                if keep { l.to_string() } else { String::new() }
+            })
+            .collect();
+        out = lines.join("\n");
+    }
+    out
+}
+
+/// The line (1-based) of byte `at` of `text`.
+fn line_of(text: &str, at: usize) -> usize {
+    text[..at.min(text.len())].matches('\n').count() + 1
 }
 
 #[cfg(test)]

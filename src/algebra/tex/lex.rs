@@ -126,6 +126,32 @@ pub(super) fn is_space(t: &Tok) -> bool {
                 | "Big"
                 | "bigg"
                 | "Bigg"
+                | "bigl"
+                | "bigr"
+                | "Bigl"
+                | "Bigr"
+                | "biggl"
+                | "biggr"
+                | "Biggl"
+                | "Biggr"
+                | "rm"
+                | "bf"
+                | "it"
+                | "sf"
+                | "tt"
+                | "cal"
+                | "scriptstyle"
+                | "scriptscriptstyle"
+                | "hfill"
+                | "allowbreak"
+                | "nonumber"
+                | "notag"
+                | "medskip"
+                | "smallskip"
+                | "enspace"
+                | "thinspace"
+                | "negthinspace"
+                | "relax"
         ),
         Tok::Ch('~') => true,
         _ => false,
@@ -139,9 +165,18 @@ pub(super) fn accent_suffix(cmd: &str) -> Option<&'static str> {
         "bar" | "overline" => "b",
         "dot" => "d",
         "ddot" => "dd",
-        "mathbf" | "boldsymbol" | "mathrm" | "mathit" | "vec" | "bm" | "operatorname" | "text" => {
-            ""
-        }
+        "mathbf" | "boldsymbol" | "mathrm" | "mathit" | "vec" | "bm" | "operatorname" | "text"
+        | "pmb" | "textbf" | "textrm" | "textit" | "mathnormal" | "overrightarrow" | "vb"
+        | "vv" | "mathsf" | "symbf" | "symbfit" | "mathbfit" => "",
+        // a calligraphic or blackboard letter is another quantity than the plain one
+        "mathcal" => "cal",
+        "mathscr" => "scr",
+        "mathbb" => "bb",
+        "mathfrak" => "frak",
+        "check" => "c",
+        "breve" => "br",
+        "underline" => "u",
+        "dddot" => "ddd",
         _ => return None,
     })
 }

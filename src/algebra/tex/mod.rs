@@ -29,6 +29,7 @@
 mod display;
 pub mod document;
 mod lex;
+pub mod macros;
 mod reader;
 
 pub use display::read_display;
@@ -43,19 +44,50 @@ use reader::Reader;
 /// not a bare name is a formula of the text language (`"E(k)" = "ellipe(k)"`): the spelling
 /// reads as that formula.
 #[derive(Clone, Debug, Default)]
-pub struct TexSymbols(pub(super) Vec<(String, String)>);
+pub struct TexSymbols(
+    pub(super) Vec<(String, String)>,
+    /// The names the paper applies as functions (`x(t)` somewhere): applied wherever they
+    /// stand before parentheses (`x(t + T)`).
+    pub(super) std::collections::BTreeSet<String>,
+    /// The increment letters (`Delta`, `delta`) the paper also uses alone (`\delta = ..`,
+    /// `\Delta^2 w`, `L(\delta)`): there `\delta t` is a product, not an increment.
+    pub(super) std::collections::BTreeSet<String>,
+);
 
 impl TexSymbols {
     /// A table from `(spelling, symbol or formula)` pairs.
     pub fn new(pairs: impl IntoIterator<Item = (String, String)>) -> Self {
         let mut v: Vec<(String, String)> = pairs.into_iter().collect();
         v.sort_by(|a, b| b.0.len().cmp(&a.0.len()).then(a.0.cmp(&b.0)));
-        TexSymbols(v)
+        TexSymbols(v, Default::default(), Default::default())
     }
 
     /// This table with more pairs.
     pub fn with(&self, more: impl IntoIterator<Item = (String, String)>) -> Self {
-        TexSymbols::new(self.0.iter().cloned().chain(more))
+        let mut t = TexSymbols::new(self.0.iter().cloned().chain(more));
+        t.1 = self.1.clone();
+        t.2 = self.2.clone();
+        t
+    }
+
+    /// This table with the names a paper applies as functions: the names of the applications
+    /// read in `displays` (`{x(t)}` read from `x(t)`), each then applied to any arguments.
+    pub fn with_functions_of<'a>(&self, displays: impl IntoIterator<Item = &'a str>) -> Self {
+        let mut t = self.clone();
+        for d in displays {
+            t.2.extend(lone_increment_letters(d));
+            for row in read_display(d, self) {
+                for rel in row.relations.iter().flatten() {
+                    for s in rel.sides.iter().flat_map(Expr::symbols) {
+                        let name = super::infer::unit_name(&s);
+                        if name != s {
+                            t.1.insert(name);
+                        }
+                    }
+                }
+            }
+        }
+        t
     }
 
     /// The targets that are formulas, parsed (a target that does not parse stays a symbol
@@ -67,6 +99,31 @@ impl TexSymbols {
             .filter_map(|(_, t)| super::expr::parse(t).ok().map(|e| (t.clone(), e)))
             .collect()
     }
+}
+
+/// The increment letters (`\Delta`, `\delta`) that stand alone somewhere in `tex`: followed by
+/// no name (`\delta =`, `\delta^{3/2}`, `(\delta)`, `\Delta^2 w`).
+fn lone_increment_letters(tex: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for letter in ["Delta", "delta"] {
+        let pat = format!("\\{letter}");
+        let mut rest = tex;
+        while let Some(k) = rest.find(&pat) {
+            rest = &rest[k + pat.len()..];
+            if rest.starts_with(|c: char| c.is_ascii_alphabetic()) {
+                continue;
+            }
+            let next = rest.trim_start().chars().next();
+            let alone = match next {
+                None => true,
+                Some(c) => "=^)],+-<>&}/;|.!".contains(c) || rest.trim_start().starts_with("\\\\"),
+            };
+            if alone && !out.iter().any(|o| o == letter) {
+                out.push(letter.to_string());
+            }
+        }
+    }
+    out
 }
 
 /// A bare symbol name (letters, digits, `_`, not starting with a digit).
@@ -95,8 +152,12 @@ pub struct TexError {
 pub struct TexRelation {
     /// The sides, left to right.
     pub sides: Vec<Expr>,
-    /// The relations between them (`=`, `<`, `<=`, `>`, `>=`, `~` for `\approx`, `!=`).
+    /// The relations between them (`=`, `<`, `<=`, `>`, `>=`, `<<`, `>>`, `~` for `\approx`,
+    /// `!=`, `propto`, `sim`).
     pub rels: Vec<&'static str>,
+    /// The dotted names and increments the relation holds, each with its base and order
+    /// (`("xd", "x", 1)` for `\dot{x}`, `("Deltat", "t", 0)` for `\Delta t`).
+    pub links: Vec<(String, String, u32)>,
 }
 
 /// One row of a display: its `\tag`, its LaTeX and its relations (rows hold several, separated
@@ -131,7 +192,7 @@ pub fn read_formula(tex: &str, syms: &TexSymbols) -> Result<Expr, TexError> {
 /// Reads one relation (`a = b`, `a \le b = c`) or a bare formula.
 pub fn read_relation(tex: &str, syms: &TexSymbols) -> Result<TexRelation, TexError> {
     let toks = lex(tex, syms);
-    let mut rel = Reader::new(&toks).relation()?;
+    let mut rel = Reader::new(&toks, &syms.1, &syms.2).relation()?;
     let formulas = syms.formulas();
     if !formulas.is_empty() {
         let lookup = |s: &str| {

@@ -64,7 +64,7 @@ fn reads_the_math_of_papers() {
         r"\sin \frac{m \pi x}{a} \sin \frac{n \pi y}{b}",
         "sin(m*pi*x/a)*sin(n*pi*y/b)",
     );
-    same(r"\exp (-\delta t)", "exp(-delta*t)");
+    same(r"\exp (-\beta t)", "exp(-beta*t)");
     same(r"e^{-\alpha t}", "exp(-alpha*t)");
     same(r"\tilde{E} h^{3}", "Et*h^3");
     same(r"\frac{k!}{(k-i)!}", "factorial(k)/factorial(k - i)");
@@ -72,12 +72,19 @@ fn reads_the_math_of_papers() {
     same(r"t^{\prime} + t'", "tp + tp");
     same(r"\mathrm{w} + \operatorname{sin} x", "w + sin(x)");
     same(r"\cos \phi (a + b)", "cos(phi)*(a + b)");
-    // an integral over a region: opaque, named by its text; without its differential, an error
+    // an integral over a region: its integrand times its element (not computed: the formula
+    // language has no region); two elements, two regions; without its differential, an error
     assert_eq!(
         read_formula(r"\chi \int z x d \sigma", &TexSymbols::default())
             .unwrap()
             .to_string(),
-        r"chi*{\int z x d \sigma}"
+        "chi*region(z*x, sigma)"
+    );
+    assert_eq!(
+        read_formula(r"\iint_S p \, d\xi \, d\eta", &TexSymbols::default())
+            .unwrap()
+            .to_string(),
+        "region(region(p, xi), eta)"
     );
     let e = read_formula(r"\iint f \, \xi", &TexSymbols::default()).unwrap_err();
     assert!(
@@ -128,9 +135,9 @@ fn applications_and_the_symbol_table() {
 #[test]
 fn errors_name_the_column_and_the_construct() {
     let s = TexSymbols::default();
-    let e = read_formula(r"a + \sum_{k=0}^{\infty} a_{k}", &s).unwrap_err();
-    assert!(e.construct.contains("infinity"), "{e}");
-    assert_eq!(e.column, 17, "{e}");
+    let e = read_formula(r"a + \sum_{k=0}^{\infty} a_{k} \foo", &s).unwrap_err();
+    assert!(e.construct.contains("\\foo"), "{e}");
+    assert_eq!(e.column, 31, "{e}");
     let e = read_formula(r"\frac{a}{b", &s).unwrap_err();
     assert!(e.construct.contains('}'), "{e}");
     // what is missing at the end is missing just past the last character (10 of them here)
@@ -192,11 +199,13 @@ fn a_spelling_may_stand_for_a_formula() {
 fn a_bad_name_part_applications_integrals_and_the_nesting_limit() {
     let syms = TexSymbols::default();
     let read = |t: &str| read_formula(t, &syms).map(|e| e.to_string());
-    // a name's part is letters, digits and Greek: `+` in a subscript is refused, naming it
-    let e = read("x_{a+b}").unwrap_err();
+    // a name's part is letters, digits, Greek and an index's `+`, `-` (`v_{j+1}`): `=` in a
+    // subscript is refused, naming it
+    assert_eq!(read("x_{a+b} + v_{j-1}").unwrap(), "xaplusb + vjminus1");
+    let e = read("x_{a=b}").unwrap_err();
     assert_eq!(
         (e.column, e.construct.as_str(), e.found.as_str()),
-        (5, "a name's part (letters, digits, Greek)", "+")
+        (5, "a name's part (letters, digits, Greek)", "=")
     );
     // unbraced, a comma is no name's part either (inside braces it is passed over: `x_{1,2}`);
     // the error is at the comma, not past it
@@ -318,4 +327,22 @@ fn a_tie_is_a_space_an_application_in_sized_brackets_and_fractions_of_d() {
 fn a_derivative_over_a_braced_numerator() {
     // the numerator's own braces are passed over to find `{d t}` after it
     same("\\frac{d {a t^{2}}}{d t}", "2*a*t");
+}
+
+#[test]
+fn an_increment_unless_the_paper_uses_its_letter_alone() {
+    // `\Delta t` and `\delta x` are increments, in the unit of what they increment
+    let s = TexSymbols::default();
+    let r = read_relation(r"v = \frac{\Delta x}{\delta t}", &s).unwrap();
+    assert_eq!(r.sides[1].to_string(), "Deltax/deltat");
+    assert!(
+        r.links.contains(&("Deltat".into(), "t".into(), 0))
+            || r.links.contains(&("deltat".into(), "t".into(), 0))
+    );
+    // where the paper writes delta alone (`L(\delta)`, `\delta = ..`), delta t is a product:
+    // 000's damping delta in e^{-\delta t}
+    let paper =
+        TexSymbols::default().with_functions_of([r"\tilde{L}(\delta) = 1", r"x = e^{-\delta t}"]);
+    let r = read_relation(r"x = e^{-\delta t}", &paper).unwrap();
+    assert_eq!(r.sides[1].to_string(), "exp(-(delta*t))");
 }

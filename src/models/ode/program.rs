@@ -345,7 +345,18 @@ fn compile_part(e: &Expr, slot: &dyn Fn(&str) -> Option<usize>) -> Result<Part, 
             };
             binary(ins, compile_part(a, slot)?, compile_part(b, slot)?)
         }
-        Expr::Calc(Calc::Diff | Calc::At | Calc::Sum, ..) => compile_part(&e.lower()?, slot)?,
+        Expr::Calc(
+            Calc::Diff
+            | Calc::At
+            | Calc::Sum
+            | Calc::Prod
+            | Calc::Max
+            | Calc::Min
+            | Calc::Lim
+            | Calc::Mean
+            | Calc::Region,
+            ..,
+        ) => compile_part(&e.lower()?, slot)?,
         Expr::Calc(Calc::Int, ..) => {
             return Err(format!(
                 "`{e}`: `int` is not allowed in a model's formulas (write the integral as a state)"

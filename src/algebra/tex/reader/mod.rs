@@ -5,6 +5,17 @@
 use super::lex::{Tok, accent_suffix, describe, func, greek, is_space};
 use super::{TexError, TexRelation, is_name};
 use crate::algebra::expr::{Calc, Expr, Func, Op};
+use crate::algebra::units::{ELLIPSIS, INFINITY};
+use std::collections::BTreeSet;
+
+mod big;
+mod calculus;
+mod delims;
+
+/// A link the reader found between two names: `(name, base, order)`, the name the `order`-th
+/// time derivative of its base (`\dot{x}`: `("xd", "x", 1)`), or with order 0 an increment of
+/// it (`\Delta t`: `("Deltat", "t", 0)`), in its unit.
+pub(super) type Link = (String, String, u32);
 
 pub(super) struct Reader<'a> {
     toks: &'a [(Tok, usize)],
@@ -15,6 +26,20 @@ pub(super) struct Reader<'a> {
     in_abs: usize,
     /// How deep the formulas nest (a file from anyone must not overflow the stack).
     depth: usize,
+    /// Inside `\| ... \|`: a `\|` closes.
+    in_norm: usize,
+    /// The names the paper applies as functions (`x(t)` somewhere): `x(t + T)` is one too.
+    functions: &'a BTreeSet<String>,
+    /// The increment letters the paper uses alone: no increments of these.
+    lone: &'a BTreeSet<String>,
+    /// The dotted names and increments met, with their bases.
+    pub(super) links: Vec<Link>,
+    /// A name just read ended in `^{*` of a starred power (`E^{*2}`): the rest of that group is
+    /// its exponent.
+    star_power: bool,
+    /// The variable of a differential read inside an integrand's fraction (`\int \frac{du}{F}`):
+    /// the integral's own.
+    pending_differential: Option<String>,
 }
 
 /// The deepest nesting read (as the text parser's limit).
@@ -24,14 +49,28 @@ type R<T> = Result<T, TexError>;
 
 impl<'a> Reader<'a> {
     /// A reader at the first of `toks` (which end in [`Tok::End`]).
-    pub(super) fn new(toks: &'a [(Tok, usize)]) -> Self {
+    pub(super) fn new(
+        toks: &'a [(Tok, usize)],
+        functions: &'a BTreeSet<String>,
+        lone: &'a BTreeSet<String>,
+    ) -> Self {
         Reader {
             toks,
             pos: 0,
             in_integral: 0,
             in_abs: 0,
             depth: 0,
+            in_norm: 0,
+            functions,
+            lone,
+            links: Vec::new(),
+            star_power: false,
+            pending_differential: None,
         }
+    }
+
+    fn at(&self, k: usize) -> Option<&Tok> {
+        self.toks.get(self.pos + k).map(|t| &t.0)
     }
 
     fn peek(&self) -> &Tok {
@@ -134,9 +173,34 @@ impl<'a> Reader<'a> {
                 Tok::Ch(',' | ';' | '\'' | '_' | '^') if braced => {
                     self.bump();
                 }
-                Tok::Ch('*') if braced => {
+                Tok::Ch('*') => {
                     self.bump();
                     out.push_str("star");
+                }
+                // an index that is an expression: `v_{j+1}`, `t_{n-1}`, `x_{(k)}`
+                Tok::Ch('+') if braced => {
+                    self.bump();
+                    out.push_str("plus");
+                }
+                Tok::Ch('-') if braced => {
+                    self.bump();
+                    out.push_str("minus");
+                }
+                Tok::Ch('(' | ')' | '.' | '/' | '|' | '[' | ']') if braced => {
+                    self.bump();
+                }
+                Tok::Cmd(c) if braced && c == "infty" => {
+                    self.bump();
+                    out.push_str("inf");
+                }
+                Tok::Cmd(c) if braced && (c == "ast" || c == "star") => {
+                    self.bump();
+                    out.push_str("star");
+                }
+                // `F_{\max}`, `\sigma_{\rm eff}`, `E_{\sin}`: the command's name is the part
+                Tok::Cmd(c) if braced && (func(&c).is_some() || is_named_operator(&c)) => {
+                    self.bump();
+                    out.push_str(&c);
                 }
                 Tok::Open if braced => {
                     let inner = self.name_text()?;
@@ -178,6 +242,23 @@ impl<'a> Reader<'a> {
                     self.bump();
                     name.push('p');
                 }
+                // `x^{(k)}`: an index in parentheses, part of the name
+                Tok::Ch('^') if self.paren_index().is_some() => {
+                    let (part, len) = self.paren_index().unwrap_or_default();
+                    self.pos += len;
+                    name.push_str(&part);
+                }
+                // `E^{*2}`: the star a label, the rest of the group a power
+                Tok::Ch('^')
+                    if self.at(1) == Some(&Tok::Open)
+                        && self.at(2) == Some(&Tok::Ch('*'))
+                        && !matches!(self.at(3), Some(Tok::Close) | None) =>
+                {
+                    self.pos += 3;
+                    name.push_str("star");
+                    self.star_power = true;
+                    return Ok(name);
+                }
                 Tok::Ch('^') if self.decoration().is_some() => {
                     let (suffix, len) = self.decoration().unwrap_or(("", 1));
                     self.pos += len;
@@ -214,6 +295,27 @@ impl<'a> Reader<'a> {
             return label(at(2)).map(|l| (l, 4));
         }
         None
+    }
+
+    /// `^{(k)}` after a name: the index's text and how many tokens it takes.
+    fn paren_index(&self) -> Option<(String, usize)> {
+        if self.at(1) != Some(&Tok::Open) || self.at(2) != Some(&Tok::Ch('(')) {
+            return None;
+        }
+        let mut text = String::new();
+        let mut k = 3;
+        loop {
+            match self.at(k)? {
+                Tok::Ch(c) if c.is_ascii_alphanumeric() => text.push(*c),
+                Tok::Num(n) => text.push_str(n),
+                Tok::Ch('+') => text.push_str("plus"),
+                Tok::Ch('-') => text.push_str("minus"),
+                Tok::Ch(')') => break,
+                _ => return None,
+            }
+            k += 1;
+        }
+        (self.at(k + 1) == Some(&Tok::Close) && !text.is_empty()).then_some((text, k + 2))
     }
 
     fn is_prime_script(&self) -> bool {
@@ -283,9 +385,22 @@ impl<'a> Reader<'a> {
                             | "partial"
                             | "max"
                             | "min"
+                            | "sup"
+                            | "inf"
+                            | "lim"
+                            | "limsup"
+                            | "liminf"
+                            | "prod"
+                            | "langle"
+                            | "lvert"
+                            | "lVert"
+                            | "ldots"
+                            | "cdots"
+                            | "dots"
                             | "{"
-                            | "|"
                     )
+                    || ((c == "|" || c == "Vert") && self.in_norm == 0)
+                    || (c == "vert" && self.in_abs == 0)
             }
             _ => false,
         }
@@ -319,6 +434,17 @@ impl<'a> Reader<'a> {
                 // cos(phi) (a + b), as `\sin \omega t` is sin(omega t)
                 Tok::Ch('(' | '[') if arg => return Ok(e),
                 Tok::Cmd(c) if arg && c == "left" => return Ok(e),
+                // an integral or a big operator after a bare argument is a factor:
+                // `\sin \theta \int ..` is sin(theta) times the integral
+                Tok::Cmd(c)
+                    if arg
+                        && matches!(
+                            c.as_str(),
+                            "int" | "iint" | "iiint" | "oint" | "sum" | "prod" | "lim"
+                        ) =>
+                {
+                    return Ok(e);
+                }
                 Tok::Ch('d') if arg && self.is_differential() => return Ok(e),
                 _ if self.starts_atom() && !self.is_differential_here() => {
                     e = mul(e, self.postfix()?);
@@ -326,19 +452,6 @@ impl<'a> Reader<'a> {
                 _ => return Ok(e),
             }
         }
-    }
-
-    /// Whether the tokens here are `d x` closing an integral (set while reading an integrand).
-    fn is_differential_here(&self) -> bool {
-        self.in_integral > 0 && self.is_differential()
-    }
-
-    fn is_differential(&self) -> bool {
-        matches!(self.peek(), Tok::Ch('d'))
-            && matches!(self.toks.get(self.pos + 1), Some((Tok::Ch(c), _)) if c.is_ascii_alphabetic())
-            && !matches!(self.toks.get(self.pos + 2), Some((Tok::Ch('('), _)))
-            || matches!(self.peek(), Tok::Ch('d'))
-                && matches!(self.toks.get(self.pos + 1), Some((Tok::Cmd(c), _)) if greek(c).is_some())
     }
 
     fn unary(&mut self) -> R<Expr> {
@@ -362,6 +475,11 @@ impl<'a> Reader<'a> {
 
     fn postfix(&mut self) -> R<Expr> {
         let mut e = self.atom()?;
+        if std::mem::take(&mut self.star_power) {
+            let p = self.expr()?;
+            self.expect(Tok::Close, "`}` closing a starred power")?;
+            e = power(e, p);
+        }
         loop {
             match self.peek() {
                 Tok::Ch('^') => {
@@ -396,6 +514,14 @@ impl<'a> Reader<'a> {
             // (`\varepsilon_{On}^{\prime\prime}` with `\varepsilon_{On}` mapped to `eOn`)
             Tok::Sym(s) if is_name(&s) => Ok(Expr::Sym(self.name_tail(s)?)),
             Tok::Sym(s) => Ok(Expr::Sym(s)),
+            // `{\rm d} x`: an increment of x
+            Tok::Open if self.braced_d() => {
+                self.skip_space();
+                self.bump();
+                self.skip_space();
+                self.bump();
+                self.increment("d")
+            }
             Tok::Open => {
                 let e = self.expr()?;
                 self.expect(Tok::Close, "`}`")?;
@@ -409,6 +535,20 @@ impl<'a> Reader<'a> {
                 self.in_abs -= 1;
                 let e = e?;
                 self.expect(Tok::Ch('|'), "`|` closing an absolute value")?;
+                Ok(Expr::Call(Func::Abs, Box::new(e)))
+            }
+            // a norm has the unit of its argument
+            Tok::Cmd(c) if (c == "|" || c == "Vert") && self.in_norm == 0 => {
+                self.in_norm += 1;
+                let e = self.expr();
+                self.in_norm -= 1;
+                let e = e?;
+                self.skip_space();
+                if !matches!(self.peek(), Tok::Cmd(c) if c == "|" || c == "Vert") {
+                    return self.err("`\\|` closing a norm");
+                }
+                self.bump();
+                self.norm_subscript()?;
                 Ok(Expr::Call(Func::Abs, Box::new(e)))
             }
             Tok::Ch(c) if c.is_ascii_alphabetic() => {
@@ -459,13 +599,25 @@ impl<'a> Reader<'a> {
         Ok(Expr::Sym(format!("{{({})}}", parts.join(", "))))
     }
 
-    /// A name, or a name applied to arguments (`w(x, y, t)`, `P(t)`): an opaque symbol.
+    /// A name, or a name applied to arguments (`w(x, y, t)`, `P(t)`): an opaque symbol. A
+    /// name the paper applies elsewhere is applied to any arguments (`x(t + T)`, `U(L/c)`),
+    /// also after a power (`\omega^2(t)`: the square of `\omega(t)`).
     fn maybe_applied(&mut self, name: String) -> R<Expr> {
+        if self.functions.contains(&name) && *self.peek() == Tok::Ch('^') && self.power_then_paren()
+        {
+            self.bump();
+            let p = self.group()?;
+            let applied = self.maybe_applied(name)?;
+            return Ok(power(applied, p));
+        }
         let open = match (self.peek(), self.toks.get(self.pos + 1)) {
             (Tok::Ch('('), _) => 1,
             (Tok::Cmd(l), Some((Tok::Ch('('), _))) if l == "left" => 2,
             _ => return Ok(Expr::Sym(name)),
         };
+        if let Some(e) = self.applied_to_formulas(&name, open)? {
+            return Ok(e);
+        }
         // the arguments: names or numbers separated by commas, at one level
         let mut k = self.pos + open;
         let mut args = Vec::new();
@@ -476,6 +628,8 @@ impl<'a> Reader<'a> {
                 Some(Tok::Num(n)) => cur.push_str(n),
                 Some(Tok::Ch('_')) => cur.push('_'),
                 Some(Tok::Open | Tok::Close) => {}
+                // a font on an argument (`\mathbf{x}_p`) is no part of its name here
+                Some(Tok::Cmd(c)) if accent_suffix(c) == Some("") => {}
                 Some(Tok::Cmd(c)) if greek(c).is_some() || c == "prime" => {
                     cur.push_str(greek(c).unwrap_or("p"))
                 }
@@ -498,6 +652,13 @@ impl<'a> Reader<'a> {
     }
 
     fn command(&mut self, c: &str, col: usize) -> R<Expr> {
+        // `\Delta t`, `\delta x`: an increment, in the unit of what it increments
+        if (c == "Delta" || c == "delta")
+            && !self.lone.contains(c)
+            && self.name_follows(c == "delta")
+        {
+            return self.increment(c);
+        }
         if let Some(g) = greek(c) {
             let name = self.name_tail(g.to_string())?;
             return self.maybe_applied(name);
@@ -512,11 +673,57 @@ impl<'a> Reader<'a> {
             {
                 return self.function(f);
             }
-            let name = self.name_tail(format!("{inner}{suffix}"))?;
+            // `\mathrm{d} x`: an increment of x
+            if inner == "d" && suffix.is_empty() && self.name_follows(false) {
+                return self.increment("d");
+            }
+            // `\mathbf{0}`: a number in a font is the number
+            if suffix.is_empty() && inner.chars().all(|c| c.is_ascii_digit()) {
+                return num(&inner).map_or_else(|| self.err("a number"), Ok);
+            }
+            let tail = self.name_tail(String::new())?;
+            let name = format!("{inner}{suffix}{tail}");
+            // a dotted name is the time derivative of its base
+            let order = ["dot", "ddot", "dddot"].iter().position(|d| *d == c);
+            if let Some(k) = order {
+                let base = format!("{inner}{tail}");
+                let link = (name.clone(), base, k as u32 + 1);
+                if !self.links.contains(&link) {
+                    self.links.push(link);
+                }
+            }
             return self.maybe_applied(name);
         }
         match c {
             "pi" => Ok(Expr::Pi),
+            "infty" => Ok(Expr::Sym(INFINITY.into())),
+            "ldots" | "cdots" | "dots" | "dotsb" | "dotsc" | "dotsm" | "dotsi" | "vdots" => {
+                Ok(Expr::Sym(ELLIPSIS.into()))
+            }
+            "prod" => self.big(Calc::Prod),
+            "max" | "sup" | "esssup" => self.big(Calc::Max),
+            "min" | "inf" | "essinf" => self.big(Calc::Min),
+            "lim" | "limsup" | "liminf" => self.big(Calc::Lim),
+            "partial" => self.partial(),
+            "langle" => self.angle("rangle"),
+            "lvert" | "vert" => {
+                self.in_abs += 1;
+                let e = self.expr();
+                self.in_abs -= 1;
+                let e = e?;
+                self.skip_space();
+                if !matches!(self.peek(), Tok::Cmd(c) if c == "rvert" || c == "vert") {
+                    return self.err("`\\rvert` closing an absolute value");
+                }
+                self.bump();
+                Ok(Expr::Call(Func::Abs, Box::new(e)))
+            }
+            "lVert" => {
+                let e = self.expr()?;
+                self.expect(Tok::Cmd("rVert".into()), "`\\rVert` closing a norm")?;
+                self.norm_subscript()?;
+                Ok(Expr::Call(Func::Abs, Box::new(e)))
+            }
             "frac" | "dfrac" | "tfrac" => self.frac(),
             "sqrt" => {
                 self.skip_space();
@@ -533,26 +740,16 @@ impl<'a> Reader<'a> {
             }
             "left" => self.left(),
             "{" => self.closing_cmd("}"),
-            "sum" => self.sum(),
-            "int" if *self.peek() == Tok::Ch('_') => self.integral(),
-            "int" | "iint" | "iiint" | "oint" => self.region_integral(),
-            "max" | "min" => Err(TexError {
-                column: col,
-                construct: format!(
-                    "`\\{c}` (a maximum over a set; retype it with `{c}(a, b)` of the formula language)"
-                ),
-                found: format!("\\{c}"),
-            }),
-            "ldots" | "cdots" | "dots" => Err(TexError {
-                column: col,
-                construct: "an ellipsis (`\\ldots`): a sequence, not a formula".into(),
-                found: format!("\\{c}"),
-            }),
-            "infty" => Err(TexError {
-                column: col,
-                construct: "infinity (`\\infty`): an infinite sum or bound is not a formula".into(),
-                found: "\\infty".into(),
-            }),
+            "sum" => self.big(Calc::Sum),
+            "int" if *self.peek() == Tok::Ch('_') && self.bounds_follow() => self.integral(),
+            "int" | "iint" | "iiint" | "oint" | "oiint" => {
+                // `\iiint_V`: the region named, not a bound
+                if *self.peek() == Tok::Ch('_') {
+                    self.bump();
+                    self.group()?;
+                }
+                self.region_integral()
+            }
             "begin" => Err(TexError {
                 column: col,
                 construct: "an environment inside a formula (`\\begin{cases}`, an array)".into(),
@@ -566,82 +763,104 @@ impl<'a> Reader<'a> {
         }
     }
 
-    fn closing_cmd(&mut self, close: &str) -> R<Expr> {
-        let e = self.expr()?;
-        self.expect(Tok::Cmd(close.into()), &format!("`\\{close}`"))?;
-        Ok(e)
-    }
-
-    /// `\left( ... \right)` and its kin; `\left|` is an absolute value.
-    fn left(&mut self) -> R<Expr> {
-        let open = self.bump();
-        let e = self.expr()?;
-        let e = self.tuple(e)?;
-        self.skip_space();
-        if !matches!(self.peek(), Tok::Cmd(c) if c == "right") {
-            return self.err("`\\right` closing `\\left`");
-        }
-        self.bump();
-        self.bump();
-        let abs = open == Tok::Ch('|') || open == Tok::Cmd("|".into());
-        Ok(if abs {
-            Expr::Call(Func::Abs, Box::new(e))
-        } else {
-            e
-        })
-    }
-
-    fn frac(&mut self) -> R<Expr> {
-        self.skip_space();
-        // \frac{\partial f}{\partial x} and \frac{d f}{d x}: a derivative
-        let save = self.pos;
-        if *self.peek() == Tok::Open {
-            self.bump();
-            self.skip_space();
-            let partial = matches!(self.peek(), Tok::Cmd(c) if c == "partial");
-            if partial || (*self.peek() == Tok::Ch('d') && self.diff_denominator_follows()) {
-                self.bump();
-                let body = self.expr()?;
-                self.expect(Tok::Close, "`}`")?;
-                self.expect(Tok::Open, "`{` of the derivative's denominator")?;
-                self.skip_space();
-                self.bump();
-                self.skip_space();
-                let var = match self.bump() {
-                    Tok::Ch(c) if c.is_ascii_alphabetic() => self.name_tail(c.to_string())?,
-                    Tok::Cmd(g) if greek(&g).is_some() => {
-                        self.name_tail(greek(&g).unwrap_or_default().to_string())?
-                    }
-                    _ => return self.err("the variable of a derivative"),
-                };
-                self.expect(Tok::Close, "`}`")?;
-                return Ok(Expr::Calc(Calc::Diff, Box::new(body), var, vec![]));
-            }
-            self.pos = save;
-        }
-        let a = self.group()?;
-        let b = self.group()?;
-        Ok(Expr::Bin(Op::Div, Box::new(a), Box::new(b)))
-    }
-
-    /// Whether `{d ...}{d x}` follows (the denominator of a derivative).
-    fn diff_denominator_follows(&self) -> bool {
-        let mut depth = 0;
-        let mut k = self.pos;
-        while let Some((t, _)) = self.toks.get(k) {
+    /// The index of the `}` closing the group that opens at token `k`; `None` when it is not
+    /// closed.
+    pub(super) fn group_close(&self, k: usize) -> Option<usize> {
+        let mut depth = 0usize;
+        for (i, (t, _)) in self.toks.iter().enumerate().skip(k) {
             match t {
                 Tok::Open => depth += 1,
-                Tok::Close if depth == 0 => {
-                    return matches!(self.toks.get(k + 1), Some((Tok::Open, _)))
-                        && matches!(self.toks.get(k + 2), Some((Tok::Ch('d'), _)));
+                Tok::Close => {
+                    depth = depth.saturating_sub(1);
+                    if depth == 0 {
+                        return Some(i);
+                    }
                 }
-                Tok::Close => depth -= 1,
-                Tok::End => return false,
+                Tok::End => return None,
                 _ => {}
             }
-            k += 1;
         }
-        false
+        None
+    }
+
+    /// Past the `}` that closes the group the reader is inside (its `{` read before); `what`
+    /// names it in the error when it is not closed.
+    pub(super) fn skip_to_close(&mut self, what: &str) -> R<()> {
+        let mut depth = 1usize;
+        while depth > 0 {
+            match self.bump() {
+                Tok::Open => depth += 1,
+                Tok::Close => depth -= 1,
+                Tok::End => return self.err(format!("`}}` closing {what}")),
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether `^{..}` then `(` follow (`\omega^2(t)`).
+    fn power_then_paren(&self) -> bool {
+        let mut k = self.pos + 1;
+        match self.toks.get(k).map(|t| &t.0) {
+            Some(Tok::Open) => match self.group_close(k) {
+                Some(close) => k = close,
+                None => return false,
+            },
+            Some(Tok::Num(_) | Tok::Ch(_)) => {}
+            _ => return false,
+        }
+        matches!(self.toks.get(k + 1).map(|t| &t.0), Some(Tok::Ch('(')))
+            || matches!(
+                (self.toks.get(k + 1).map(|t| &t.0), self.toks.get(k + 2).map(|t| &t.0)),
+                (Some(Tok::Cmd(l)), Some(Tok::Ch('('))) if l == "left"
+            )
+    }
+
+    /// `name(a + b, c)` for a name the paper applies elsewhere: an opaque symbol named by its
+    /// arguments as read (`{x(t + T)}`), with the unit of the function; `None` for any other
+    /// name (a product follows).
+    fn applied_to_formulas(&mut self, name: &str, open: usize) -> R<Option<Expr>> {
+        if !self.functions.contains(name) {
+            return Ok(None);
+        }
+        let save = self.pos;
+        self.pos += open;
+        let mut args = Vec::new();
+        loop {
+            match self.expr() {
+                Ok(a) => args.push(a),
+                Err(_) => {
+                    self.pos = save;
+                    return Ok(None);
+                }
+            }
+            self.skip_space();
+            match self.peek() {
+                Tok::Ch(',') => {
+                    self.bump();
+                }
+                Tok::Ch(')') => {
+                    self.bump();
+                    break;
+                }
+                Tok::Cmd(r) if r == "right" => {
+                    self.bump();
+                    self.bump();
+                    break;
+                }
+                _ => {
+                    self.pos = save;
+                    return Ok(None);
+                }
+            }
+        }
+        // `\mathbf{r}(\mathbf{v} \cdot \mathbf{r})`: a function of itself is a product
+        if args.iter().any(|a| a.symbols().iter().any(|s| s == name)) {
+            self.pos = save;
+            return Ok(None);
+        }
+        let args: Vec<String> = args.iter().map(ToString::to_string).collect();
+        Ok(Some(Expr::Sym(format!("{{{name}({})}}", args.join(",")))))
     }
 
     /// `\sin x`, `\sin(x)`, `\sin^{2} x`, `\sin \frac{m \pi x}{a}`.
@@ -673,77 +892,6 @@ impl<'a> Reader<'a> {
         })
     }
 
-    /// An integral over a region, printed without limits (`\int x d\sigma`, `\iint f d\xi
-    /// d\eta`): its integrand read (so that what it holds is a formula), the whole an opaque
-    /// symbol named by its text (`{\int x d \sigma}`), as a function application is. The
-    /// formula language has no region: a claim maps the spelling in `[tex_symbols]`, or the
-    /// claim's reader refuses the symbol naming it.
-    fn region_integral(&mut self) -> R<Expr> {
-        let start = self.pos - 1;
-        // inside the integrand `d \sigma` ends the product; the depth is restored as it was
-        let outer = self.in_integral;
-        self.in_integral = outer.saturating_add(1);
-        let body = self.expr();
-        self.in_integral = outer;
-        body?;
-        self.skip_space();
-        if !self.is_differential() {
-            return self.err("the differential `d \\sigma` closing an integral over a region");
-        }
-        while self.is_differential() {
-            self.bump();
-            self.bump();
-            self.skip_space();
-        }
-        let text: Vec<String> = self.toks[start..self.pos]
-            .iter()
-            .filter(|(t, _)| !is_space(t))
-            .map(|(t, _)| describe(t))
-            .collect();
-        Ok(Expr::Sym(format!("{{{}}}", text.join(" "))))
-    }
-
-    /// `\sum_{i=0}^{k} body`.
-    fn sum(&mut self) -> R<Expr> {
-        self.expect(Tok::Ch('_'), "`_{i=lo}` after `\\sum`")?;
-        self.expect(Tok::Open, "`{` of the sum's range")?;
-        self.skip_space();
-        let var = match self.bump() {
-            Tok::Ch(c) if c.is_ascii_alphabetic() => self.name_tail(c.to_string())?,
-            _ => return self.err("the index of a sum"),
-        };
-        self.expect(Tok::Ch('='), "`=` in the sum's range")?;
-        let lo = self.expr()?;
-        self.expect(Tok::Close, "`}`")?;
-        self.expect(Tok::Ch('^'), "`^{hi}` after `\\sum_{...}`")?;
-        let hi = self.group()?;
-        let body = self.term()?;
-        Ok(Expr::Calc(Calc::Sum, Box::new(body), var, vec![lo, hi]))
-    }
-
-    /// `\int_{a}^{b} body d x`.
-    fn integral(&mut self) -> R<Expr> {
-        self.expect(Tok::Ch('_'), "`_{lo}` after `\\int`")?;
-        let lo = self.group()?;
-        self.expect(Tok::Ch('^'), "`^{hi}` after `\\int_{...}`")?;
-        let hi = self.group()?;
-        self.in_integral += 1;
-        let body = self.expr();
-        self.in_integral -= 1;
-        let body = body?;
-        self.skip_space();
-        if !self.is_differential() {
-            return self.err("the differential `d x` closing an integral");
-        }
-        self.bump();
-        let var = match self.bump() {
-            Tok::Ch(c) => self.name_tail(c.to_string())?,
-            Tok::Cmd(g) => self.name_tail(greek(&g).unwrap_or_default().to_string())?,
-            _ => return self.err("the variable of an integral"),
-        };
-        Ok(Expr::Calc(Calc::Int, Box::new(body), var, vec![lo, hi]))
-    }
-
     /// A chain of relations: `a = b`, `a = b = 0`, `a \le b`.
     pub(super) fn relation(&mut self) -> R<TexRelation> {
         let mut sides = vec![self.expr()?];
@@ -754,10 +902,21 @@ impl<'a> Reader<'a> {
                 Tok::Ch('=') => "=",
                 Tok::Ch('<') => "<",
                 Tok::Ch('>') => ">",
+                // `:=` defines
+                Tok::Ch(':') if self.at(1) == Some(&Tok::Ch('=')) => {
+                    self.bump();
+                    "="
+                }
                 Tok::Cmd(c) => match c.as_str() {
-                    "le" | "leq" | "leqslant" => "<=",
-                    "ge" | "geq" | "geqslant" => ">=",
-                    "approx" | "simeq" | "sim" => "~",
+                    "le" | "leq" | "leqslant" | "lesssim" | "leqq" => "<=",
+                    "ge" | "geq" | "geqslant" | "gtrsim" | "geqq" => ">=",
+                    "ll" => "<<",
+                    "gg" => ">>",
+                    "approx" | "simeq" | "cong" | "doteq" | "approxeq" => "~",
+                    "coloneqq" | "triangleq" | "eqqcolon" | "stackrel" => "=",
+                    // a proportionality and a scaling claim no unit of their factor
+                    "propto" => "propto",
+                    "sim" => "sim",
                     "ne" | "neq" => "!=",
                     "perp" => "perp",
                     "equiv" => "==",
@@ -772,7 +931,11 @@ impl<'a> Reader<'a> {
         }
         self.skip_space();
         match self.peek().clone() {
-            Tok::End => Ok(TexRelation { sides, rels }),
+            Tok::End => Ok(TexRelation {
+                sides,
+                rels,
+                links: std::mem::take(&mut self.links),
+            }),
             Tok::Cmd(c) if c == "begin" => {
                 self.err("an environment inside a formula (`\\begin{cases}`, an array)")
             }
@@ -781,6 +944,14 @@ impl<'a> Reader<'a> {
         }
     }
 }
+/// The operators whose name may be a part of a subscript (`F_{\max}`, `t_{\min}`).
+fn is_named_operator(c: &str) -> bool {
+    matches!(
+        c,
+        "max" | "min" | "sup" | "inf" | "lim" | "log" | "det" | "exp" | "arg" | "deg" | "dim"
+    )
+}
+
 pub(super) fn num(text: &str) -> Option<Expr> {
     crate::algebra::poly::parse_q(text).map(Expr::Num)
 }
@@ -802,4 +973,9 @@ fn inverse(f: Func) -> Option<Func> {
         Func::Tanh => Func::Atanh,
         _ => return None,
     })
+}
+
+/// The number 1.
+fn one() -> Expr {
+    num("1").unwrap_or(Expr::Pi)
 }

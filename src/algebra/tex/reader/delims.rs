@@ -1,0 +1,77 @@
+//! Delimiters: `\left( .. \right)` and its kin, absolute values and norms (`|x|`, `\|x\|`,
+//! `\lVert x \rVert`: the unit of their argument), `\langle x \rangle` (an average) and
+//! `\langle a, b \rangle` (a scalar product).
+
+use super::super::lex::Tok;
+use super::{R, Reader, mul};
+use crate::algebra::expr::{Calc, Expr, Func};
+
+impl Reader<'_> {
+    /// `\left( ... \right)` and its kin; `\left|` is an absolute value.
+    pub(super) fn left(&mut self) -> R<Expr> {
+        if matches!(self.peek(), Tok::Cmd(c) if c == "langle") {
+            self.bump();
+            return self.angle("rangle");
+        }
+        let open = self.bump();
+        let e = self.expr()?;
+        let e = self.tuple(e)?;
+        self.skip_space();
+        if !matches!(self.peek(), Tok::Cmd(c) if c == "right") {
+            return self.err("`\\right` closing `\\left`");
+        }
+        self.bump();
+        self.bump();
+        let abs = matches!(&open, Tok::Ch('|'))
+            || matches!(&open, Tok::Cmd(c) if matches!(c.as_str(), "|" | "Vert" | "lVert" | "lvert" | "vert"));
+        if abs {
+            self.norm_subscript()?;
+        }
+        Ok(if abs {
+            Expr::Call(Func::Abs, Box::new(e))
+        } else {
+            e
+        })
+    }
+
+    /// `\langle a \rangle` (an average: the unit of a) or `\langle a, b \rangle` (a scalar
+    /// product: the unit of a b); `close` the command that closes it.
+    pub(super) fn angle(&mut self, close: &str) -> R<Expr> {
+        let a = self.expr()?;
+        self.skip_space();
+        let e = if matches!(self.peek(), Tok::Ch(',' | '|')) {
+            self.bump();
+            let b = self.expr()?;
+            mul(a, b)
+        } else {
+            Expr::Calc(Calc::Mean, Box::new(a), String::new(), vec![])
+        };
+        self.skip_space();
+        if matches!(self.peek(), Tok::Cmd(c) if c == "right") {
+            self.bump();
+        }
+        self.expect(Tok::Cmd(close.into()), &format!("`\\{close}`"))?;
+        Ok(e)
+    }
+
+    /// The subscript of a norm (`\|x\|_2`, `\|x\|_{\infty}`), which names the norm: passed over.
+    pub(super) fn norm_subscript(&mut self) -> R<()> {
+        if *self.peek() == Tok::Ch('_') {
+            self.bump();
+            self.skip_space();
+            if *self.peek() == Tok::Open {
+                self.bump();
+                self.skip_to_close("a norm's subscript")?;
+            } else {
+                self.bump();
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn closing_cmd(&mut self, close: &str) -> R<Expr> {
+        let e = self.expr()?;
+        self.expect(Tok::Cmd(close.into()), &format!("`\\{close}`"))?;
+        Ok(e)
+    }
+}

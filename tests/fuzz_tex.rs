@@ -1,0 +1,201 @@
+//! The LaTeX reader never panics and always ends (issue 51): mangled LaTeX of every kind
+//! (random bytes, pieces of displays glued at random, truncated displays, unbalanced braces and
+//! environments, macros that expand into themselves, deep nesting, a large file) goes through
+//! the whole paper pipeline (the document, its macros and `\input`s, the displays, the audit),
+//! which must return, with whatever statuses, and never panic.
+//!
+//! A run that panics fails the test; one that loops is stopped by the harness's time limit
+//! (each case is small, so a case that takes long is a fault too: the large-file case must end
+//! within seconds).
+
+use impactcheck::algebra::tex::document::read_document_with;
+use impactcheck::verify::audit::{Units, audit};
+use impactcheck::verify::tex_claims::blocks_at;
+use proptest::prelude::*;
+
+/// Pieces papers are made of, and the pieces that break them.
+const PIECES: &[&str] = &[
+    "\\begin{align}",
+    "\\end{align}",
+    "\\begin{equation}",
+    "\\end{equation}",
+    "\\begin{cases}",
+    "\\end{cases}",
+    "\\begin{eqnarray}",
+    "\\end{eqnarray}",
+    "\\begin{subequations}",
+    "\\end{subequations}",
+    "\\begin{array}{cc}",
+    "\\end{array}",
+    "$$",
+    "\\[",
+    "\\]",
+    "\\\\",
+    "\\\\[2mm]",
+    "&",
+    "&=&",
+    "=",
+    "<",
+    "\\le",
+    "\\approx",
+    "\\propto",
+    "\\sim",
+    "\\pm",
+    "\\mp",
+    "+",
+    "-",
+    "{",
+    "}",
+    "(",
+    ")",
+    "[",
+    "]",
+    "^",
+    "_",
+    "\\frac",
+    "\\frac12",
+    "\\sqrt",
+    "\\left(",
+    "\\right)",
+    "\\left|",
+    "\\right.",
+    "\\|",
+    "|",
+    "\\langle",
+    "\\rangle",
+    "\\lVert",
+    "\\rVert",
+    "\\vert",
+    "x",
+    "y",
+    "t",
+    "d",
+    "\\mathrm{d}",
+    "{\\rm d}",
+    "\\partial",
+    "\\partial^2",
+    "\\partial_t",
+    "\\Delta",
+    "\\delta",
+    "\\dot{x}",
+    "\\ddot{\\vec{p}}",
+    "\\sum_{i=1}^{n}",
+    "\\sum_{n=1,3,\\ldots}",
+    "\\prod",
+    "\\max_i",
+    "\\min",
+    "\\lim_{k \\to \\infty}",
+    "\\infty",
+    "\\ldots",
+    "\\cdots",
+    "\\int_0^1",
+    "\\iint",
+    "\\int_V",
+    "E^{*2}",
+    "v_{j+1}",
+    "x^{(k)}",
+    "\\mathcal{L}",
+    "\\text{if}",
+    "\\quad",
+    "\\Rightarrow",
+    "\\newcommand{\\a}{\\a x}",
+    "\\newcommand{\\b}[2]{#1+#2}",
+    "\\b",
+    "\\def\\c#1{#1#1}",
+    "\\c",
+    "\\renewcommand",
+    "\\DeclareMathOperator{\\op}{op}",
+    "\\op",
+    "#1",
+    "#",
+    "\\input{x}",
+    "\\input{../../etc/passwd}",
+    "\\include{/abs}",
+    "\\label{a}",
+    "\\tag{1}",
+    "\\nonumber",
+    "\\notag",
+    "%",
+    "\\%",
+    "\n",
+    " ",
+    "\u{00e9}",
+    "\u{221e}",
+    "\u{1F600}",
+    "\\",
+    "\\{",
+    "\\}",
+    ":=",
+    ",",
+    ";",
+    ".",
+    "'",
+    "\\prime",
+    "\\section{A}",
+    "\\numberwithin{equation}{section}",
+];
+
+/// The pipeline on `source`: displays (with a loader that reads nothing), then the audit.
+fn run(source: &str) {
+    let doc = read_document_with(source, &|name| Err(format!("no {name}")));
+    let _ = doc.numbers.len();
+    let dir = std::env::temp_dir();
+    let (blocks, doc) = blocks_at(source, Some(&dir), "\\newcommand{\\p}{\\p}");
+    let a = audit(&blocks, doc.as_ref(), &Units::default());
+    for r in &a.relations {
+        assert!(!r.status.is_empty());
+    }
+}
+
+fn glued() -> impl Strategy<Value = String> {
+    prop::collection::vec(prop::sample::select(PIECES), 0..60).prop_map(|v| v.concat())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    #[test]
+    fn pieces_glued_at_random(body in glued()) {
+        run(&body);
+        run(&format!("\\begin{{align}}{body}\\end{{align}}"));
+        run(&format!("$${body}$$"));
+    }
+
+    #[test]
+    fn random_bytes(bytes in prop::collection::vec(any::<u8>(), 0..400)) {
+        run(&String::from_utf8_lossy(&bytes));
+    }
+
+    #[test]
+    fn a_display_cut_anywhere(cut in 0usize..400) {
+        let paper = "\\newcommand{\\pd}[2]{\\frac{\\partial #1}{\\partial #2}}\n\
+            \\begin{align}\ny &= a + b \\nonumber \\\\\n &\\quad - \\pd{w}{t} \\label{e} \\\\\n\
+            F &= \\begin{cases} k\\delta & \\delta > 0 \\\\ 0 & \\text{otherwise} \\end{cases}\n\
+            \\end{align}\n$$ \\| F_t \\| \\le \\mu N , \\quad \\sum_{i=1}^{\\infty} a_i = \\max_j b_j $$";
+        let cut = paper.char_indices().map(|(i, _)| i).nth(cut).unwrap_or(paper.len());
+        run(&paper[..cut]);
+        run(&paper[cut..]);
+    }
+}
+
+#[test]
+fn deep_nesting_and_a_large_file_end() {
+    // 5,000 open braces, parentheses and \left( in a display: refused by the nesting limit
+    for open in ["{", "(", "\\left(", "\\frac{", "\\sqrt{", "|", "\\|"] {
+        run(&format!("$$ x = {} $$", open.repeat(5000)));
+    }
+    // a macro that doubles itself: stopped by the expansion limits, not the memory
+    run("\\def\\a{\\a\\a}\n$$ \\a = 1 $$");
+    run(
+        "\\newcommand{\\b}[1]{#1#1#1#1}\n$$ x = \\b{\\b{\\b{\\b{\\b{\\b{\\b{\\b{\\b{\\b{y}}}}}}}}}} $$",
+    );
+    // 4,000 displays of a real relation: read in seconds
+    let big: String = (0..4000)
+        .map(|k| {
+            format!("\\begin{{equation}} E_{{{k}}} = \\frac{{1}}{{2}} m v^2 \\end{{equation}}\n")
+        })
+        .collect();
+    let started = std::time::Instant::now();
+    run(&big);
+    assert!(started.elapsed().as_secs() < 60, "{:?}", started.elapsed());
+}
