@@ -106,9 +106,11 @@ fn the_seeds_display_equations_are_read() {
     // an environment nests like a brace, so the `\\` of a `vmatrix` inside a display no longer
     // splits the display's row (002's (2.5), and the matrices before (4.8)), a continuation
     // row after `\quad` joins its relation, and the sums, limits, norms, cases and increments
-    // of the seeds are read); more unread relations is a regression
-    assert!(total - read <= 22, "read {read} of {total}");
-    assert!(total >= 281, "fewer relations found: {total}");
+    // of the seeds are read; 278 of 286 once matrices inside a formula, `{ }^{2}`, `\{ .. \}`,
+    // labels in a font (`M_0^{\mathbf{p}}`) and conditions in parentheses are read); more
+    // unread relations is a regression
+    assert!(total - read <= 8, "read {read} of {total}");
+    assert!(total >= 286, "fewer relations found: {total}");
 }
 
 #[test]

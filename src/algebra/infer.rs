@@ -92,7 +92,7 @@ pub struct Relation {
 /// Whether a relation sign claims its two sides are in one unit (all but a proportionality
 /// `\propto` and a scaling `\sim`).
 pub fn links_units(rel: &str) -> bool {
-    !matches!(rel, "propto" | "sim")
+    !matches!(rel, "propto" | "sim" | "in")
 }
 
 /// What the inference says of one relation.

@@ -836,8 +836,8 @@ mod tests {
         let s = index_section(&papers);
         for row in [
             "| [000](audit/000.md) | 51 | 38 | 8 | 1 | 4 |",
-            "| [001](audit/001.md) | 83 | 67 | 1 | 4 | 11 |",
-            "| [002](audit/002.md) | 142 | 95 | 7 | 29 | 11 |",
+            "| [001](audit/001.md) | 86 | 75 | 1 | 8 | 2 |",
+            "| [002](audit/002.md) | 141 | 100 | 7 | 31 | 3 |",
         ] {
             assert!(s.contains(row), "{row} not in {s}");
         }

@@ -156,6 +156,20 @@ pub(crate) fn split_top(text: &str, seps: &[&str]) -> Vec<String> {
         let c = chars[i];
         // an escaped brace, and the spacing commands `\,` `\;` (not the separators , ;)
         if c == '\\' && i + 1 < chars.len() && matches!(chars[i + 1], '{' | '}' | ',' | ';') {
+            // a bare `\{ .. \}` (a set, `\max\{0, x\}`) nests; after `\left`, `\right` or a
+            // size the command counted already
+            let sized = [
+                "left", "right", "bigl", "bigr", "Bigl", "Bigr", "big", "Big", "bigg", "Bigg",
+            ]
+            .iter()
+            .any(|w| cur.trim_end().ends_with(&format!("\\{w}")));
+            if !sized {
+                match chars[i + 1] {
+                    '{' => depth += 1,
+                    '}' => depth -= 1,
+                    _ => {}
+                }
+            }
             cur.push(c);
             cur.push(chars[i + 1]);
             i += 2;
@@ -209,7 +223,7 @@ pub(crate) fn split_top(text: &str, seps: &[&str]) -> Vec<String> {
 /// `cases` made one row of its values and conditions ([`cases_row`]); a relation with `\pm`
 /// read as its two branches.
 pub fn read_display(block: &str, syms: &TexSymbols) -> Vec<TexRow> {
-    let mut text = block.to_string();
+    let mut text = drop_phantoms(block);
     // rows of an array, often braced by \left\{ ... \right.: the brace and the column
     // specification go
     if text.contains("\\begin{array}") {
@@ -251,8 +265,17 @@ pub fn read_display(block: &str, syms: &TexSymbols) -> Vec<TexRow> {
             let (tex, tag) = take_tag(&row);
             let relations = split_top(&words_as_separators(&tex), RELATION_SEPARATORS)
                 .into_iter()
-                .map(|p| p.trim().trim_end_matches('.').trim().to_string())
+                // a relation left open by a word (`E = T + V = \text{const}`) ends before it
+                .map(|p| {
+                    p.trim()
+                        .trim_end_matches('.')
+                        .trim()
+                        .trim_end_matches('=')
+                        .trim()
+                        .to_string()
+                })
                 .filter(|p| !p.is_empty())
+                .flat_map(|p| unwrap_condition(&p))
                 .flat_map(|p| branches(&p))
                 .map(|p| read_relation(&p, syms))
                 .collect();
@@ -360,11 +383,15 @@ pub(super) fn words_as_separators(tex: &str) -> String {
                 continue;
             };
             let words = inner[..close].trim().to_lowercase();
+            // words of any language but English (`\text{常数}`) are words too
+            let foreign = words.chars().any(|c| c.is_alphabetic() && !c.is_ascii());
             let first = words
                 .split(|c: char| c.is_whitespace() || c == ',' || c == '~')
                 .find(|w| !w.is_empty())
                 .unwrap_or("");
-            if depth_at(&out, at) == 0 && (words.is_empty() || CONNECTIVES.contains(&first)) {
+            if depth_at(&out, at) == 0
+                && (words.is_empty() || foreign || CONNECTIVES.contains(&first))
+            {
                 let end = after + (rest.len() - rest.trim_start().len()) + 1 + close + 1;
                 out.replace_range(at..end, " ; ");
                 from = at + 3;
@@ -372,6 +399,71 @@ pub(super) fn words_as_separators(tex: &str) -> String {
         }
     }
     out
+}
+
+/// `tex` without `\phantom{..}`, `\hphantom{..}`, `\vphantom{..}` (space only).
+fn drop_phantoms(tex: &str) -> String {
+    let mut out = tex.to_string();
+    for cmd in ["\\phantom{", "\\hphantom{", "\\vphantom{"] {
+        while let Some(at) = out.find(cmd) {
+            let start = at + cmd.len();
+            let mut depth = 1;
+            let mut end = out.len();
+            for (i, c) in out[start..].char_indices() {
+                match c {
+                    '{' => depth += 1,
+                    '}' => {
+                        depth -= 1;
+                        if depth == 0 {
+                            end = start + i + 1;
+                            break;
+                        }
+                    }
+                    _ => {}
+                }
+            }
+            out.replace_range(at..end, " ");
+        }
+    }
+    out
+}
+
+/// A relation written in parentheses after another (`\quad (i = 1, 2, \ldots, n)`, `(M \gg
+/// m)`): a condition, read without its parentheses (and split at its commas); any other piece
+/// as it is.
+fn unwrap_condition(piece: &str) -> Vec<String> {
+    let t = piece.trim();
+    let inner = if let Some(i) = t.strip_prefix('(').and_then(|r| r.strip_suffix(')')) {
+        i
+    } else if let Some(i) = t.strip_prefix("\\left(").and_then(|r| {
+        r.strip_suffix(")")
+            .and_then(|r| r.trim_end().strip_suffix("\\right"))
+    }) {
+        i
+    } else {
+        return vec![piece.to_string()];
+    };
+    // the parentheses enclose the whole piece, and a relation stands inside them
+    let mut depth = 0i32;
+    let mut prev = ' ';
+    let mut balanced = true;
+    for c in inner.chars() {
+        match c {
+            '{' | '(' | '[' if prev != '\\' => depth += 1,
+            '}' | ')' | ']' if prev != '\\' => depth -= 1,
+            _ => {}
+        }
+        balanced &= depth >= 0;
+        prev = c;
+    }
+    if !balanced || depth != 0 || !starts_relation(inner) {
+        return vec![piece.to_string()];
+    }
+    split_top(inner, &[","])
+        .into_iter()
+        .map(|p| p.trim().to_string())
+        .filter(|p| !p.is_empty())
+        .collect()
 }
 
 /// How deep in braces and brackets byte `at` of `text` is.
@@ -475,7 +567,11 @@ pub(super) fn cases_row(block: &str) -> String {
 /// Whether a row that starts with `-` or `+` is a relation of its own (`-a = b`) rather than the
 /// continuation of the row before (a relation sign at the top level).
 pub(super) fn starts_relation(row: &str) -> bool {
-    split_top(row, &["=", "\\le", "\\ge", "<", ">", "\\approx"]).len() > 1
+    let signs = [
+        "=", "\\le", "\\ge", "\\leq", "\\geq", "<", ">", "\\approx", "\\ll", "\\gg", "\\ne",
+        "\\neq", "\\sim", "\\propto", "\\to",
+    ];
+    split_top(row, &signs).len() > 1
 }
 
 /// The row without its `\tag{...}`, and the tag.

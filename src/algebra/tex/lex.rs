@@ -51,6 +51,18 @@ pub(super) fn lex(src: &str, syms: &TexSymbols) -> Vec<(Tok, usize)> {
                 i += 1;
             }
             out.push((Tok::Num(chars[start..i].iter().collect()), col));
+        } else if c == '{'
+            && chars[i + 1..]
+                .iter()
+                .find(|c| !c.is_whitespace())
+                .is_some_and(|c| *c == '}')
+        {
+            // an empty group (`x'_k{}^2`, `\rho_{x}{ }^{2}`) only separates scripts
+            i += 1;
+            while chars[i] != '}' {
+                i += 1;
+            }
+            i += 1;
         } else if c == '{' {
             out.push((Tok::Open, col));
             i += 1;
@@ -83,6 +95,10 @@ pub(super) fn greek(cmd: &str) -> Option<&str> {
         "varkappa" => "kappa",
         "nabla" => "nabla",
         "ell" => "l",
+        "hbar" => "hbar",
+        // upright Greek (upgreek) and the variant capitals (`\varOmega`) are the letters
+        c if c.starts_with("up") && GREEK.contains(&&c[2..]) => &c[2..],
+        c if c.starts_with("var") && GREEK.contains(&&c[3..]) => &c[3..],
         c => return GREEK.iter().copied().find(|g| *g == c),
     })
 }
@@ -152,6 +168,7 @@ pub(super) fn is_space(t: &Tok) -> bool {
                 | "thinspace"
                 | "negthinspace"
                 | "relax"
+                | "strut"
         ),
         Tok::Ch('~') => true,
         _ => false,

@@ -267,6 +267,7 @@ impl Reader<'_> {
     /// formula language has no region: a claim maps the spelling in `[tex_symbols]`, or the
     /// claim's reader refuses the symbol naming it.
     pub(super) fn region_integral(&mut self) -> R<Expr> {
+        self.skip_space();
         // inside the integrand `d \sigma` ends the product; the depth is restored as it was
         let outer = self.in_integral;
         self.in_integral = outer.saturating_add(1);

@@ -71,6 +71,8 @@ impl Reader<'_> {
 
     pub(super) fn closing_cmd(&mut self, close: &str) -> R<Expr> {
         let e = self.expr()?;
+        // `\{Q, P\}`: a bracket of two, opaque as a pair is
+        let e = self.tuple(e)?;
         self.expect(Tok::Cmd(close.into()), &format!("`\\{close}`"))?;
         Ok(e)
     }

@@ -8,6 +8,7 @@ use crate::algebra::expr::{Calc, Expr, Func, Op};
 use crate::algebra::units::{ELLIPSIS, INFINITY};
 use std::collections::BTreeSet;
 
+mod apply;
 mod big;
 mod calculus;
 mod delims;
@@ -242,6 +243,20 @@ impl<'a> Reader<'a> {
                     self.bump();
                     name.push('p');
                 }
+                // `t"`: a double prime as a scanned paper prints it
+                Tok::Ch('"') => {
+                    self.bump();
+                    name.push_str("pp");
+                }
+                // `M_0^{\mathbf{p}}`, `A^{\mathrm{ext}}`: a label in a font, part of the name
+                Tok::Ch('^')
+                    if self.at(1) == Some(&Tok::Open)
+                        && matches!(self.at(2), Some(Tok::Cmd(c)) if accent_suffix(c) == Some("") || c == "rm") =>
+                {
+                    self.bump();
+                    let label = self.name_text()?;
+                    name.push_str(&label);
+                }
                 // `x^{(k)}`: an index in parentheses, part of the name
                 Tok::Ch('^') if self.paren_index().is_some() => {
                     let (part, len) = self.paren_index().unwrap_or_default();
@@ -372,6 +387,18 @@ impl<'a> Reader<'a> {
                     || accent_suffix(c).is_some()
                     || matches!(
                         c.as_str(),
+                        "cot"
+                            | "sec"
+                            | "csc"
+                            | "coth"
+                            | "uppi"
+                            | "underbrace"
+                            | "overbrace"
+                            | "begin"
+                            | "lvert"
+                    )
+                    || matches!(
+                        c.as_str(),
                         "frac"
                             | "dfrac"
                             | "tfrac"
@@ -482,10 +509,32 @@ impl<'a> Reader<'a> {
         }
         loop {
             match self.peek() {
+                // `180^{\circ}`: degrees, a number of radians
+                Tok::Ch('^') if self.degrees_follow() => {
+                    self.pos += if self.at(1) == Some(&Tok::Open) { 4 } else { 2 };
+                    let per = Expr::Bin(
+                        Op::Div,
+                        Box::new(Expr::Pi),
+                        Box::new(num("180").unwrap_or(Expr::Pi)),
+                    );
+                    e = mul(e, per);
+                }
                 Tok::Ch('^') => {
                     self.bump();
                     let p = self.group()?;
                     e = power(e, p);
+                }
+                // `x^2_{max}`, `v^2_i`: TeX takes the scripts in either order; the subscript
+                // belongs to the name
+                Tok::Ch('_') if matches!(&e, Expr::Bin(Op::Pow, b, _) if matches!(&**b, Expr::Sym(s) if is_name(s))) =>
+                {
+                    self.bump();
+                    let part = self.name_text()?;
+                    if let Expr::Bin(Op::Pow, b, _) = &mut e
+                        && let Expr::Sym(s) = &mut **b
+                    {
+                        s.push_str(&part);
+                    }
                 }
                 Tok::Ch('!') => {
                     self.bump();
@@ -584,73 +633,6 @@ impl<'a> Reader<'a> {
         Ok(e)
     }
 
-    /// `(a, b)` (a scalar product of vectors, a pair): an opaque symbol named by its parts.
-    fn tuple(&mut self, first: Expr) -> R<Expr> {
-        self.skip_space();
-        if *self.peek() != Tok::Ch(',') {
-            return Ok(first);
-        }
-        let mut parts = vec![first.to_string()];
-        while *self.peek() == Tok::Ch(',') {
-            self.bump();
-            parts.push(self.expr()?.to_string());
-            self.skip_space();
-        }
-        Ok(Expr::Sym(format!("{{({})}}", parts.join(", "))))
-    }
-
-    /// A name, or a name applied to arguments (`w(x, y, t)`, `P(t)`): an opaque symbol. A
-    /// name the paper applies elsewhere is applied to any arguments (`x(t + T)`, `U(L/c)`),
-    /// also after a power (`\omega^2(t)`: the square of `\omega(t)`).
-    fn maybe_applied(&mut self, name: String) -> R<Expr> {
-        if self.functions.contains(&name) && *self.peek() == Tok::Ch('^') && self.power_then_paren()
-        {
-            self.bump();
-            let p = self.group()?;
-            let applied = self.maybe_applied(name)?;
-            return Ok(power(applied, p));
-        }
-        let open = match (self.peek(), self.toks.get(self.pos + 1)) {
-            (Tok::Ch('('), _) => 1,
-            (Tok::Cmd(l), Some((Tok::Ch('('), _))) if l == "left" => 2,
-            _ => return Ok(Expr::Sym(name)),
-        };
-        if let Some(e) = self.applied_to_formulas(&name, open)? {
-            return Ok(e);
-        }
-        // the arguments: names or numbers separated by commas, at one level
-        let mut k = self.pos + open;
-        let mut args = Vec::new();
-        let mut cur = String::new();
-        loop {
-            match self.toks.get(k).map(|t| &t.0) {
-                Some(Tok::Ch(c)) if c.is_ascii_alphanumeric() || *c == '\'' => cur.push(*c),
-                Some(Tok::Num(n)) => cur.push_str(n),
-                Some(Tok::Ch('_')) => cur.push('_'),
-                Some(Tok::Open | Tok::Close) => {}
-                // a font on an argument (`\mathbf{x}_p`) is no part of its name here
-                Some(Tok::Cmd(c)) if accent_suffix(c) == Some("") => {}
-                Some(Tok::Cmd(c)) if greek(c).is_some() || c == "prime" => {
-                    cur.push_str(greek(c).unwrap_or("p"))
-                }
-                Some(Tok::Cmd(c)) if is_space(&Tok::Cmd(c.clone())) => {}
-                Some(Tok::Ch(',')) => args.push(std::mem::take(&mut cur)),
-                Some(Tok::Ch(')')) => {
-                    args.push(cur);
-                    break;
-                }
-                Some(Tok::Cmd(c)) if c == "right" => {}
-                _ => return Ok(Expr::Sym(name)),
-            }
-            k += 1;
-        }
-        if args.iter().any(String::is_empty) {
-            return Ok(Expr::Sym(name));
-        }
-        self.pos = k + 1;
-        Ok(Expr::Sym(format!("{{{name}({})}}", args.join(","))))
-    }
-
     fn command(&mut self, c: &str, col: usize) -> R<Expr> {
         // `\Delta t`, `\delta x`: an increment, in the unit of what it increments
         if (c == "Delta" || c == "delta")
@@ -695,8 +677,29 @@ impl<'a> Reader<'a> {
             return self.maybe_applied(name);
         }
         match c {
-            "pi" => Ok(Expr::Pi),
+            "pi" | "uppi" => Ok(Expr::Pi),
             "infty" => Ok(Expr::Sym(INFINITY.into())),
+            // cot, sec, csc as the reciprocals they are
+            "cot" | "sec" | "csc" | "coth" => {
+                let f = match c {
+                    "cot" => Func::Tan,
+                    "sec" => Func::Cos,
+                    "csc" => Func::Sin,
+                    _ => Func::Tanh,
+                };
+                let inner = self.function(f)?;
+                Ok(reciprocal_of_call(inner))
+            }
+            // `\underbrace{-kx}_{\text{spring}}`: the formula, its note dropped
+            "underbrace" | "overbrace" | "underset" | "overset" if c.ends_with("brace") => {
+                let e = self.group()?;
+                self.skip_space();
+                if matches!(self.peek(), Tok::Ch('_' | '^')) {
+                    self.bump();
+                    self.skip_group()?;
+                }
+                Ok(e)
+            }
             "ldots" | "cdots" | "dots" | "dotsb" | "dotsc" | "dotsm" | "dotsi" | "vdots" => {
                 Ok(Expr::Sym(ELLIPSIS.into()))
             }
@@ -750,11 +753,7 @@ impl<'a> Reader<'a> {
                 }
                 self.region_integral()
             }
-            "begin" => Err(TexError {
-                column: col,
-                construct: "an environment inside a formula (`\\begin{cases}`, an array)".into(),
-                found: "\\begin".into(),
-            }),
+            "begin" => self.matrix(col),
             other => Err(TexError {
                 column: col,
                 construct: format!("the command `\\{other}`"),
@@ -783,6 +782,15 @@ impl<'a> Reader<'a> {
         None
     }
 
+    /// Past one argument: a `{..}` group or a single token.
+    pub(super) fn skip_group(&mut self) -> R<()> {
+        self.skip_space();
+        if self.bump() == Tok::Open {
+            self.skip_to_close("a group")?;
+        }
+        Ok(())
+    }
+
     /// Past the `}` that closes the group the reader is inside (its `{` read before); `what`
     /// names it in the error when it is not closed.
     pub(super) fn skip_to_close(&mut self, what: &str) -> R<()> {
@@ -798,69 +806,13 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 
-    /// Whether `^{..}` then `(` follow (`\omega^2(t)`).
-    fn power_then_paren(&self) -> bool {
-        let mut k = self.pos + 1;
-        match self.toks.get(k).map(|t| &t.0) {
-            Some(Tok::Open) => match self.group_close(k) {
-                Some(close) => k = close,
-                None => return false,
-            },
-            Some(Tok::Num(_) | Tok::Ch(_)) => {}
-            _ => return false,
-        }
-        matches!(self.toks.get(k + 1).map(|t| &t.0), Some(Tok::Ch('(')))
-            || matches!(
-                (self.toks.get(k + 1).map(|t| &t.0), self.toks.get(k + 2).map(|t| &t.0)),
-                (Some(Tok::Cmd(l)), Some(Tok::Ch('('))) if l == "left"
-            )
-    }
-
-    /// `name(a + b, c)` for a name the paper applies elsewhere: an opaque symbol named by its
-    /// arguments as read (`{x(t + T)}`), with the unit of the function; `None` for any other
-    /// name (a product follows).
-    fn applied_to_formulas(&mut self, name: &str, open: usize) -> R<Option<Expr>> {
-        if !self.functions.contains(name) {
-            return Ok(None);
-        }
-        let save = self.pos;
-        self.pos += open;
-        let mut args = Vec::new();
-        loop {
-            match self.expr() {
-                Ok(a) => args.push(a),
-                Err(_) => {
-                    self.pos = save;
-                    return Ok(None);
-                }
-            }
-            self.skip_space();
-            match self.peek() {
-                Tok::Ch(',') => {
-                    self.bump();
-                }
-                Tok::Ch(')') => {
-                    self.bump();
-                    break;
-                }
-                Tok::Cmd(r) if r == "right" => {
-                    self.bump();
-                    self.bump();
-                    break;
-                }
-                _ => {
-                    self.pos = save;
-                    return Ok(None);
-                }
-            }
-        }
-        // `\mathbf{r}(\mathbf{v} \cdot \mathbf{r})`: a function of itself is a product
-        if args.iter().any(|a| a.symbols().iter().any(|s| s == name)) {
-            self.pos = save;
-            return Ok(None);
-        }
-        let args: Vec<String> = args.iter().map(ToString::to_string).collect();
-        Ok(Some(Expr::Sym(format!("{{{name}({})}}", args.join(",")))))
+    /// Whether `^\circ` or `^{\circ}` follows (degrees).
+    fn degrees_follow(&self) -> bool {
+        let circ = |t: Option<&Tok>| matches!(t, Some(Tok::Cmd(c)) if c == "circ");
+        circ(self.at(1))
+            || (self.at(1) == Some(&Tok::Open)
+                && circ(self.at(2))
+                && self.at(3) == Some(&Tok::Close))
     }
 
     /// `\sin x`, `\sin(x)`, `\sin^{2} x`, `\sin \frac{m \pi x}{a}`.
@@ -908,6 +860,10 @@ impl<'a> Reader<'a> {
                     "="
                 }
                 Tok::Cmd(c) => match c.as_str() {
+                    // tends to: one unit
+                    "to" | "rightarrow" | "longrightarrow" => "->",
+                    // membership claims no unit across
+                    "in" | "notin" | "subset" | "subseteq" => "in",
                     "le" | "leq" | "leqslant" | "lesssim" | "leqq" => "<=",
                     "ge" | "geq" | "geqslant" | "gtrsim" | "geqq" => ">=",
                     "ll" => "<<",
@@ -973,6 +929,15 @@ fn inverse(f: Func) -> Option<Func> {
         Func::Tanh => Func::Atanh,
         _ => return None,
     })
+}
+
+/// `1/f(x)` for `f(x)` (and `1/f(x)^p`, `f(x)^(-p)`, for a power of it): a cotangent from a
+/// tangent.
+fn reciprocal_of_call(e: Expr) -> Expr {
+    match e {
+        Expr::Bin(Op::Pow, base, p) => power(reciprocal_of_call(*base), *p),
+        other => Expr::Bin(Op::Div, Box::new(one()), Box::new(other)),
+    }
 }
 
 /// The number 1.
