@@ -346,3 +346,22 @@ fn an_increment_unless_the_paper_uses_its_letter_alone() {
     let r = read_relation(r"x = e^{-\delta t}", &paper).unwrap();
     assert_eq!(r.sides[1].to_string(), "exp(-(delta*t))");
 }
+
+#[test]
+fn reciprocal_functions_degrees_and_extremes_evaluate_as_written() {
+    // references typed by hand in the text language
+    same(
+        r"\cot \theta + \sec^{2} \phi",
+        "1/tan(theta) + (1/cos(phi))^2",
+    );
+    same(r"\csc x \coth y", "1/sin(x)*(1/tanh(y))");
+    same(r"30^{\circ} + 45^\circ", "30*pi/180 + 45*pi/180");
+    same(r"\max(a, b) - \min\{a, b\}", "max(a, b) - min(a, b)");
+    same(
+        r"\frac12 x + \dfrac{\mathrm{d} x}{\mathrm{d} t}(\tau)",
+        "x/2 + at(diff(x, t), t, tau)",
+    );
+    // an inverse cotangent is refused rather than read as 1/atan
+    let e = read_formula(r"\cot^{-1} x", &TexSymbols::default()).unwrap_err();
+    assert!(e.construct.contains("inverse"), "{e}");
+}

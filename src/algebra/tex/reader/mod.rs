@@ -456,7 +456,13 @@ impl<'a> Reader<'a> {
                     self.bump();
                     e = Expr::Bin(Op::Div, Box::new(e), Box::new(self.unary()?));
                 }
-                Tok::Cmd(c) if arg && func(&c).is_some() => return Ok(e),
+                Tok::Cmd(c)
+                    if arg
+                        && (func(&c).is_some()
+                            || matches!(c.as_str(), "cot" | "sec" | "csc" | "coth")) =>
+                {
+                    return Ok(e);
+                }
                 // a parenthesised factor ends a bare argument: `\cos \phi (a + b)` is
                 // cos(phi) (a + b), as `\sin \omega t` is sin(omega t)
                 Tok::Ch('(' | '[') if arg => return Ok(e),
@@ -688,6 +694,14 @@ impl<'a> Reader<'a> {
                     _ => Func::Tanh,
                 };
                 let inner = self.function(f)?;
+                // `\cot^{-1} x` is no reciprocal of `\tan^{-1} x`: refused, not misread
+                if matches!(&inner, Expr::Call(g, _) if *g != f) {
+                    return Err(TexError {
+                        column: col,
+                        construct: format!("an inverse `\\{c}^{{-1}}`"),
+                        found: format!("\\{c}"),
+                    });
+                }
                 Ok(reciprocal_of_call(inner))
             }
             // `\underbrace{-kx}_{\text{spring}}`: the formula, its note dropped
