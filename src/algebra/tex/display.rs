@@ -406,22 +406,8 @@ fn drop_phantoms(tex: &str) -> String {
     let mut out = tex.to_string();
     for cmd in ["\\phantom{", "\\hphantom{", "\\vphantom{"] {
         while let Some(at) = out.find(cmd) {
-            let start = at + cmd.len();
-            let mut depth = 1;
-            let mut end = out.len();
-            for (i, c) in out[start..].char_indices() {
-                match c {
-                    '{' => depth += 1,
-                    '}' => {
-                        depth -= 1;
-                        if depth == 0 {
-                            end = start + i + 1;
-                            break;
-                        }
-                    }
-                    _ => {}
-                }
-            }
+            // the group as the macro expander reads one; unclosed, the rest goes
+            let end = super::macros::group(&out, at + cmd.len() - 1).map_or(out.len(), |(_, e)| e);
             out.replace_range(at..end, " ");
         }
     }

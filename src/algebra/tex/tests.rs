@@ -365,3 +365,15 @@ fn reciprocal_functions_degrees_and_extremes_evaluate_as_written() {
     let e = read_formula(r"\cot^{-1} x", &TexSymbols::default()).unwrap_err();
     assert!(e.construct.contains("inverse"), "{e}");
 }
+
+#[test]
+fn a_phantom_is_space_even_unclosed() {
+    let rows = read_display(r"p_{b} = q \phantom{x{y}z}", &TexSymbols::default());
+    let r = rows[0].relations[0].as_ref().expect("reads");
+    assert_eq!(r.sides[1].to_string(), "q");
+    let rows = read_display(r"a = b \phantom{c", &TexSymbols::default());
+    assert_eq!(
+        rows[0].relations[0].as_ref().expect("reads").sides[1].to_string(),
+        "b"
+    );
+}
