@@ -148,7 +148,10 @@ impl Expr {
                     acc
                 }
             }
-            Expr::Calc(c @ (Calc::Max | Calc::Min | Calc::Lim | Calc::Mean | Calc::Region), ..) => {
+            Expr::Calc(
+                c @ (Calc::Max | Calc::Min | Calc::Lim | Calc::Mean | Calc::Region | Calc::Marked),
+                ..,
+            ) => {
                 return Err(format!(
                     "`{self}`: a `{}` read from a paper is not computed (its unit is that of its formula)",
                     c.name()

@@ -26,7 +26,7 @@
 
 use super::expr::{Calc, Expr, Func, Op};
 use super::poly::Q;
-use super::units::{ELLIPSIS, INFINITY, Unit, every_unit};
+use super::units::{ELLIPSIS, INFINITY, OPERAND, Unit, every_unit};
 use num_traits::{One, ToPrimitive, Zero};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -226,6 +226,10 @@ fn walk_in(
             if s == ELLIPSIS || s == INFINITY {
                 return Form::var(&scope.local("any"));
             }
+            // the operand of an operator written alone: the same on every side
+            if s == OPERAND {
+                return Form::default();
+            }
             let name = unit_name(s);
             match declared(&name) {
                 Some(u) => Form::constant(u),
@@ -252,17 +256,19 @@ fn walk_in(
                 Calc::Int => !extra.is_empty(),
                 other => other.binds(),
             };
-            let fx = if bound {
-                let local = scope.local(x);
-                let fx = Form::var(&local);
-                if matches!(c, Calc::Sum | Calc::Prod) {
-                    pure(&Expr::Sym(x.clone()), fx.clone(), "the index of a sum", out);
+            let local = bound.then(|| scope.local(x));
+            let fx = match &local {
+                Some(local) => {
+                    let fx = Form::var(local);
+                    if matches!(c, Calc::Sum | Calc::Prod) {
+                        pure(&Expr::Sym(x.clone()), fx.clone(), "the index of a sum", out);
+                    }
+                    fx
                 }
-                scope.bound.push((x.clone(), local));
-                fx
-            } else {
-                walk_in(&Expr::Sym(x.clone()), declared, out, scope)
+                None => walk_in(&Expr::Sym(x.clone()), declared, out, scope),
             };
+            // the bounds are outside the variable's scope: in `\int_{t_0}^{t} L dt` the upper
+            // `t` is the time outside
             for v in extra {
                 let fv = walk_in(v, declared, out, scope);
                 // a literal 0 bound has every unit, as has infinity
@@ -275,6 +281,9 @@ fn walk_in(
                     "a variable and its bounds",
                 ));
             }
+            if let Some(local) = local {
+                scope.bound.push((x.clone(), local));
+            }
             let fb = walk_in(body, declared, out, scope);
             if bound {
                 scope.bound.pop();
@@ -282,7 +291,13 @@ fn walk_in(
             match c {
                 Calc::Diff => fb.plus(&fx, &-Q::one()),
                 Calc::Int | Calc::Region => fb.plus(&fx, &Q::one()),
-                Calc::At | Calc::Sum | Calc::Max | Calc::Min | Calc::Lim | Calc::Mean => fb,
+                Calc::At
+                | Calc::Sum
+                | Calc::Max
+                | Calc::Min
+                | Calc::Lim
+                | Calc::Mean
+                | Calc::Marked => fb,
                 // n factors: the factor's unit n times, when the bounds give n
                 Calc::Prod => match (extra[0].exact_constant(), extra[1].exact_constant()) {
                     (Some(lo), Some(hi)) if (&hi - &lo).is_integer() => {
@@ -608,7 +623,7 @@ pub fn infer(relations: &[Option<Relation>], declared: &BTreeMap<String, Unit>) 
             names.extend(
                 s.symbols()
                     .iter()
-                    .filter(|x| *x != ELLIPSIS && *x != INFINITY)
+                    .filter(|x| *x != ELLIPSIS && *x != INFINITY && *x != OPERAND)
                     .map(|x| unit_name(x)),
             );
         }

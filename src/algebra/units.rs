@@ -168,6 +168,10 @@ pub fn every_unit(e: &Expr) -> bool {
 /// terms left out).
 pub const ELLIPSIS: &str = "...";
 
+/// The symbol the LaTeX reader reads the operand of an operator written alone as
+/// (`\frac{\partial}{\partial r} = \nabla`): the same on every side, so a pure number.
+pub const OPERAND: &str = "(operand)";
+
 /// The symbol the LaTeX reader reads `\infty` as.
 pub const INFINITY: &str = "infinity";
 
@@ -187,6 +191,7 @@ pub fn dimension(e: &Expr, unit: &dyn Fn(&str) -> Option<Unit>) -> Result<Unit, 
     };
     match e {
         Expr::Num(_) | Expr::Pi => Ok(Unit::one()),
+        Expr::Sym(s) if s == OPERAND => Ok(Unit::one()),
         Expr::Sym(s) => unit(s).ok_or_else(|| DimError::Unknown(s.clone())),
         Expr::Neg(a) => dimension(a, unit),
         Expr::Call(f, a) => match f {
@@ -209,7 +214,9 @@ pub fn dimension(e: &Expr, unit: &dyn Fn(&str) -> Option<Unit>) -> Result<Unit, 
             let bound = match c {
                 Calc::Sum | Calc::Prod => Some(Unit::one()),
                 // over an index set the paper does not give: the index's unit does not matter
-                Calc::Max | Calc::Min | Calc::Mean if x.is_empty() || extra.is_empty() => {
+                Calc::Max | Calc::Min | Calc::Mean | Calc::Marked
+                    if x.is_empty() || extra.is_empty() =>
+                {
                     Some(Unit::one())
                 }
                 Calc::Lim => match extra.iter().find(|v| !zero(v)) {
@@ -245,7 +252,13 @@ pub fn dimension(e: &Expr, unit: &dyn Fn(&str) -> Option<Unit>) -> Result<Unit, 
             Ok(match c {
                 Calc::Diff => ub.times(ux, (-1).into()),
                 Calc::Int | Calc::Region => ub.times(ux, 1.into()),
-                Calc::At | Calc::Sum | Calc::Max | Calc::Min | Calc::Lim | Calc::Mean => ub,
+                Calc::At
+                | Calc::Sum
+                | Calc::Max
+                | Calc::Min
+                | Calc::Lim
+                | Calc::Mean
+                | Calc::Marked => ub,
                 // a product of n factors: the factor's unit to the n-th, when n is known
                 Calc::Prod => match (extra[0].exact_constant(), extra[1].exact_constant()) {
                     _ if ub.is_one() => ub,

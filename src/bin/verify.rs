@@ -480,10 +480,16 @@ fn run_paper(command: &Command) -> Result<bool> {
         eprintln!("verify: {}: {problem}", paper.display());
     }
     if blocks.is_empty() {
-        bail!(
+        let none = format!(
             "{}: no display math found ($$ ... $$, \\[ ... \\], equation, align, gather, multline, eqnarray)",
             paper.display()
         );
+        // an audit of a text without displays is empty (a thesis whose chapters are missing,
+        // a note in words); a scaffold of nothing is no scaffold
+        if matches!(command, Command::Init { .. }) {
+            bail!("{none}");
+        }
+        eprintln!("verify: {none}: the audit is empty");
     }
     let a = verify::audit::audit(&blocks, doc.as_ref(), &units);
     let name = paper

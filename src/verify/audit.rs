@@ -221,7 +221,17 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
                             .sides
                             .iter()
                             .any(|s| s.symbols().iter().any(|x| x.starts_with('{')));
-                        let names = r.sides.iter().flat_map(|s| s.symbols()).collect();
+                        let special = [
+                            crate::algebra::units::ELLIPSIS,
+                            crate::algebra::units::INFINITY,
+                            crate::algebra::units::OPERAND,
+                        ];
+                        let names = r
+                            .sides
+                            .iter()
+                            .flat_map(|s| s.symbols())
+                            .filter(|s| !special.contains(&s.as_str()))
+                            .collect();
                         rels.push(AuditRelation {
                             read: Some(read),
                             opaque,
@@ -835,7 +845,7 @@ mod tests {
         let papers = crate::verify::load_claims(&dir).expect("loads");
         let s = index_section(&papers);
         for row in [
-            "| [000](audit/000.md) | 51 | 38 | 8 | 1 | 4 |",
+            "| [000](audit/000.md) | 51 | 39 | 8 | 1 | 3 |",
             "| [001](audit/001.md) | 86 | 75 | 1 | 8 | 2 |",
             "| [002](audit/002.md) | 141 | 100 | 7 | 31 | 3 |",
         ] {

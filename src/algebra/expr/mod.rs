@@ -366,6 +366,11 @@ pub enum Calc {
     /// `region(e, s)`: the integral of `e` over a region with the element `d s` (`\int_V e
     /// dV`, `\iint e d\xi d\eta` as two); not computed: its unit is that of `e s`.
     Region,
+    /// `marked(e)`: `e` with a mark the formula language does not compute: taken where an
+    /// evaluation bar or a subscript says (`F \big|_a^b`, `(\partial V/\partial q)_0`), a
+    /// component (`[\mathbf{D}]_{ab}`), a conjugate or transpose (`[P]^*`), a real part; not
+    /// computed: its unit is that of `e`.
+    Marked,
 }
 
 impl Calc {
@@ -392,12 +397,13 @@ impl Calc {
             Calc::Lim => "lim",
             Calc::Mean => "mean",
             Calc::Region => "region",
+            Calc::Marked => "marked",
         }
     }
 
     /// Whether the variable is bound (its own, whatever a symbol of its name is outside).
     pub fn binds(self) -> bool {
-        !matches!(self, Calc::Diff | Calc::At | Calc::Region)
+        !matches!(self, Calc::Diff | Calc::At | Calc::Region | Calc::Marked)
     }
 
     /// How many arguments follow the formula and the variable.
@@ -407,7 +413,7 @@ impl Calc {
             Calc::Int => 2,
             Calc::At => 1,
             Calc::Sum | Calc::Prod => 2,
-            Calc::Max | Calc::Min | Calc::Mean | Calc::Region => 0,
+            Calc::Max | Calc::Min | Calc::Mean | Calc::Region | Calc::Marked => 0,
             Calc::Lim => 1,
         }
     }

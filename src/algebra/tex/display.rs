@@ -38,12 +38,13 @@ pub(super) fn drop_environments(text: &str) -> String {
         let open = format!("\\begin{{{env}}}");
         while let Some(at) = text.find(&open) {
             let mut end = at + open.len();
-            // `{2}` of alignat, `[t]` of aligned
+            // `{2}` of alignat, `[t]` of aligned (a `[m] = M` that starts a `gather` is its
+            // first row)
             let rest = &text[end..];
             let arg = rest.trim_start();
             let close = match arg.chars().next() {
                 Some('{') if env.starts_with("align") => arg.find('}'),
-                Some('[') => arg.find(']'),
+                Some('[') if ["[t]", "[b]", "[c]"].iter().any(|p| arg.starts_with(p)) => Some(2),
                 _ => None,
             };
             if let Some(k) = close {
@@ -147,6 +148,34 @@ pub(crate) fn continues(row: &str) -> bool {
     })
 }
 
+/// Whether a row ends with an operator or a relation sign (`\vec\omega \times`, `a + b +`,
+/// `y =`), so that the next row continues it.
+pub(crate) fn ends_open(row: &str) -> bool {
+    let mut t = row.trim_end();
+    loop {
+        let before = t;
+        for w in [
+            "\\nonumber",
+            "\\notag",
+            "&",
+            "\\quad",
+            "\\qquad",
+            "\\;",
+            "\\,",
+        ] {
+            t = t.strip_suffix(w).unwrap_or(t).trim_end();
+        }
+        if t == before {
+            break;
+        }
+    }
+    let sign = ["+", "-", "=", "\\times", "\\cdot", "\\pm", "\\mp"]
+        .iter()
+        .find(|s| t.ends_with(*s));
+    // `v^-`, `x_+`: a label, not an open operator
+    sign.is_some_and(|s| !t[..t.len() - s.len()].ends_with(['^', '_']))
+}
+
 /// Splits `text` at the top level (outside braces and parentheses) at each of `seps`.
 pub(crate) fn split_top(text: &str, seps: &[&str]) -> Vec<String> {
     let chars: Vec<char> = text.chars().collect();
@@ -154,6 +183,12 @@ pub(crate) fn split_top(text: &str, seps: &[&str]) -> Vec<String> {
     let mut i = 0;
     'next: while i < chars.len() {
         let c = chars[i];
+        // a row break `\\` is no escape of what follows it (`\\{\hat u}^r = ..`)
+        if c == '\\' && chars.get(i + 1) == Some(&'\\') && (depth != 0 || !seps.contains(&"\\\\")) {
+            cur.push_str("\\\\");
+            i += 2;
+            continue;
+        }
         // an escaped brace, and the spacing commands `\,` `\;` (not the separators , ;)
         if c == '\\' && i + 1 < chars.len() && matches!(chars[i + 1], '{' | '}' | ',' | ';') {
             // a bare `\{ .. \}` (a set, `\max\{0, x\}`) nests; after `\left`, `\right` or a
@@ -223,7 +258,8 @@ pub(crate) fn split_top(text: &str, seps: &[&str]) -> Vec<String> {
 /// `cases` made one row of its values and conditions ([`cases_row`]); a relation with `\pm`
 /// read as its two branches.
 pub fn read_display(block: &str, syms: &TexSymbols) -> Vec<TexRow> {
-    let mut text = drop_phantoms(block);
+    // a `$` inside a display (`\colorbox{..}{$\displaystyle ..$}`) only switches modes
+    let mut text = drop_styling(&drop_phantoms(block)).replace('$', " ");
     // rows of an array, often braced by \left\{ ... \right.: the brace and the column
     // specification go
     if text.contains("\\begin{array}") {
@@ -243,12 +279,17 @@ pub fn read_display(block: &str, syms: &TexSymbols) -> Vec<TexRow> {
     let mut rows: Vec<String> = Vec::new();
     for raw in rows_of(&text) {
         let row = cases_row(&raw).replace('&', " ");
+        // an empty row (`\\\\` twice) is no relation for the next row to continue
+        if row.trim().is_empty() {
+            continue;
+        }
         match rows.last_mut() {
             // a row that continues a relation joins it, also when the tag was printed on the
             // row before (a long relation tagged on its middle row, 000's (22)); the tag then
             // moves to the end of the joined row
             Some(prev)
-                if continues(&row) && (!prev.contains("\\tag") || !starts_relation(&row)) =>
+                if (continues(&row) || ends_open(prev))
+                    && (!prev.contains("\\tag") || !starts_relation(&row)) =>
             {
                 let (body, tag) = take_tag(prev);
                 *prev = format!("{}\n{}", body.trim_end(), lead(&row));
@@ -266,15 +307,19 @@ pub fn read_display(block: &str, syms: &TexSymbols) -> Vec<TexRow> {
             let relations = split_top(&words_as_separators(&tex), RELATION_SEPARATORS)
                 .into_iter()
                 // a relation left open by a word (`E = T + V = \text{const}`) ends before it
+                // and one that ends in a colon (`x(0) = 0 : \quad v = a t`) before it
                 .map(|p| {
                     p.trim()
                         .trim_end_matches('.')
                         .trim()
                         .trim_end_matches('=')
                         .trim()
+                        .trim_end_matches(':')
+                        .trim()
                         .to_string()
                 })
                 .filter(|p| !p.is_empty())
+                .flat_map(|p| colon_split(&p))
                 .flat_map(|p| unwrap_condition(&p))
                 .flat_map(|p| branches(&p))
                 .map(|p| read_relation(&p, syms))
@@ -302,6 +347,13 @@ const RELATION_SEPARATORS: &[&str] = &[
     "\\iff",
     "\\therefore",
     "\\forall",
+    "\\mapsto",
+    "\\longmapsto",
+    "\\leftarrow",
+    "\\Leftarrow",
+    "\\lor",
+    "\\land",
+    "=>",
 ];
 
 /// The words that join relations in a row of math (`\text{if}`, `\mbox{for all}`,
@@ -368,6 +420,10 @@ pub(super) fn words_as_separators(tex: &str) -> String {
         "\\textrm",
         "\\textnormal",
         "\\textit",
+        "\\textbf",
+        "\\texttt",
+        "\\textsf",
+        "\\emph",
         "\\mathrm",
     ] {
         let mut from = 0;
@@ -376,15 +432,22 @@ pub(super) fn words_as_separators(tex: &str) -> String {
             let after = at + cmd.len();
             from = after;
             let rest = &out[after..];
-            let Some(inner) = rest.trim_start().strip_prefix('{') else {
+            let open = after + (rest.len() - rest.trim_start().len());
+            if !rest.trim_start().starts_with('{') {
+                continue;
+            }
+            // the whole group, nested groups and `$..$` in it (`\text{Order $\hbar^0$:}`)
+            let Some((inner, end)) = super::macros::group(&out, open) else {
                 continue;
             };
-            let Some(close) = inner.find('}') else {
-                continue;
-            };
-            let words = inner[..close].trim().to_lowercase();
-            // words of any language but English (`\text{常数}`) are words too
-            let foreign = words.chars().any(|c| c.is_alphabetic() && !c.is_ascii());
+            let words = inner.trim().to_lowercase();
+            // words of any language but English (`\text{常数}`) are words too, and so is a
+            // phrase with punctuation, a formula or a command in it (`\text{ --- \textbf{..}}`,
+            // `\textrm{Equilibrium Equations:}`); a name in words (`\text{err}`,
+            // `\text{kinetic energy}`) is none
+            let foreign = words.chars().any(|c| c.is_alphabetic() && !c.is_ascii())
+                || words.contains(['$', ':', '\\', '!', '?', ';'])
+                || words.contains("--");
             let first = words
                 .split(|c: char| c.is_whitespace() || c == ',' || c == '~')
                 .find(|w| !w.is_empty())
@@ -392,10 +455,100 @@ pub(super) fn words_as_separators(tex: &str) -> String {
             if depth_at(&out, at) == 0
                 && (words.is_empty() || foreign || CONNECTIVES.contains(&first))
             {
-                let end = after + (rest.len() - rest.trim_start().len()) + 1 + close + 1;
                 out.replace_range(at..end, " ; ");
                 from = at + 3;
             }
+        }
+    }
+    out
+}
+
+/// A piece split at its top-level colons when each part holds a relation (`y(x_1) = 0:
+/// \text{err} \sim A`); a colon between formulas (`\sigma : \nabla v`, a double contraction),
+/// `:=`, `=:` and the space `\:` stay.
+fn colon_split(piece: &str) -> Vec<String> {
+    const MASKS: [(&str, &str); 3] = [("\\:", "\u{1}"), (":=", "\u{2}"), ("=:", "\u{3}")];
+    if !piece.contains(':') {
+        return vec![piece.to_string()];
+    }
+    let mut masked = piece.to_string();
+    for (from, to) in MASKS {
+        masked = masked.replace(from, to);
+    }
+    let parts = split_top(&masked, &[":"]);
+    let relation = |p: &str| {
+        p.contains(['=', '<', '>', '\u{2}', '\u{3}'])
+            || [
+                "\\le",
+                "\\ge",
+                "\\sim",
+                "\\approx",
+                "\\equiv",
+                "\\propto",
+                "\\ne",
+                "\\to",
+                "\\rightarrow",
+            ]
+            .iter()
+            .any(|r| p.contains(r))
+    };
+    if parts.len() < 2 || !parts.iter().all(|p| relation(p)) {
+        return vec![piece.to_string()];
+    }
+    parts
+        .into_iter()
+        .map(|p| {
+            let mut p = p;
+            for (from, to) in MASKS {
+                p = p.replace(to, from);
+            }
+            p
+        })
+        .collect()
+}
+
+/// `tex` without the commands that only colour, box or space what they hold: `\hspace{..}`,
+/// `\vspace{..}`, `\color{..}`, `\cellcolor{..}`, `\mathstrut`, `\qedhere` go; `\colorbox{c}{x}`,
+/// `\textcolor{c}{x}`, `\smash{x}`, `\ensuremath{x}`, `\boxed{x}` leave `{x}`.
+fn drop_styling(tex: &str) -> String {
+    // (command, groups dropped with it)
+    const STYLING: &[(&str, usize)] = &[
+        ("\\hspace*", 1),
+        ("\\hspace", 1),
+        ("\\vspace*", 1),
+        ("\\vspace", 1),
+        ("\\color", 1),
+        ("\\cellcolor", 1),
+        ("\\rowcolor", 1),
+        ("\\colorbox", 1),
+        ("\\textcolor", 1),
+        ("\\mathstrut", 0),
+        ("\\qedhere", 0),
+        ("\\smash", 0),
+        ("\\ensuremath", 0),
+        ("\\boxed", 0),
+        ("\\cancel", 0),
+        ("\\bcancel", 0),
+        ("\\xcancel", 0),
+    ];
+    let mut out = tex.to_string();
+    for (cmd, groups) in STYLING {
+        let mut from = 0;
+        while let Some(k) = out[from..].find(cmd) {
+            let at = from + k;
+            let mut end = at + cmd.len();
+            if out[end..].starts_with(|c: char| c.is_ascii_alphabetic()) {
+                from = end;
+                continue;
+            }
+            for _ in 0..*groups {
+                match super::macros::group(&out, end) {
+                    Some((_, e)) => end = e,
+                    None => break,
+                }
+            }
+            out.replace_range(at..end, " ");
+            from = at;
         }
     }
     out

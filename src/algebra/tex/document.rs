@@ -16,7 +16,7 @@
 //! finds a relation by the number printed beside it. Comments (`%` to the end of a line, not
 //! `\%`) are dropped first.
 
-use super::display::{continues, lead, rows_of, split_top};
+use super::display::{continues, ends_open, lead, rows_of, split_top};
 
 /// One display of a document: its LaTeX with every number as a `\tag{..}`, and the label
 /// printed on the line after it (`(2.10)` after a `$$` block), if any.
@@ -263,7 +263,8 @@ impl Numbering {
         let mut groups: Vec<Vec<String>> = Vec::new();
         for row in rows_of(body) {
             match groups.last_mut() {
-                Some(g) if continues(&row) => g.push(row),
+                // a row that starts with an operator, or follows one that ends with one
+                Some(g) if continues(&row) || g.last().is_some_and(|r| ends_open(r)) => g.push(row),
                 _ => groups.push(vec![row]),
             }
         }
@@ -618,8 +619,8 @@ const VERBATIM: &[&str] = &[
     "python",
 ];
 
-/// `text` without the content of [`VERBATIM`] environments and of Markdown's fenced code
-/// blocks (```), their newlines kept so that lines keep their numbers.
+/// `text` without the content of [`VERBATIM`] environments, of Markdown's fenced code blocks
+/// (```) and of HTML comments, their newlines kept so that lines keep their numbers.
 fn drop_verbatim(text: &str) -> String {
     let blank = |s: &str| "\n".repeat(s.matches('\n').count());
     let mut out = text.to_string();
@@ -636,6 +637,18 @@ fn drop_verbatim(text: &str) -> String {
             out.replace_range(at..end, &kept);
             from = at + kept.len();
         }
+    }
+    // a Markdown note's HTML comments (`<!-- .. -->`), a draft the reader never sees
+    let mut from = 0;
+    while let Some(k) = out[from..].find("<!--") {
+        let at = from + k;
+        let Some(len) = out[at..].find("-->") else {
+            break;
+        };
+        let end = at + len + 3;
+        let kept = blank(&out[at..end]);
+        out.replace_range(at..end, &kept);
+        from = at + kept.len();
     }
     if out.contains("```") {
         let mut fenced = false;

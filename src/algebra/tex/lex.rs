@@ -51,6 +51,10 @@ pub(super) fn lex(src: &str, syms: &TexSymbols) -> Vec<(Tok, usize)> {
                 i += 1;
             }
             out.push((Tok::Num(chars[start..i].iter().collect()), col));
+        } else if chars[i..].starts_with(&['.', '.', '.']) {
+            // `c_1 N_1 + ... + c_n N_n`: an ellipsis typed as three dots
+            out.push((Tok::Cmd("ldots".into()), col));
+            i += 3;
         } else if c == '{'
             && chars[i + 1..]
                 .iter()
@@ -63,6 +67,10 @@ pub(super) fn lex(src: &str, syms: &TexSymbols) -> Vec<(Tok, usize)> {
                 i += 1;
             }
             i += 1;
+            // an empty script (`\mathrm{d}^{} x`, a macro's order left empty) is none
+            if matches!(out.last(), Some((Tok::Ch('^' | '_'), _))) {
+                out.pop();
+            }
         } else if c == '{' {
             out.push((Tok::Open, col));
             i += 1;
@@ -169,6 +177,8 @@ pub(super) fn is_space(t: &Tok) -> bool {
                 | "negthinspace"
                 | "relax"
                 | "strut"
+                // a line break inside brackets (`\Bigg[ .. \\ + .. \Bigg]` in a `multline`)
+                | "\\"
         ),
         Tok::Ch('~') => true,
         _ => false,
@@ -184,7 +194,8 @@ pub(super) fn accent_suffix(cmd: &str) -> Option<&'static str> {
         "ddot" => "dd",
         "mathbf" | "boldsymbol" | "mathrm" | "mathit" | "vec" | "bm" | "operatorname" | "text"
         | "pmb" | "textbf" | "textrm" | "textit" | "mathnormal" | "overrightarrow" | "vb"
-        | "vv" | "mathsf" | "symbf" | "symbfit" | "mathbfit" => "",
+        | "mbox" | "textnormal" | "textup" | "texttt" | "textsf" | "mathtt" | "bold" | "vv"
+        | "mathsf" | "symbf" | "symbfit" | "mathbfit" => "",
         // a calligraphic or blackboard letter is another quantity than the plain one
         "mathcal" => "cal",
         "mathscr" => "scr",

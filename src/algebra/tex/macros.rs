@@ -341,11 +341,7 @@ fn expand_uses(
             pos = after;
             continue;
         }
-        let mut body = mac.body.clone();
-        for (k, a) in args.iter().enumerate().rev() {
-            body = body.replace(&format!("#{}", k + 1), &a.replace('\n', " "));
-        }
-        let body = body.replace('\n', " ");
+        let body = substitute(&mac.body, &args).replace('\n', " ");
         // a control word's body must not glue to the letters after it (`\vrel x`)
         let glue = if text[end..].starts_with(|c: char| c.is_ascii_alphabetic()) {
             " "
@@ -357,6 +353,43 @@ fn expand_uses(
         pos = at;
     }
     Ok(text)
+}
+
+/// `body` with each `#k` replaced by the k-th of `args`, a space put where a control word would
+/// otherwise glue to the letters beside it (`\langle#1` with `a`: `\langle a`, not `\langlea`).
+fn substitute(body: &str, args: &[String]) -> String {
+    let ends_in_word = |s: &str| {
+        let letters = s.len() - s.trim_end_matches(|c: char| c.is_ascii_alphabetic()).len();
+        letters > 0 && s[..s.len() - letters].ends_with('\\')
+    };
+    let mut out = String::with_capacity(body.len());
+    let mut rest = body;
+    while let Some(k) = rest.find('#') {
+        out.push_str(&rest[..k]);
+        // `\#` is the character, no parameter
+        let escaped = out.ends_with('\\') && !out.ends_with("\\\\");
+        let digit = rest[k + 1..].chars().next().and_then(|c| c.to_digit(10));
+        let digit = digit.filter(|_| !escaped);
+        match digit.and_then(|d| args.get((d as usize).wrapping_sub(1))) {
+            Some(a) => {
+                let a = a.replace('\n', " ");
+                if ends_in_word(&out) && a.starts_with(|c: char| c.is_ascii_alphabetic()) {
+                    out.push(' ');
+                }
+                out.push_str(&a);
+                rest = &rest[k + 2..];
+                if ends_in_word(&out) && rest.starts_with(|c: char| c.is_ascii_alphabetic()) {
+                    out.push(' ');
+                }
+            }
+            None => {
+                out.push('#');
+                rest = &rest[k + 1..];
+            }
+        }
+    }
+    out.push_str(rest);
+    out
 }
 
 #[cfg(test)]
@@ -413,6 +446,21 @@ mod tests {
         assert_eq!(out.lines().nth(4), Some("line 4"));
         // a longer name is another macro
         assert_eq!(expanded("\\newcommand{\\a}{1}\\ab").trim(), "\\ab");
+        // nor an argument to the control word before or after it (WSU notes' `\braket`)
+        assert_eq!(
+            expanded("\\newcommand{\\bk}[2]{\\langle#1|#2\\rangle}\\bk{a}{b}").trim(),
+            "\\langle a|b\\rangle"
+        );
+        assert_eq!(
+            expanded("\\newcommand{\\f}[1]{#1x \\lvert#1\\rvert}\\f{\\mu}").trim(),
+            "\\mu x \\lvert\\mu\\rvert"
+        );
+        // `#` without a digit stays (`\#` in a body)
+        assert_eq!(expanded("\\newcommand{\\h}{\\#1}\\h").trim(), "\\#1");
+        assert_eq!(
+            expanded("\\newcommand{\\h}[1]{\\#1 #1}\\h{y}").trim(),
+            "\\#1 y"
+        );
     }
 
     #[test]

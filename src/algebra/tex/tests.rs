@@ -150,8 +150,10 @@ fn errors_name_the_column_and_the_construct() {
     assert!(read_formula(&deep, &s).is_err());
     let deep = format!("{}x", "-".repeat(5000));
     assert!(read_formula(&deep, &s).is_err());
-    let e = read_formula(r"a \star b", &s).unwrap_err();
-    assert!(e.construct.contains("\\star"), "{e}");
+    let e = read_formula(r"a \heartsuit b", &s).unwrap_err();
+    assert!(e.construct.contains("\\heartsuit"), "{e}");
+    // `\star` between two factors is a product (a convolution's unit)
+    same(r"a \star b", "a*b");
 }
 
 #[test]
@@ -200,12 +202,18 @@ fn a_bad_name_part_applications_integrals_and_the_nesting_limit() {
     let syms = TexSymbols::default();
     let read = |t: &str| read_formula(t, &syms).map(|e| e.to_string());
     // a name's part is letters, digits, Greek and an index's `+`, `-` (`v_{j+1}`): `=` in a
-    // subscript is refused, naming it
+    // font's group is refused, naming it; a subscript of another kind is a label by its letters
     assert_eq!(read("x_{a+b} + v_{j-1}").unwrap(), "xaplusb + vjminus1");
-    let e = read("x_{a=b}").unwrap_err();
+    let e = read(r"\mathrm{a=b}").unwrap_err();
     assert_eq!(
         (e.column, e.construct.as_str(), e.found.as_str()),
-        (5, "a name's part (letters, digits, Greek)", "=")
+        (10, "a name's part (letters, digits, Greek)", "=")
+    );
+    assert!(read("x_{a=b}").is_err());
+    assert!(read("p_{1 ;} q").is_err());
+    assert_eq!(
+        read(r"x_{ai;bj} + P_{\left|a\right\rangle}").unwrap(),
+        "xaibj + Pa"
     );
     // unbraced, a comma is no name's part either (inside braces it is passed over: `x_{1,2}`);
     // the error is at the comma, not past it
@@ -265,12 +273,33 @@ fn a_number_as_a_target_is_a_number() {
 }
 
 #[test]
-fn a_multi_digit_script_and_a_subscript_on_a_group_are_refused_by_name() {
+fn a_multi_digit_script_is_refused_and_a_subscript_on_a_group_marks_it() {
     let e = read_formula("x^23", &TexSymbols::default()).unwrap_err();
     assert!(e.construct.contains("multi-digit script"), "{e}");
     same("x^2", "x^2");
-    let e = read_formula("(a + b)_1", &TexSymbols::default()).unwrap_err();
-    assert!(e.construct.contains("subscript on something"), "{e}");
+    // `(a + b)_1`, `F \big|_0^1`, `[P]^*`: the formula with a mark, its unit kept and its value
+    // never computed (a claim on it is refused, not misread)
+    let s = TexSymbols::default();
+    for (tex, read) in [
+        ("(a + b)_1", "marked(a + b)"),
+        (
+            r"\left(\frac{\partial V}{\partial q}\right)_0",
+            "marked(diff(V, q))",
+        ),
+        (r"v \big|_{z=0}", "marked(v)"),
+        // the bar marks the bare argument it follows: the unit is the same
+        (r"\ln v \bigg|_u^{w}", "ln(marked(v))"),
+        ("[P]^*", "marked(P)"),
+        (r"(a b)^\dagger", "marked(a*b)"),
+    ] {
+        let e = read_formula(tex, &s).unwrap();
+        assert_eq!(e.to_string(), read, "{tex}");
+        assert!(e.lower().is_err(), "{tex}");
+    }
+    // on a name an adjoint or a transpose marks the same quantity; a star is a label (`E^*`,
+    // an effective modulus, is a quantity of its own)
+    let e = read_formula(r"u^\dagger + A^\top + E^*", &s).unwrap();
+    assert_eq!(e.to_string(), "marked(u) + marked(A) + Estar");
 }
 
 #[test]

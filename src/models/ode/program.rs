@@ -354,7 +354,8 @@ fn compile_part(e: &Expr, slot: &dyn Fn(&str) -> Option<usize>) -> Result<Part, 
             | Calc::Min
             | Calc::Lim
             | Calc::Mean
-            | Calc::Region,
+            | Calc::Region
+            | Calc::Marked,
             ..,
         ) => compile_part(&e.lower()?, slot)?,
         Expr::Calc(Calc::Int, ..) => {

@@ -11,11 +11,12 @@ impl Reader<'_> {
     /// `(a, b)` (a scalar product of vectors, a pair): an opaque symbol named by its parts.
     pub(super) fn tuple(&mut self, first: Expr) -> R<Expr> {
         self.skip_space();
-        if *self.peek() != Tok::Ch(',') {
+        if !matches!(self.peek(), Tok::Ch(',' | ';')) {
             return Ok(first);
         }
         let mut parts = vec![first.to_string()];
-        while *self.peek() == Tok::Ch(',') {
+        // `(q, t; q_0, t_0)`: a semicolon separates as a comma does
+        while matches!(self.peek(), Tok::Ch(',' | ';')) {
             self.bump();
             parts.push(self.expr()?.to_string());
             self.skip_space();
@@ -57,8 +58,10 @@ impl Reader<'_> {
                 Some(Tok::Cmd(c)) if greek(c).is_some() || c == "prime" => {
                     cur.push_str(greek(c).unwrap_or("p"))
                 }
+                Some(Tok::Cmd(c)) if c == "parallel" || c == "perp" => cur.push_str(&c[..3]),
                 Some(Tok::Cmd(c)) if is_space(&Tok::Cmd(c.clone())) => {}
-                Some(Tok::Ch(',')) => args.push(std::mem::take(&mut cur)),
+                // `S(q_0, t_0; q, t)`: a semicolon separates arguments as a comma does
+                Some(Tok::Ch(',' | ';')) => args.push(std::mem::take(&mut cur)),
                 Some(Tok::Ch(')')) => {
                     args.push(cur);
                     break;
@@ -113,7 +116,7 @@ impl Reader<'_> {
             }
             self.skip_space();
             match self.peek() {
-                Tok::Ch(',') => {
+                Tok::Ch(',' | ';') => {
                     self.bump();
                 }
                 Tok::Ch(')') => {
@@ -200,7 +203,7 @@ impl Reader<'_> {
         self.skip_group()?;
         let text: Vec<String> = self.toks[start..self.pos]
             .iter()
-            .filter(|(t, _)| !is_space(t))
+            .filter(|(t, _)| !is_space(t) || matches!(t, Tok::Cmd(c) if c == "\\"))
             .map(|(t, _)| describe(t))
             .collect();
         Ok(Expr::Sym(format!("{{{}}}", text.join(" "))))

@@ -76,7 +76,13 @@ impl Reader<'_> {
         {
             return Ok(e);
         }
-        let body = self.term()?;
+        // `\min_{\mathbf{x}} \quad f(\mathbf{x})` of an optimisation problem: what is
+        // minimised stands apart (the operator alone is no relation)
+        let body = if self.no_operand() {
+            self.operand()
+        } else {
+            self.term()?
+        };
         let ellipsis = || Expr::Sym(ELLIPSIS.into());
         Ok(match kind {
             Calc::Sum | Calc::Prod => {

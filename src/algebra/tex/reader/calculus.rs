@@ -24,10 +24,10 @@ impl Reader<'_> {
                 Box::new(num(b).unwrap_or(Expr::Pi)),
             ));
         }
-        if let Some(var) = self.numerator_differential()? {
+        if let Some((a, var)) = self.numerator_differential()? {
             let b = self.group()?;
             self.pending_differential = Some(var);
-            return Ok(Expr::Bin(Op::Div, Box::new(one()), Box::new(b)));
+            return Ok(Expr::Bin(Op::Div, Box::new(a), Box::new(b)));
         }
         // \frac{\partial f}{\partial x}, \frac{d f}{d x}, \frac{\partial^2 w}{\partial t^2},
         // \frac{\mathrm{d}^2 x}{\mathrm{d} t^2}, \frac{\partial}{\partial t} (..): a derivative
@@ -68,19 +68,10 @@ impl Reader<'_> {
                         return self.err("`d` or `\\partial` before a derivative's variable");
                     }
                     self.pos += mark;
-                    self.skip_space();
-                    let var = match self.bump() {
-                        Tok::Ch(c) if c.is_ascii_alphabetic() => self.name_tail(c.to_string())?,
-                        Tok::Cmd(g) if greek(&g).is_some() => {
-                            self.name_tail(greek(&g).unwrap_or_default().to_string())?
-                        }
-                        Tok::Cmd(a) if accent_suffix(&a).is_some() => {
-                            let inner = self.name_text()?;
-                            let suffix = accent_suffix(&a).unwrap_or_default();
-                            self.name_tail(format!("{inner}{suffix}"))?
-                        }
-                        _ => return self.err("the variable of a derivative"),
-                    };
+                    // `\partial x`, `\partial \dot{q}`, `\partial{q_i}`, `\mathrm{d}{t}`
+                    let var = self
+                        .differential_variable()
+                        .or_else(|_| self.err("the variable of a derivative"))?;
                     let times = self.derivative_order()?;
                     vars.extend(std::iter::repeat_n(var, times as usize));
                 }
@@ -90,7 +81,9 @@ impl Reader<'_> {
                 }
                 let mut body = match body {
                     Some(b) => b,
-                    // the operator form: what it acts on follows
+                    // the operator form: what it acts on follows, or nothing
+                    // (`\frac{d}{dt} = ..`, an operator equation)
+                    None if self.no_operand() => self.operand(),
                     None => self.postfix()?,
                 };
                 let last = vars.last().cloned().unwrap_or_default();
@@ -207,7 +200,11 @@ impl Reader<'_> {
             self.bump();
             let vars = self.name_text()?;
             let order = self.derivative_order()?;
-            let mut body = self.postfix()?;
+            let mut body = if self.no_operand() {
+                self.operand()
+            } else {
+                self.postfix()?
+            };
             // `\partial_{xy}`: one derivative per letter
             let letters: Vec<String> =
                 if vars.chars().all(|c| c.is_ascii_alphabetic()) && vars.len() <= 4 && order == 1 {
@@ -252,12 +249,10 @@ impl Reader<'_> {
         if !self.is_differential() {
             return self.err("the differential `d x` closing an integral");
         }
-        self.skip_differential_mark();
-        let var = match self.bump() {
-            Tok::Ch(c) => self.name_tail(c.to_string())?,
-            Tok::Cmd(g) => self.name_tail(greek(&g).unwrap_or_default().to_string())?,
-            _ => return self.err("the variable of an integral"),
-        };
+        if self.skip_differential_mark() > 1 {
+            return self.err("a volume element `d^n x` closing an integral with bounds");
+        }
+        let var = self.differential_variable()?;
         Ok(Expr::Calc(Calc::Int, Box::new(body), var, vec![lo, hi]))
     }
 
@@ -286,14 +281,11 @@ impl Reader<'_> {
             return self.err("the differential `d \\sigma` closing an integral over a region");
         }
         while self.is_differential() {
-            self.skip_differential_mark();
-            let var = match self.bump() {
-                Tok::Ch(c) => self.name_tail(c.to_string())?,
-                Tok::Cmd(g) if greek(&g).is_some() => {
-                    self.name_tail(greek(&g).unwrap_or_default().to_string())?
-                }
-                _ => return self.err("the variable of an integral"),
-            };
+            let power = self.skip_differential_mark();
+            let var = self.differential_variable()?;
+            for _ in 1..power {
+                body = Expr::Calc(Calc::Region, Box::new(body), var.clone(), vec![]);
+            }
             body = Expr::Calc(Calc::Region, Box::new(body), var, vec![]);
             self.skip_space();
         }
@@ -318,33 +310,45 @@ impl Reader<'_> {
 
     /// Inside an integrand, `{d u}` as a fraction's numerator (`\frac{du}{F(u)}`): its variable
     /// becomes the integral's, and the numerator is 1; `None` (nothing read) otherwise.
-    pub(super) fn numerator_differential(&mut self) -> R<Option<String>> {
+    /// The numerator and the variable: `{d u}` gives 1 and u, `{l \mathrm{d} u}` gives l and u.
+    pub(super) fn numerator_differential(&mut self) -> R<Option<(Expr, String)>> {
         if self.in_integral == 0 || *self.peek() != Tok::Open {
             return Ok(None);
         }
-        let save = self.pos;
+        let (save, links) = (self.pos, self.links.len());
         self.bump();
         self.skip_space();
-        let mark = self.d_mark(self.pos);
-        if mark > 0 {
-            self.pos += mark;
-            self.skip_space();
-            let var = match self.bump() {
-                Tok::Ch(c) if c.is_ascii_alphabetic() => Some(self.name_tail(c.to_string())?),
-                Tok::Cmd(g) if greek(&g).is_some() => {
-                    Some(self.name_tail(greek(&g).unwrap_or_default().to_string())?)
-                }
-                _ => None,
-            };
+        // a factor before the differential (inside an integrand a product stops at `d u`)
+        let factor = if self.d_mark(self.pos) > 0 {
+            Some(one())
+        } else {
+            self.expr().ok().filter(|_| self.is_differential())
+        };
+        if let Some(factor) = factor {
+            // a volume element `d^3 x` in a numerator is not read as one
+            let single = self.skip_differential_mark() == 1;
+            let var = self.differential_variable().ok();
             self.skip_space();
             if let Some(v) = var
+                && single
                 && *self.peek() == Tok::Close
             {
                 self.bump();
-                return Ok(Some(v));
+                // `\frac{d r}{d t}` inside an integrand is a derivative, not the integral's `d r`
+                let mut k = self.pos + 1;
+                while self.toks.get(k).is_some_and(|(t, _)| is_space(t)) {
+                    k += 1;
+                }
+                let derivative = *self.peek() == Tok::Open
+                    && (self.d_mark(k) > 0
+                        || matches!(self.toks.get(k), Some((Tok::Cmd(c), _)) if c == "partial"));
+                if !derivative {
+                    return Ok(Some((factor, v)));
+                }
             }
         }
         self.pos = save;
+        self.links.truncate(links);
         Ok(None)
     }
 
@@ -359,18 +363,91 @@ impl Reader<'_> {
             return false;
         }
         let mut k = self.pos + mark;
+        // `\mathrm{d}' A`: an inexact differential, of A's unit as `d A`; `d^3 x` a volume
+        if matches!(self.toks.get(k), Some((Tok::Ch('\''), _))) {
+            k += 1;
+        } else if matches!(self.toks.get(k), Some((Tok::Ch('^'), _))) {
+            k += self.volume_power(k).map_or(0, |(_, len)| len);
+        }
         while self.toks.get(k).is_some_and(|(t, _)| is_space(t)) {
             k += 1;
         }
-        matches!(self.toks.get(k), Some((Tok::Ch(c), _)) if c.is_ascii_alphabetic())
-            && !matches!(self.toks.get(k + 1), Some((Tok::Ch('('), _)))
-            || matches!(self.toks.get(k), Some((Tok::Cmd(c), _)) if greek(c).is_some())
+        let tok = |i: usize| self.toks.get(i).map(|t| &t.0);
+        match tok(k) {
+            Some(Tok::Ch(c)) => {
+                c.is_ascii_alphabetic() && !matches!(tok(k + 1), Some(Tok::Ch('(')))
+            }
+            Some(Tok::Cmd(c)) => greek(c).is_some() || accent_suffix(c).is_some(),
+            // `\mathrm{d}{y'}`, `\mathrm{d}{\vec{\boldsymbol{y}}}`: a braced name
+            Some(Tok::Open) => {
+                matches!(tok(k + 1), Some(Tok::Ch(c)) if c.is_ascii_alphabetic())
+                    || matches!(tok(k + 1), Some(Tok::Cmd(c)) if greek(c).is_some() || accent_suffix(c).is_some())
+            }
+            _ => false,
+        }
     }
 
-    /// Past the differential mark (`d`, `\mathrm{d}`) and the space after it.
-    pub(super) fn skip_differential_mark(&mut self) {
+    /// Past the differential mark (`d`, `\mathrm{d}`, `\mathrm{d}'`, `\mathrm{d}^3`) and the
+    /// space after it; the power of a volume element (`d^3 x`: 3), else 1.
+    pub(super) fn skip_differential_mark(&mut self) -> u32 {
         self.pos += self.d_mark(self.pos);
+        if *self.peek() == Tok::Ch('\'') {
+            self.bump();
+        }
+        let mut power = 1;
+        if let Some((n, len)) = self.volume_power(self.pos) {
+            power = n;
+            self.pos += len;
+        }
         self.skip_space();
+        power
+    }
+
+    /// `^3` or `^{3}` at token `k` (of a volume element `d^3 x`): the power and how many tokens
+    /// it takes.
+    fn volume_power(&self, k: usize) -> Option<(u32, usize)> {
+        let tok = |i: usize| self.toks.get(i).map(|t| &t.0);
+        if tok(k) != Some(&Tok::Ch('^')) {
+            return None;
+        }
+        let (n, len) = match (tok(k + 1), tok(k + 2), tok(k + 3)) {
+            (Some(Tok::Num(n)), ..) => (n, 2),
+            (Some(Tok::Open), Some(Tok::Num(n)), Some(Tok::Close)) => (n, 4),
+            _ => return None,
+        };
+        match n.parse::<u32>() {
+            Ok(p @ 1..=9) => Some((p, len)),
+            _ => None,
+        }
+    }
+
+    /// The variable of a differential (`x`, `\tau`, `\vec r`, `{y'}`): a name.
+    fn differential_variable(&mut self) -> R<String> {
+        self.skip_space();
+        let braced = *self.peek() == Tok::Open;
+        if braced {
+            self.bump();
+        }
+        let save = self.pos;
+        let name = match self.bump() {
+            Tok::Ch(c) if c.is_ascii_alphabetic() => self.name_tail(c.to_string())?,
+            Tok::Cmd(g) if greek(&g).is_some() => {
+                self.name_tail(greek(&g).unwrap_or_default().to_string())?
+            }
+            Tok::Cmd(a) if accent_suffix(&a).is_some() => {
+                let inner = self.name_text()?;
+                let suffix = accent_suffix(&a).unwrap_or_default();
+                self.name_tail(format!("{inner}{suffix}"))?
+            }
+            _ => {
+                self.pos = save;
+                return self.err("the variable of an integral");
+            }
+        };
+        if braced {
+            self.expect(Tok::Close, "`}` closing the variable of an integral")?;
+        }
+        Ok(name)
     }
 
     /// Whether `{\rm d}` (or `{d}`) stands here, followed by a name: an increment.

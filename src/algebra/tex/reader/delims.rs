@@ -13,6 +13,11 @@ impl Reader<'_> {
             self.bump();
             return self.angle("rangle");
         }
+        // LaTeX breaks no row inside `\left .. \right`: rows there are a matrix written without
+        // its environment (`\left| 1 & 0 \\ 0 & 1 \right|`) or a scan's mistake, not a formula
+        if self.row_break_before_right() {
+            return self.err("a row break `\\\\` inside `\\left .. \\right` (a matrix?)");
+        }
         let open = self.bump();
         let e = self.expr()?;
         let e = self.tuple(e)?;
@@ -34,9 +39,42 @@ impl Reader<'_> {
         })
     }
 
+    /// Whether a `\\` stands between here (after a `\left`) and the `\right` that closes it.
+    fn row_break_before_right(&self) -> bool {
+        let mut depth = 0usize;
+        for (t, _) in &self.toks[self.pos..] {
+            match t {
+                Tok::Cmd(c) if c == "left" => depth += 1,
+                Tok::Cmd(c) if c == "right" => {
+                    if depth == 0 {
+                        return false;
+                    }
+                    depth -= 1;
+                }
+                Tok::Cmd(c) if c == "\\" && depth == 0 => return true,
+                Tok::End => return false,
+                _ => {}
+            }
+        }
+        false
+    }
+
     /// `\langle a \rangle` (an average: the unit of a) or `\langle a, b \rangle` (a scalar
     /// product: the unit of a b); `close` the command that closes it.
     pub(super) fn angle(&mut self, close: &str) -> R<Expr> {
+        let (save, links) = (self.pos, self.links.len());
+        match self.average_or_product(close) {
+            Ok(e) => Ok(e),
+            // `\langle a | H | b \rangle`, `\langle r \vert \psi \rangle`: a bracket of states
+            Err(first) => {
+                self.pos = save;
+                self.links.truncate(links);
+                self.bracket_of_states(close).map_err(|_| first)
+            }
+        }
+    }
+
+    fn average_or_product(&mut self, close: &str) -> R<Expr> {
         let a = self.expr()?;
         self.skip_space();
         let e = if matches!(self.peek(), Tok::Ch(',' | '|')) {

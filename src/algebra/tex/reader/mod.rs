@@ -12,6 +12,9 @@ mod apply;
 mod big;
 mod calculus;
 mod delims;
+mod marks;
+mod names;
+use marks::marked;
 
 /// A link the reader found between two names: `(name, base, order)`, the name the `order`-th
 /// time derivative of its base (`\dot{x}`: `("xd", "x", 1)`), or with order 0 an increment of
@@ -141,201 +144,15 @@ impl<'a> Reader<'a> {
                 found: n,
             });
         }
-        self.atom()
-    }
-
-    /// The text of a `{...}` group of letters, digits and Greek commands (a name's part).
-    fn name_text(&mut self) -> R<String> {
-        self.skip_space();
-        let mut out = String::new();
-        let braced = *self.peek() == Tok::Open;
-        if braced {
+        // `\sum_{\beta=1}^s (..)`: a one-letter script is the letter, never applied to what
+        // follows it (even where the paper applies `s` elsewhere)
+        if let Tok::Ch(c) = self.peek().clone()
+            && c.is_ascii_alphabetic()
+        {
             self.bump();
+            return Ok(Expr::Sym(c.to_string()));
         }
-        loop {
-            self.skip_space();
-            match self.peek().clone() {
-                Tok::Ch(c) if c.is_ascii_alphanumeric() => {
-                    self.bump();
-                    out.push(c);
-                }
-                Tok::Num(n) => {
-                    self.bump();
-                    out.push_str(&n);
-                }
-                Tok::Cmd(c) if greek(&c).is_some() => {
-                    self.bump();
-                    out.push_str(greek(&c).unwrap_or_default());
-                }
-                Tok::Cmd(c) if c == "prime" => {
-                    self.bump();
-                    out.push('p');
-                }
-                Tok::Ch(',' | ';' | '\'' | '_' | '^') if braced => {
-                    self.bump();
-                }
-                Tok::Ch('*') => {
-                    self.bump();
-                    out.push_str("star");
-                }
-                // an index that is an expression: `v_{j+1}`, `t_{n-1}`, `x_{(k)}`
-                Tok::Ch('+') if braced => {
-                    self.bump();
-                    out.push_str("plus");
-                }
-                Tok::Ch('-') if braced => {
-                    self.bump();
-                    out.push_str("minus");
-                }
-                Tok::Ch('(' | ')' | '.' | '/' | '|' | '[' | ']') if braced => {
-                    self.bump();
-                }
-                Tok::Cmd(c) if braced && c == "infty" => {
-                    self.bump();
-                    out.push_str("inf");
-                }
-                Tok::Cmd(c) if braced && (c == "ast" || c == "star") => {
-                    self.bump();
-                    out.push_str("star");
-                }
-                // `F_{\max}`, `\sigma_{\rm eff}`, `E_{\sin}`: the command's name is the part
-                Tok::Cmd(c) if braced && (func(&c).is_some() || is_named_operator(&c)) => {
-                    self.bump();
-                    out.push_str(&c);
-                }
-                Tok::Open if braced => {
-                    let inner = self.name_text()?;
-                    out.push_str(&inner);
-                    continue;
-                }
-                Tok::Cmd(c) if accent_suffix(&c).is_some() && braced => {
-                    self.bump();
-                    let inner = self.name_text()?;
-                    out.push_str(&inner);
-                    out.push_str(accent_suffix(&c).unwrap_or_default());
-                }
-                Tok::Close if braced => {
-                    self.bump();
-                    break;
-                }
-                _ if braced => return self.err("a name's part (letters, digits, Greek)"),
-                _ => break,
-            }
-            if !braced {
-                break;
-            }
-        }
-        if out.is_empty() {
-            return self.err("a name's part (letters, digits, Greek)");
-        }
-        Ok(out)
-    }
-
-    /// A name's subscripts and primes, appended.
-    fn name_tail(&mut self, mut name: String) -> R<String> {
-        loop {
-            match self.peek() {
-                Tok::Ch('_') => {
-                    self.bump();
-                    name.push_str(&self.name_text()?);
-                }
-                Tok::Ch('\'') => {
-                    self.bump();
-                    name.push('p');
-                }
-                // `t"`: a double prime as a scanned paper prints it
-                Tok::Ch('"') => {
-                    self.bump();
-                    name.push_str("pp");
-                }
-                // `M_0^{\mathbf{p}}`, `A^{\mathrm{ext}}`: a label in a font, part of the name
-                Tok::Ch('^')
-                    if self.at(1) == Some(&Tok::Open)
-                        && matches!(self.at(2), Some(Tok::Cmd(c)) if accent_suffix(c) == Some("") || c == "rm") =>
-                {
-                    self.bump();
-                    let label = self.name_text()?;
-                    name.push_str(&label);
-                }
-                // `x^{(k)}`: an index in parentheses, part of the name
-                Tok::Ch('^') if self.paren_index().is_some() => {
-                    let (part, len) = self.paren_index().unwrap_or_default();
-                    self.pos += len;
-                    name.push_str(&part);
-                }
-                // `E^{*2}`: the star a label, the rest of the group a power
-                Tok::Ch('^')
-                    if self.at(1) == Some(&Tok::Open)
-                        && self.at(2) == Some(&Tok::Ch('*'))
-                        && !matches!(self.at(3), Some(Tok::Close) | None) =>
-                {
-                    self.pos += 3;
-                    name.push_str("star");
-                    self.star_power = true;
-                    return Ok(name);
-                }
-                Tok::Ch('^') if self.decoration().is_some() => {
-                    let (suffix, len) = self.decoration().unwrap_or(("", 1));
-                    self.pos += len;
-                    name.push_str(suffix);
-                }
-                Tok::Ch('^') if self.is_prime_script() => {
-                    self.bump();
-                    self.bump();
-                    while matches!(self.peek(), Tok::Cmd(c) if c == "prime") {
-                        self.bump();
-                        name.push('p');
-                    }
-                    self.expect(Tok::Close, "`}` after `\\prime`")?;
-                }
-                _ => return Ok(name),
-            }
-        }
-    }
-
-    /// `^-`, `^+`, `^*` (or braced) after a name: a label (`V^-`, the velocity before impact),
-    /// not a power; the suffix and how many tokens it takes.
-    fn decoration(&self) -> Option<(&'static str, usize)> {
-        let at = |k: usize| self.toks.get(self.pos + k).map(|t| &t.0);
-        let label = |t: Option<&Tok>| match t {
-            Some(Tok::Ch('-')) => Some("minus"),
-            Some(Tok::Ch('+')) => Some("plus"),
-            Some(Tok::Ch('*')) => Some("star"),
-            _ => None,
-        };
-        if let Some(l) = label(at(1)) {
-            return Some((l, 2));
-        }
-        if at(1) == Some(&Tok::Open) && at(3) == Some(&Tok::Close) {
-            return label(at(2)).map(|l| (l, 4));
-        }
-        None
-    }
-
-    /// `^{(k)}` after a name: the index's text and how many tokens it takes.
-    fn paren_index(&self) -> Option<(String, usize)> {
-        if self.at(1) != Some(&Tok::Open) || self.at(2) != Some(&Tok::Ch('(')) {
-            return None;
-        }
-        let mut text = String::new();
-        let mut k = 3;
-        loop {
-            match self.at(k)? {
-                Tok::Ch(c) if c.is_ascii_alphanumeric() => text.push(*c),
-                Tok::Num(n) => text.push_str(n),
-                Tok::Ch('+') => text.push_str("plus"),
-                Tok::Ch('-') => text.push_str("minus"),
-                Tok::Ch(')') => break,
-                _ => return None,
-            }
-            k += 1;
-        }
-        (self.at(k + 1) == Some(&Tok::Close) && !text.is_empty()).then_some((text, k + 2))
-    }
-
-    fn is_prime_script(&self) -> bool {
-        matches!(self.toks.get(self.pos + 1), Some((Tok::Open, _)))
-            && matches!(self.toks.get(self.pos + 2), Some((Tok::Cmd(c), _)) if c == "prime")
+        self.atom()
     }
 
     /// Runs `f` one level deeper, refusing to go past [`MAX_DEPTH`].
@@ -368,6 +185,11 @@ impl<'a> Reader<'a> {
                     self.bump();
                     e = Expr::Bin(Op::Sub, Box::new(e), Box::new(self.term()?));
                 }
+                // a direct sum of two of one kind
+                Tok::Cmd(c) if c == "oplus" => {
+                    self.bump();
+                    e = Expr::Bin(Op::Add, Box::new(e), Box::new(self.term()?));
+                }
                 Tok::Cmd(c) if c == "pm" || c == "mp" => {
                     return self.err("`\\pm` (two formulas in one)");
                 }
@@ -380,7 +202,7 @@ impl<'a> Reader<'a> {
         match self.peek() {
             Tok::Num(_) | Tok::Sym(_) | Tok::Open => true,
             Tok::Ch('|') => self.in_abs == 0,
-            Tok::Ch(c) => c.is_ascii_alphabetic() || matches!(c, '(' | '['),
+            Tok::Ch(c) => c.is_ascii_alphabetic() || matches!(c, '(' | '[' | '?'),
             Tok::Cmd(c) => {
                 greek(c).is_some()
                     || func(c).is_some()
@@ -396,6 +218,12 @@ impl<'a> Reader<'a> {
                             | "overbrace"
                             | "begin"
                             | "lvert"
+                            | "Re"
+                            | "Im"
+                            | "det"
+                            | "bullet"
+                            | "ddots"
+                            | "vdots"
                     )
                     || matches!(
                         c.as_str(),
@@ -444,11 +272,23 @@ impl<'a> Reader<'a> {
         loop {
             self.skip_space();
             match self.peek().clone() {
-                Tok::Cmd(c) if c == "cdot" || c == "times" => {
+                // `\otimes`, `\odot`, `\ast`: products of tensors and arrays
+                Tok::Cmd(c)
+                    if matches!(
+                        c.as_str(),
+                        "cdot" | "times" | "otimes" | "odot" | "ast" | "star"
+                    ) =>
+                {
                     self.bump();
                     e = mul(e, self.unary()?);
                 }
                 Tok::Ch('*') => {
+                    self.bump();
+                    e = mul(e, self.unary()?);
+                }
+                // `\sigma : \nabla v`: a double contraction, a product of units (a colon
+                // between relations was split off before)
+                Tok::Ch(':') if self.at(1) != Some(&Tok::Ch('=')) => {
                     self.bump();
                     e = mul(e, self.unary()?);
                 }
@@ -514,7 +354,20 @@ impl<'a> Reader<'a> {
             e = power(e, p);
         }
         loop {
+            // `F \big|_{a}^{b}`, `v\big|_{z=0}`: the formula taken there keeps its unit
+            if let Some(k) = self.evaluation_bar() {
+                self.pos += k;
+                self.skip_scripts()?;
+                e = marked(e);
+                continue;
+            }
             match self.peek() {
+                // `[P]^*`, `(\langle p|r \rangle)^*`, `\mathbf{A}^\top`: a conjugate or a
+                // transpose keeps the unit
+                Tok::Ch('^') if self.conjugate_mark().is_some() => {
+                    self.pos += self.conjugate_mark().unwrap_or(1);
+                    e = marked(e);
+                }
                 // `180^{\circ}`: degrees, a number of radians
                 Tok::Ch('^') if self.degrees_follow() => {
                     self.pos += if self.at(1) == Some(&Tok::Open) { 4 } else { 2 };
@@ -546,7 +399,12 @@ impl<'a> Reader<'a> {
                     self.bump();
                     e = Expr::Call(Func::Factorial, Box::new(e));
                 }
-                Tok::Ch('_') => return self.err("a subscript on something that is not a name"),
+                // `(\partial V / \partial q)_0`, `[\mathbf{D}]_{ab}`, `\{f, g\}_{qp}`: taken at
+                // a point, or a component: the unit of the formula
+                Tok::Ch('_') => {
+                    self.skip_scripts()?;
+                    e = marked(e);
+                }
                 _ => return Ok(e),
             }
         }
@@ -583,6 +441,8 @@ impl<'a> Reader<'a> {
                 Ok(e)
             }
             Tok::Ch('(') => self.closing(')'),
+            // `p = ?` of an exercise: a value asked for, of whatever unit its place needs
+            Tok::Ch('?') => Ok(Expr::Sym(ELLIPSIS.into())),
             Tok::Ch('[') => self.closing(']'),
             Tok::Ch('|') => {
                 self.in_abs += 1;
@@ -714,14 +574,26 @@ impl<'a> Reader<'a> {
                 }
                 Ok(e)
             }
-            "ldots" | "cdots" | "dots" | "dotsb" | "dotsc" | "dotsm" | "dotsi" | "vdots" => {
-                Ok(Expr::Sym(ELLIPSIS.into()))
-            }
+            "ldots" | "cdots" | "dots" | "dotsb" | "dotsc" | "dotsm" | "dotsi" | "vdots"
+            | "ddots" | "iddots" => Ok(Expr::Sym(ELLIPSIS.into())),
             "prod" => self.big(Calc::Prod),
             "max" | "sup" | "esssup" => self.big(Calc::Max),
             "min" | "inf" | "essinf" => self.big(Calc::Min),
             "lim" | "limsup" | "liminf" => self.big(Calc::Lim),
             "partial" => self.partial(),
+            // the real or imaginary part has the unit of its argument
+            "Re" | "Im" | "real" | "imag" => {
+                let arg = self.function_argument()?;
+                Ok(marked(arg))
+            }
+            // a determinant's unit is its matrix's to the order, which the formula does not
+            // say: an opaque symbol named by its matrix, a unit of its own
+            "det" => {
+                let arg = self.function_argument()?;
+                Ok(Expr::Sym(format!("{{det[{arg}]}}")))
+            }
+            // `\nabla \cdot (\bullet)`: a placeholder for an operand
+            "bullet" => Ok(self.operand()),
             "langle" => self.angle("rangle"),
             "lvert" | "vert" => {
                 self.in_abs += 1;
@@ -760,8 +632,13 @@ impl<'a> Reader<'a> {
             "sum" => self.big(Calc::Sum),
             "int" if *self.peek() == Tok::Ch('_') && self.bounds_follow() => self.integral(),
             "int" | "iint" | "iiint" | "oint" | "oiint" => {
-                // `\iiint_V`: the region named, not a bound
+                // `\iiint_V`: the region named, not a bound; `\int^{t}` an antiderivative's
+                // upper end (the unit of `\int f dt` whatever it is)
                 if *self.peek() == Tok::Ch('_') {
+                    self.bump();
+                    self.group()?;
+                }
+                if *self.peek() == Tok::Ch('^') {
                     self.bump();
                     self.group()?;
                 }
@@ -829,6 +706,16 @@ impl<'a> Reader<'a> {
                 && self.at(3) == Some(&Tok::Close))
     }
 
+    /// The argument of a named operator (`\Re(z)`, `\det A`, `\Re\left(..\right)`).
+    fn function_argument(&mut self) -> R<Expr> {
+        self.skip_space();
+        match self.peek() {
+            Tok::Ch('(') | Tok::Open => self.atom(),
+            Tok::Cmd(c) if c == "left" || c == "{" => self.atom(),
+            _ => self.term_until(true),
+        }
+    }
+
     /// `\sin x`, `\sin(x)`, `\sin^{2} x`, `\sin \frac{m \pi x}{a}`.
     fn function(&mut self, f: Func) -> R<Expr> {
         self.skip_space();
@@ -860,11 +747,22 @@ impl<'a> Reader<'a> {
 
     /// A chain of relations: `a = b`, `a = b = 0`, `a \le b`.
     pub(super) fn relation(&mut self) -> R<TexRelation> {
+        // a display that starts with `=` continues a formula of the prose: what it holds is
+        // read without the side it does not show
+        self.skip_space();
+        if *self.peek() == Tok::Ch('=') {
+            self.bump();
+        }
         let mut sides = vec![self.expr()?];
         let mut rels = Vec::new();
         loop {
             self.skip_space();
             let rel = match self.peek() {
+                // `=:` defines its right side
+                Tok::Ch('=') if self.at(1) == Some(&Tok::Ch(':')) => {
+                    self.bump();
+                    "="
+                }
                 Tok::Ch('=') => "=",
                 Tok::Ch('<') => "<",
                 Tok::Ch('>') => ">",
@@ -883,7 +781,8 @@ impl<'a> Reader<'a> {
                     "ll" => "<<",
                     "gg" => ">>",
                     "approx" | "simeq" | "cong" | "doteq" | "approxeq" => "~",
-                    "coloneqq" | "triangleq" | "eqqcolon" | "stackrel" => "=",
+                    // `\=` (a MathJax note's "is defined as")
+                    "coloneqq" | "triangleq" | "eqqcolon" | "stackrel" | "=" => "=",
                     // a proportionality and a scaling claim no unit of their factor
                     "propto" => "propto",
                     "sim" => "sim",
@@ -915,7 +814,7 @@ impl<'a> Reader<'a> {
     }
 }
 /// The operators whose name may be a part of a subscript (`F_{\max}`, `t_{\min}`).
-fn is_named_operator(c: &str) -> bool {
+pub(super) fn is_named_operator(c: &str) -> bool {
     matches!(
         c,
         "max" | "min" | "sup" | "inf" | "lim" | "log" | "det" | "exp" | "arg" | "deg" | "dim"
