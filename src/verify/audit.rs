@@ -846,7 +846,7 @@ mod tests {
         let s = index_section(&papers);
         for row in [
             "| [000](audit/000.md) | 51 | 39 | 8 | 1 | 3 |",
-            "| [001](audit/001.md) | 86 | 75 | 1 | 8 | 2 |",
+            "| [001](audit/001.md) | 97 | 86 | 1 | 9 | 1 |",
             "| [002](audit/002.md) | 141 | 100 | 7 | 31 | 3 |",
         ] {
             assert!(s.contains(row), "{row} not in {s}");

@@ -180,6 +180,8 @@ pub(crate) fn ends_open(row: &str) -> bool {
 pub(crate) fn split_top(text: &str, seps: &[&str]) -> Vec<String> {
     let chars: Vec<char> = text.chars().collect();
     let (mut depth, mut out, mut cur) = (0i32, Vec::new(), String::new());
+    // the depth at which a `\text{..}` opened, while inside it
+    let mut in_text: Option<i32> = None;
     let mut i = 0;
     'next: while i < chars.len() {
         let c = chars[i];
@@ -224,7 +226,22 @@ pub(crate) fn split_top(text: &str, seps: &[&str]) -> Vec<String> {
         } else if word("\\right") || word("\\end") {
             depth -= 1;
         }
+        // the words of a `\text{ a) }` are no brackets: only its braces count
+        if in_text.is_none()
+            && ["\\text", "\\mbox", "\\textrm", "\\textit", "\\textbf"]
+                .iter()
+                .any(|w| word(w))
+        {
+            in_text = Some(depth);
+        }
         match c {
+            '{' | '}' if in_text.is_some() => {
+                depth += if c == '{' { 1 } else { -1 };
+                if c == '}' && in_text == Some(depth) {
+                    in_text = None;
+                }
+            }
+            '(' | ')' | '[' | ']' if in_text.is_some_and(|d| depth > d) => {}
             '{' | '(' | '[' => depth += 1,
             '}' | ')' | ']' => depth -= 1,
             _ => {}
@@ -446,7 +463,7 @@ pub(super) fn words_as_separators(tex: &str) -> String {
             // `\textrm{Equilibrium Equations:}`); a name in words (`\text{err}`,
             // `\text{kinetic energy}`) is none
             let foreign = words.chars().any(|c| c.is_alphabetic() && !c.is_ascii())
-                || words.contains(['$', ':', '\\', '!', '?', ';'])
+                || words.contains(['$', ':', '\\', '!', '?', ';', '(', ')'])
                 || words.contains("--");
             let first = words
                 .split(|c: char| c.is_whitespace() || c == ',' || c == '~')
@@ -707,8 +724,23 @@ pub(super) fn cases_row(block: &str) -> String {
 /// continuation of the row before (a relation sign at the top level).
 pub(super) fn starts_relation(row: &str) -> bool {
     let signs = [
-        "=", "\\le", "\\ge", "\\leq", "\\geq", "<", ">", "\\approx", "\\ll", "\\gg", "\\ne",
-        "\\neq", "\\sim", "\\propto", "\\to",
+        "=",
+        "\\le",
+        "\\ge",
+        "\\leq",
+        "\\geq",
+        "\\leqslant",
+        "\\geqslant",
+        "<",
+        ">",
+        "\\approx",
+        "\\ll",
+        "\\gg",
+        "\\ne",
+        "\\neq",
+        "\\sim",
+        "\\propto",
+        "\\to",
     ];
     split_top(row, &signs).len() > 1
 }

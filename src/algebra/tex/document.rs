@@ -678,6 +678,22 @@ mod tests {
     use super::*;
 
     #[test]
+    fn subequations_number_3a_3b_and_the_counter_goes_on() {
+        // by hand, as LaTeX numbers them: 1, then 2a 2b 2c (the counter takes 2), then 3
+        let d = read_document(
+            r"
+\begin{equation} a = b \end{equation}
+\begin{subequations}
+\begin{align} c &= d \\ e &= f \end{align}
+\begin{equation} g = h \end{equation}
+\end{subequations}
+\begin{equation} i = j \end{equation}
+",
+        );
+        assert_eq!(d.numbers, ["1", "2a", "2b", "2c", "3"]);
+    }
+
+    #[test]
     fn numbers_as_latex_gives_them() {
         let src = r"
 Intro $x$ and 50\% of it. % a comment with $$ x $$ in it

@@ -4,7 +4,7 @@
 //! operand an operator stands without (`\frac{\partial}{\partial r} = \nabla`), read as
 //! [`OPERAND`].
 
-use super::super::lex::{Tok, greek, is_space};
+use super::super::lex::{Tok, accent_suffix, greek, is_space};
 use super::{R, Reader, mul};
 use crate::algebra::expr::{Calc, Expr};
 use crate::algebra::units::OPERAND;
@@ -136,6 +136,51 @@ impl Reader<'_> {
         close >= self.pos + 4
             && matches!(self.toks[close - 1].0, Tok::Ch('+' | '-'))
             && matches!(self.toks[close - 2].0, Tok::Ch(c) if c.is_ascii_alphabetic())
+    }
+
+    /// `_{;k}`, `_{,\mathbf{k}}` after a bracket: the derivative's variable (a letter or a
+    /// Greek letter, in a font or not) and how many tokens the subscript takes.
+    pub(super) fn derivative_subscript(&self) -> Option<(String, usize)> {
+        if self.at(1) != Some(&Tok::Open) || !matches!(self.at(2), Some(Tok::Ch(';' | ','))) {
+            return None;
+        }
+        let close = self.group_close(self.pos + 1)?;
+        let mut name = String::new();
+        for (t, _) in &self.toks[self.pos + 3..close] {
+            match t {
+                Tok::Ch(c) if c.is_ascii_alphabetic() => name.push(*c),
+                Tok::Cmd(c) if greek(c).is_some() => name.push_str(greek(c).unwrap_or_default()),
+                Tok::Cmd(c) if accent_suffix(c) == Some("") => {}
+                Tok::Open | Tok::Close => {}
+                _ => return None,
+            }
+        }
+        (name.chars().count() == 1 || greek(&name).is_some())
+            .then_some((name, close + 1 - self.pos))
+    }
+
+    /// Whether `^{..}` here is a label of letters (`T^{v\ell}`, `\chi^{zxx}`, `\omega^{\Sigma}`):
+    /// two or more letters and nothing else, or one capital Greek letter; a power of letters
+    /// (`x^{n}`, `x^{\alpha}`) is one letter.
+    pub(super) fn letters_label(&self) -> bool {
+        if self.at(1) != Some(&Tok::Open) {
+            return false;
+        }
+        let Some(close) = self.group_close(self.pos + 1) else {
+            return false;
+        };
+        let inside = &self.toks[self.pos + 2..close];
+        let letter = |t: &Tok| match t {
+            Tok::Ch(c) => c.is_ascii_alphabetic(),
+            Tok::Cmd(c) => greek(c).is_some(),
+            _ => false,
+        };
+        let capital_greek = |t: &Tok| matches!(t, Tok::Cmd(c) if greek(c).is_some() && c.starts_with(|c: char| c.is_ascii_uppercase()));
+        match inside {
+            [one] => capital_greek(&one.0),
+            [] => false,
+            many => many.iter().all(|(t, _)| letter(t)),
+        }
     }
 
     /// Whether an operator here stands without an operand: what follows ends a term.

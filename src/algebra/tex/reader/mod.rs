@@ -306,6 +306,27 @@ impl<'a> Reader<'a> {
                 // a parenthesised factor ends a bare argument: `\cos \phi (a + b)` is
                 // cos(phi) (a + b), as `\sin \omega t` is sin(omega t)
                 Tok::Ch('(' | '[') if arg => return Ok(e),
+                // a vector after a bare argument is a factor: `\sin\phi \hat{\mathbf{x}}` is
+                // sin(phi) times the unit vector
+                Tok::Cmd(c)
+                    if arg
+                        && matches!(
+                            c.as_str(),
+                            "hat"
+                                | "widehat"
+                                | "mathbf"
+                                | "boldsymbol"
+                                | "vec"
+                                | "bm"
+                                | "pmb"
+                                | "vb"
+                                | "vv"
+                                | "symbf"
+                                | "overrightarrow"
+                        ) =>
+                {
+                    return Ok(e);
+                }
                 Tok::Cmd(c) if arg && c == "left" => return Ok(e),
                 // an integral or a big operator after a bare argument is a factor:
                 // `\sin \theta \int ..` is sin(theta) times the integral
@@ -401,6 +422,13 @@ impl<'a> Reader<'a> {
                 }
                 // `(\partial V / \partial q)_0`, `[\mathbf{D}]_{ab}`, `\{f, g\}_{qp}`: taken at
                 // a point, or a component: the unit of the formula
+                // `(\mathcal{O}_{nm})_{;\mathbf{k}}`, `(S)_{,q}`: a derivative by the name after
+                // the semicolon or comma
+                Tok::Ch('_') if self.derivative_subscript().is_some() => {
+                    let (var, len) = self.derivative_subscript().unwrap_or_default();
+                    self.pos += len;
+                    e = Expr::Calc(Calc::Diff, Box::new(e), var, vec![]);
+                }
                 Tok::Ch('_') => {
                     self.skip_scripts()?;
                     e = marked(e);
@@ -520,6 +548,12 @@ impl<'a> Reader<'a> {
                 && let Some(f) = func(&inner)
             {
                 return self.function(f);
+            }
+            // `\mathrm{Re}[..]`, `\operatorname{Im}(..)`: a real or imaginary part, the unit of
+            // its argument
+            if suffix.is_empty() && matches!(inner.as_str(), "Re" | "Im") {
+                let arg = self.function_argument()?;
+                return Ok(marked(arg));
             }
             // `\mathrm{d} x`: an increment of x
             if inner == "d" && suffix.is_empty() && self.name_follows(false) {

@@ -162,6 +162,13 @@ impl Reader<'_> {
                     self.star_power = true;
                     return Ok(name);
                 }
+                // `T^{v\ell}_{p}`, `\chi^{zxx}`: a label of letters (not of `e`, whose `e^{ikx}` is
+                // an exponential)
+                Tok::Ch('^') if name != "e" && self.letters_label() => {
+                    self.bump();
+                    let label = self.name_text()?;
+                    name.push_str(&label);
+                }
                 Tok::Ch('^') if self.decoration().is_some() => {
                     let (suffix, len) = self.decoration().unwrap_or(("", 1));
                     self.pos += len;
