@@ -369,10 +369,11 @@ fn judge(rels: &mut [AuditRelation], inputs: &[Option<Relation>], inf: &Inferenc
                         format!("`{left}` is {left_unit} but `{right}` is {right_unit} ({what})")
                     }
                 };
-                // with no unit declared, a relation that only contradicts the units other
-                // relations gave (one letter, two quantities in a long text) is no finding:
-                // nothing says which of them is right
-                if units.symbols.is_empty() && !contradicts_itself(input) {
+                // with no unit declared, a relation can only contradict the units other
+                // relations gave (one letter, two quantities in a long text; alone, its unit
+                // equations are homogeneous and every unknown dimensionless solves them): no
+                // finding, nothing says which of them is right
+                if units.symbols.is_empty() {
                     r.status = "undetermined";
                     r.detail = format!(
                         "its units conflict with those other relations give ({}); no declared unit decides",
@@ -386,13 +387,6 @@ fn judge(rels: &mut [AuditRelation], inputs: &[Option<Relation>], inf: &Inferenc
             }
         }
     }
-}
-
-/// Whether a relation is inconsistent on its own (with no unit declared and no other relation):
-/// `x + x^2`, `\dot{x} = x`.
-fn contradicts_itself(r: &Relation) -> bool {
-    let alone = infer(std::slice::from_ref(&Some(r.clone())), &BTreeMap::new());
-    matches!(alone.statuses.first(), Some(Status::Inconsistent { .. }))
 }
 
 /// The top-level terms of a relation's sides grouped by unit, when they fall in more than one

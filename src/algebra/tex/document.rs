@@ -678,6 +678,16 @@ mod tests {
     use super::*;
 
     #[test]
+    fn an_unbraced_input_is_read_but_no_unbraced_include() {
+        // TeX's `\input file` takes a name up to a space; `\include` wants braces
+        let load = |_: &str| Ok("$$ c = d $$".to_string());
+        let d = read_document_with("\\input chap\n$$ a = b $$", &load);
+        assert_eq!(d.displays.len(), 2, "{:?}", d.displays);
+        let d = read_document_with("\\include chap\n$$ a = b $$", &load);
+        assert_eq!(d.displays.len(), 1, "{:?}", d.displays);
+    }
+
+    #[test]
     fn subequations_number_3a_3b_and_the_counter_goes_on() {
         // by hand, as LaTeX numbers them: 1, then 2a 2b 2c (the counter takes 2), then 3
         let d = read_document(

@@ -418,11 +418,21 @@ fn labels_of_letters_bracket_derivatives_and_vectors_after_a_bare_argument() {
     // a superscript of two or more letters, or one capital Greek letter, is a label; one
     // letter is a power; `e^{ikx}` stays an exponential
     assert_eq!(read(r"T^{v\ell}_{p} + \chi^{zxx}"), "Tvlp + chizxx");
-    assert_eq!(read(r"\omega^{\Sigma}_{nm}"), "omegaSigmanm");
+    assert_eq!(
+        read(r"\omega^{\Sigma}_{nm} + \omega^\Sigma"),
+        "omegaSigmanm + omegaSigma"
+    );
     assert_eq!(read("x^{n} + y^{\\alpha}"), "x^n + y^alpha");
     assert_eq!(read("e^{ikx}"), "exp(i*k*x)");
     // `(O)_{;k}`: a derivative by k
     assert_eq!(read(r"(\mathcal{O}_{nm})_{;\mathbf{k}}"), "diff(Ocalnm, k)");
+    // a component of the variable: `_{;k^{\mathrm{c}}}` by k's c-th component
+    assert_eq!(
+        read(r"(\omega_{nm})_{;k^{\mathrm{c}}}"),
+        "diff(omeganm, kc)"
+    );
+    // not a derivative: a subscript of two names
+    assert_eq!(read("(a)_{;kq}"), "marked(a)");
     // a vector after a bare argument is a factor
     assert_eq!(read(r"\sin\phi \hat{\mathbf{x}}"), "sin(phi)*xh");
     assert_eq!(read(r"\sin \omega t"), "sin(omega*t)");
@@ -433,6 +443,14 @@ fn labels_of_letters_bracket_derivatives_and_vectors_after_a_bare_argument() {
 fn a_parenthesis_in_text_does_not_hide_a_row_break() {
     let parts = super::split_top(r"\text { b) } V > a \\ m V' = -f", &["\\\\"]);
     assert_eq!(parts.len(), 2, "{parts:?}");
+    // a group inside the text closes, the text goes on
+    let parts = super::split_top(r"\text{ {a} b) } V > a \\ m V' = -f", &["\\\\"]);
+    assert_eq!(parts.len(), 2, "{parts:?}");
+    // a row's space `\\[2mm]` goes with the break
+    assert_eq!(
+        super::display::rows_of(r"a = b \\[2mm] c = d \\*[1ex] e = f"),
+        ["a = b ", " c = d ", " e = f"]
+    );
 }
 
 /// What cargo-mutants found untested in this round's sample (reports/mutation.md), each against

@@ -146,23 +146,34 @@ impl Reader<'_> {
         }
         let close = self.group_close(self.pos + 1)?;
         let mut name = String::new();
+        // the variable, then a component label (`_{;k^{\mathrm{c}}}`: the c-th component of k)
+        let mut label = false;
         for (t, _) in &self.toks[self.pos + 3..close] {
             match t {
-                Tok::Ch(c) if c.is_ascii_alphabetic() => name.push(*c),
-                Tok::Cmd(c) if greek(c).is_some() => name.push_str(greek(c).unwrap_or_default()),
+                Tok::Ch('^') if !name.is_empty() => label = true,
+                Tok::Ch(c) if c.is_ascii_alphabetic() && (name.is_empty() || label) => {
+                    name.push(*c)
+                }
+                Tok::Cmd(c) if greek(c).is_some() && (name.is_empty() || label) => {
+                    name.push_str(greek(c).unwrap_or_default())
+                }
                 Tok::Cmd(c) if accent_suffix(c) == Some("") => {}
                 Tok::Open | Tok::Close => {}
                 _ => return None,
             }
         }
-        (name.chars().count() == 1 || greek(&name).is_some())
-            .then_some((name, close + 1 - self.pos))
+        (!name.is_empty()).then_some((name, close + 1 - self.pos))
     }
 
     /// Whether `^{..}` here is a label of letters (`T^{v\ell}`, `\chi^{zxx}`, `\omega^{\Sigma}`):
     /// two or more letters and nothing else, or one capital Greek letter; a power of letters
     /// (`x^{n}`, `x^{\alpha}`) is one letter.
     pub(super) fn letters_label(&self) -> bool {
+        let capital_greek = |t: &Tok| matches!(t, Tok::Cmd(c) if greek(c).is_some() && c.starts_with(|c: char| c.is_ascii_uppercase()));
+        // `\omega^\Sigma`, unbraced
+        if self.at(1).is_some_and(capital_greek) {
+            return true;
+        }
         if self.at(1) != Some(&Tok::Open) {
             return false;
         }
@@ -175,7 +186,6 @@ impl Reader<'_> {
             Tok::Cmd(c) => greek(c).is_some(),
             _ => false,
         };
-        let capital_greek = |t: &Tok| matches!(t, Tok::Cmd(c) if greek(c).is_some() && c.starts_with(|c: char| c.is_ascii_uppercase()));
         match inside {
             [one] => capital_greek(&one.0),
             [] => false,
