@@ -685,6 +685,16 @@ mod tests {
         assert_eq!(d.displays.len(), 2, "{:?}", d.displays);
         let d = read_document_with("\\include chap\n$$ a = b $$", &load);
         assert_eq!(d.displays.len(), 1, "{:?}", d.displays);
+        // the unbraced name ends at a closing brace (`{\input chap}`)
+        let named = |name: &str| {
+            if name == "chap" {
+                Ok("$$ c = d $$".to_string())
+            } else {
+                Err(format!("no file {name}"))
+            }
+        };
+        let d = read_document_with("{\\input chap}\n$$ a = b $$", &named);
+        assert_eq!(d.displays.len(), 2, "{:?} {:?}", d.displays, d.problems);
     }
 
     #[test]

@@ -469,4 +469,10 @@ fn a_listed_sum_keeps_its_top_a_braced_transpose_and_a_starred_index() {
     assert_eq!(read(r"E_{\ast} + F_{\star}"), "Estar + Fstar");
     // `x^{(k+1)}`, `x^{(k-1)}`: an index in parentheses, with its sign, is part of the name
     assert_eq!(read(r"x^{(k+1)} - x^{(k-1)}"), "xkplus1 - xkminus1");
+    // a script letter is a quantity of its own, as a calligraphic one is
+    assert_eq!(read(r"\mathscr{L} + \mathcal{L} + L"), "Lscr + Lcal + L");
+    // a brace's note with groups inside is passed over whole
+    assert_eq!(read(r"\underbrace{x}_{a {b} c} + y"), "x + y");
+    // a derivative subscript's variable is a letter in a font, not an accented one
+    assert_eq!(read(r"(a)_{;\dot{k}}"), "marked(a)");
 }
