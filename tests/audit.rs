@@ -12,6 +12,8 @@ use serde_json::Value;
 use std::path::Path;
 use std::process::{Command, Output};
 
+#[path = "support/counts.rs"]
+mod counts;
 #[path = "support/scratch.rs"]
 mod scratch;
 use scratch::Scratch;
@@ -279,25 +281,6 @@ fn bad_units_and_bad_papers_exit_2_naming_them() {
 /// The seeds audited with the units of their claims files (what reports/audit/ holds): the count
 /// of relations per status, reviewed relation by relation (the closing note of issue 43), and the
 /// two dimension findings of 000 found without a claim naming them.
-/// The relations of an audit's JSON per status: consistent, inconsistent, undetermined,
-/// unreadable.
-fn status_counts(audit: &Value) -> [usize; 4] {
-    let n = |s: &str| {
-        audit["relations"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .filter(|r| r["status"] == s)
-            .count()
-    };
-    [
-        n("consistent"),
-        n("inconsistent"),
-        n("undetermined"),
-        n("unreadable"),
-    ]
-}
-
 #[test]
 fn the_seeds_audit() {
     let counts = |paper: &str, claims: &str| -> (Value, [usize; 4]) {
@@ -315,7 +298,7 @@ fn the_seeds_audit() {
             String::from_utf8_lossy(&out.stderr)
         );
         let v: Value = serde_json::from_slice(&out.stdout).unwrap();
-        let c = status_counts(&v);
+        let c = counts::status_counts(&v);
         (v, c)
     };
     let (v000, c000) = counts("000", "verify/000_cone_plate.toml");
@@ -512,7 +495,7 @@ fn the_main_jobs_audit_files_are_the_seeds_audits() {
         ("002", "verify/002_constrained_impact.toml", [100, 7, 31, 3]),
     ] {
         let papers = impactcheck::verify::load_claims(&root.join(claims)).expect("loads");
-        let files = impactcheck::verify::audit::paper_audits(&papers);
+        let files = impactcheck::verify::audit_reports::paper_audits(&papers);
         let get = |name: &str| {
             files
                 .iter()
@@ -526,7 +509,7 @@ fn the_main_jobs_audit_files_are_the_seeds_audits() {
                 })
         };
         let json: Value = serde_json::from_str(&get(&format!("audit/{paper}.json"))).unwrap();
-        assert_eq!(status_counts(&json), want, "{paper}");
+        assert_eq!(counts::status_counts(&json), want, "{paper}");
         let md = get(&format!("audit/{paper}.md"));
         assert!(md.contains(&format!("({paper})")), "{md}");
     }

@@ -26,7 +26,7 @@
 
 use super::expr::{Calc, Expr, Func, Op};
 use super::poly::Q;
-use super::units::{ELLIPSIS, INFINITY, OPERAND, Unit, every_unit};
+use super::units::{ELLIPSIS, INFINITY, OPERAND, Unit, WRITTEN_UNIT, every_unit};
 use num_traits::{One, ToPrimitive, Zero};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -222,8 +222,9 @@ fn walk_in(
             if let Some((_, local)) = scope.bound.iter().rev().find(|(b, _)| b == s) {
                 return Form::var(local);
             }
-            // an ellipsis or infinity: whatever unit its place needs, tied to nothing else
-            if s == ELLIPSIS || s == INFINITY {
+            // an ellipsis, infinity, a value's written unit: whatever unit its place needs,
+            // tied to nothing else
+            if s == ELLIPSIS || s == INFINITY || s == WRITTEN_UNIT {
                 return Form::var(&scope.local("any"));
             }
             // the operand of an operator written alone: the same on every side
@@ -502,9 +503,14 @@ fn constraints(
         && r.rels.iter().all(|rel| *rel == "=");
     for k in 1..forms.len() {
         // a side that is a literal 0 has every unit; a proportionality links no units
+        // in a chain, a side that is a number is a value in some unit (`v = 2\pi r/T =
+        // 408/1800 = 0.23\,\text{m/s}`), not a claim that the others are pure numbers
+        let value = |e: &Expr| r.sides.len() > 2 && e.symbols().is_empty();
         if all_vanish
             || every_unit(&r.sides[k])
             || every_unit(&r.sides[k - 1])
+            || value(&r.sides[k])
+            || value(&r.sides[k - 1])
             || r.rels.get(k - 1).is_some_and(|rel| !links_units(rel))
         {
             continue;
@@ -558,6 +564,17 @@ fn unknowns(cs: &[Constraint]) -> BTreeSet<String> {
 /// relation. `None` relations (unreadable) are passed over and get no status of their own
 /// (their index still holds a status, `Undetermined(vec![])`, which the caller replaces).
 pub fn infer(relations: &[Option<Relation>], declared: &BTreeMap<String, Unit>) -> Inference {
+    infer_ordered(relations, declared, false)
+}
+
+/// As [`infer`]; with `anchored_first`, the relations with a term whose unit the declared
+/// units fix alone are taken first (a governing equation whose known term fixes each other
+/// term's unit, before a definition of a derived constant).
+pub fn infer_ordered(
+    relations: &[Option<Relation>],
+    declared: &BTreeMap<String, Unit>,
+    anchored_first: bool,
+) -> Inference {
     let decl = |s: &str| declared.get(s).copied();
     let cs: Vec<Vec<Constraint>> = relations
         .iter()
@@ -578,15 +595,80 @@ pub fn infer(relations: &[Option<Relation>], declared: &BTreeMap<String, Unit>) 
                 && matches!(&r.sides[0], Expr::Sym(s) if declared.get(&unit_name(s)).is_none())
         })
     };
-    order.sort_by_key(|&i| (!defines(i), unknowns(&cs[i]).len(), i));
+    // a dotted symbol or an increment whose base is declared is as good as declared (`\Delta
+    // V` with V a velocity): it is no unknown when the relations are ordered
+    let as_declared: BTreeSet<String> = relations
+        .iter()
+        .flatten()
+        .flat_map(|r| &r.dots)
+        .filter(|(_, base, order)| {
+            declared.contains_key(base) && (*order == 0 || declared.contains_key("t"))
+        })
+        .map(|(dotted, _, _)| dotted.clone())
+        .collect();
+    let open = |i: usize| unknowns(&cs[i]).difference(&as_declared).count();
     let mut system = System::default();
     let mut rejected = BTreeSet::new();
-    for &i in &order {
+    let mut take = |i: usize, system: &mut System| {
         let mut trial = system.clone();
         if cs[i].iter().all(|c| trial.add(c, i).is_ok()) {
-            system = trial;
+            *system = trial;
         } else {
             rejected.insert(i);
+        }
+    };
+    if anchored_first {
+        // one at a time, each chosen against what the system fixes so far: a definition
+        // whose right side is all known (it fixes its symbol and nothing else), then a
+        // relation with a term all known (that term fixes every other term's unit), then the
+        // fewest unknowns, in the paper's order
+        let mut left: Vec<usize> = order.clone();
+        while !left.is_empty() {
+            let key = |i: usize| {
+                // the unknowns nothing fixes yet (an integral's variable is none)
+                let open: BTreeSet<String> = unknowns(&cs[i])
+                    .into_iter()
+                    .filter(|v| {
+                        !is_local(v) && !as_declared.contains(v) && system.fixed(v).is_none()
+                    })
+                    .collect();
+                let known = |e: &Expr| e.symbols().iter().all(|s| !open.contains(&unit_name(s)));
+                let r = relations[i].as_ref();
+                // it fixes every unknown it names, with what is fixed so far (a definition of
+                // known things, `L(\delta) = e^{-\delta t}..`): it can contradict nothing else
+                let closes = || {
+                    let mut trial = system.clone();
+                    cs[i].iter().all(|c| trial.add(c, i).is_ok())
+                        && open.iter().all(|v| trial.fixed(v).is_some())
+                };
+                // a definition that fixes its symbol and claims nothing else: one term on the
+                // right (or every term known), every unknown fixed by it
+                let pure_definition = r.is_some_and(|r| {
+                    defines(i)
+                        && !known(&r.sides[0])
+                        && (r.sides[1].terms().len() == 1
+                            || r.sides[1].terms().iter().all(|t| known(t)))
+                        && closes()
+                });
+                let anchored = r.map_or(0, |r| {
+                    r.sides
+                        .iter()
+                        .flat_map(|e| e.terms())
+                        .filter(|t| !t.symbols().is_empty() && known(t))
+                        .count()
+                });
+                (!pure_definition, std::cmp::Reverse(anchored), open.len(), i)
+            };
+            let Some(k) = (0..left.len()).min_by_key(|&k| key(left[k])) else {
+                break;
+            };
+            let i = left.remove(k);
+            take(i, &mut system);
+        }
+    } else {
+        order.sort_by_key(|&i| (!defines(i), open(i), i));
+        for &i in &order {
+            take(i, &mut system);
         }
     }
     let statuses = (0..relations.len())
@@ -623,7 +705,10 @@ pub fn infer(relations: &[Option<Relation>], declared: &BTreeMap<String, Unit>) 
             names.extend(
                 s.symbols()
                     .iter()
-                    .filter(|x| *x != ELLIPSIS && *x != INFINITY && *x != OPERAND)
+                    .filter(|x| {
+                        !x.is_empty()
+                            && ![ELLIPSIS, INFINITY, OPERAND, WRITTEN_UNIT].contains(&x.as_str())
+                    })
                     .map(|x| unit_name(x)),
             );
         }

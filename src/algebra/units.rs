@@ -164,6 +164,11 @@ pub fn every_unit(e: &Expr) -> bool {
     }
 }
 
+/// The symbol the LaTeX reader reads a unit written after a number as (`9.8\,\text{m/s}^2`):
+/// the number is a value in that unit, which fits any place (the reader does not turn the
+/// text into a unit: a prefix, a `km/h`).
+pub const WRITTEN_UNIT: &str = "(unit)";
+
 /// The symbol the LaTeX reader reads `\ldots` and `\cdots` as (a term that stands for the
 /// terms left out).
 pub const ELLIPSIS: &str = "...";

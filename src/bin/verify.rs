@@ -54,6 +54,12 @@ enum Command {
         /// `\input` files (inside its folder) are read without it.
         #[arg(long, value_name = "FILE")]
         preamble: Vec<PathBuf>,
+        /// A vocabulary of quantities to add to the built-in one (TOML: a table per quantity
+        /// with `words` and `unit`, as src/verify/words/vocabulary.toml); its words replace the
+        /// built-in ones. The units the paper's prose gives its symbols ("where $\rho$ is the
+        /// density") are read with it; --units overrides them.
+        #[arg(long, value_name = "FILE")]
+        vocabulary: Vec<PathBuf>,
         /// text (a line per relation), json or markdown (a report: the inconsistent first).
         #[arg(long, value_enum, default_value = "text")]
         format: AuditFmt,
@@ -70,6 +76,9 @@ enum Command {
         /// Files of LaTeX macros (as for audit).
         #[arg(long, value_name = "FILE")]
         preamble: Vec<PathBuf>,
+        /// Vocabularies of quantities (as for audit).
+        #[arg(long, value_name = "FILE")]
+        vocabulary: Vec<PathBuf>,
         /// The paper's short name: the first part of every claim id.
         #[arg(long = "paper", value_name = "ID")]
         id: String,
@@ -389,13 +398,14 @@ fn write_reports(
         let audits = if custom {
             String::new()
         } else {
-            verify::audit::index_section(papers)
+            verify::audit_reports::index_section(papers)
+                + &verify::audit_reports::words_section(papers)
         };
         readme.insert_str(at, &format!("{coverage}{audits}## Every claim\n\n"));
     }
     if !custom {
         // the units of every relation of each paper, from its LaTeX and its claims' units
-        files.extend(verify::audit::paper_audits(papers));
+        files.extend(verify::audit_reports::paper_audits(papers));
         if progress {
             eprintln!("verify: work-precision diagrams ...");
         }
@@ -444,20 +454,41 @@ fn write_reports(
 /// `verify audit` and `verify init`: the paper read, its units audited, the audit or a claims
 /// file printed.
 fn run_paper(command: &Command) -> Result<bool> {
-    let (paper, units, preamble) = match command {
+    let (paper, units, preamble, vocabulary) = match command {
         Command::Audit {
             paper,
             units,
             preamble,
+            vocabulary,
             ..
         }
         | Command::Init {
             paper,
             units,
             preamble,
+            vocabulary,
             ..
-        } => (paper, units, preamble),
+        } => (paper, units, preamble, vocabulary),
     };
+    let mut vocab = verify::words::vocabulary::Vocabulary::builtin().map_err(|message| {
+        verify::VerifyError::BadClaims {
+            path: "src/verify/words/vocabulary.toml".into(),
+            message,
+        }
+    })?;
+    for v in vocabulary {
+        let text = std::fs::read_to_string(v).map_err(|e| verify::VerifyError::BadClaims {
+            path: v.clone(),
+            message: format!("cannot read the vocabulary: {e}"),
+        })?;
+        let more = verify::words::vocabulary::Vocabulary::parse(&text, "the vocabulary").map_err(
+            |message| verify::VerifyError::BadClaims {
+                path: v.clone(),
+                message,
+            },
+        )?;
+        vocab = vocab.extended(more);
+    }
     let text = std::fs::read_to_string(paper)
         .with_context(|| format!("reading the paper {}", paper.display()))?;
     let units = match units {
@@ -491,6 +522,18 @@ fn run_paper(command: &Command) -> Result<bool> {
         }
         eprintln!("verify: {none}: the audit is empty");
     }
+    // the units the paper's words give its symbols (a displays extract has no words)
+    let units = if doc.is_some() {
+        let expanded = impactcheck::algebra::tex::macros::expand_with(&text, &macros)
+            .map_or_else(|_| text.clone(), |e| e.0);
+        let words = verify::audit::paper_words(&expanded, &blocks, &units, &vocab);
+        for note in &words.notes {
+            eprintln!("verify: {}: {note}", paper.display());
+        }
+        units.with_words(words)
+    } else {
+        units
+    };
     let a = verify::audit::audit(&blocks, doc.as_ref(), &units);
     let name = paper
         .file_name()

@@ -11,8 +11,10 @@
 //! file serves as it is.
 
 use super::VerifyError;
+use super::words::vocabulary::Vocabulary;
+use super::words::{WordUnit, Words};
 use crate::algebra::expr::Expr;
-use crate::algebra::infer::{Inference, Relation, Status, infer, unit_name};
+use crate::algebra::infer::{Inference, Relation, Status, infer_ordered, unit_name};
 use crate::algebra::tex::document::Document;
 use crate::algebra::tex::{TexSymbols, read_display, read_formula};
 use crate::algebra::units::Unit;
@@ -29,6 +31,47 @@ pub struct Units {
     pub texts: BTreeMap<String, String>,
     /// LaTeX spellings mapped to symbols.
     pub tex_symbols: BTreeMap<String, String>,
+    /// The units of [`Units::symbols`] that the paper's words gave (issue 52), with their
+    /// sources.
+    pub words: BTreeMap<String, WordUnit>,
+    /// The units the words gave symbols that are declared: the declared unit is used.
+    pub overridden: BTreeMap<String, WordUnit>,
+    /// The names the words call a Dirac delta (read as the inverse of their argument).
+    pub dirac: std::collections::BTreeSet<String>,
+    /// The lines where the paper's sections open (a mention in passing names its symbol in
+    /// its section only).
+    pub sections: Vec<usize>,
+}
+
+impl Units {
+    /// These units with those the paper's words give: a symbol the words name gets their
+    /// unit unless it is declared here (the declared unit overrides, and the audit says so).
+    pub fn with_words(mut self, words: Words) -> Units {
+        self.dirac.extend(words.dirac);
+        self.sections = words.sections;
+        for (name, w) in words.units {
+            if self.symbols.contains_key(&name) {
+                self.overridden.insert(name, w);
+            } else {
+                self.symbols.insert(name.clone(), w.unit);
+                self.words.insert(name, w);
+            }
+        }
+        self
+    }
+}
+
+/// The units a paper's words give its symbols ([`super::words`]), its symbols named as the
+/// audit of `blocks` names them.
+pub fn paper_words(
+    text: &str,
+    blocks: &[(Option<String>, String)],
+    units: &Units,
+    vocab: &Vocabulary,
+) -> Words {
+    let syms = TexSymbols::new(units.tex_symbols.clone())
+        .with_functions_of(blocks.iter().map(|(_, tex)| tex.as_str()));
+    super::words::read_words(text, &syms, vocab)
 }
 
 /// Reads a units file: `[symbols]` (and `[tex_symbols]`) of any TOML file, a claims file
@@ -118,10 +161,41 @@ pub struct AuditSymbol {
     pub name: String,
     /// Its unit (`null`: nothing fixes it).
     pub unit: Option<String>,
-    /// `declared` or `inferred`.
+    /// `declared`, `words` (the paper's prose names it: `quote`, `line`) or `inferred`.
     pub source: &'static str,
     /// The relations that fixed an inferred unit: their numbers, or `display K` for one without.
     pub from: Vec<String>,
+    /// For a unit from the words: the quantity named (`density`, or `written` for a unit the
+    /// paper writes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub quantity: Option<String>,
+    /// For a unit from the words: the words, quoted.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub quote: Option<String>,
+    /// For a unit from the words: their line in the paper.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub line: Option<usize>,
+    /// For a declared unit the words gave another: what they said, and where.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub overrides: Option<String>,
+}
+
+impl AuditSymbol {
+    /// Where its unit comes from, in words: `declared`, `inferred from (3), (5)`, `words, line
+    /// 38: "$\rho$ is the density of plate"`.
+    pub fn provenance(&self) -> String {
+        let mut s = self.source.to_string();
+        if let (Some(l), Some(q)) = (self.line, &self.quote) {
+            s.push_str(&format!(", line {l}: \"{q}\""));
+        }
+        if !self.from.is_empty() {
+            s.push_str(&format!(" from {}", self.from.join(", ")));
+        }
+        if let Some(o) = &self.overrides {
+            s.push_str(&format!(" (overrides the words: {o})"));
+        }
+        s
+    }
 }
 
 /// The audit of a paper.
@@ -172,7 +246,9 @@ fn dots(tex: &str, syms: &TexSymbols) -> Vec<(String, String, u32)> {
 
 /// Audits the relations of `blocks` with the units given.
 pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units: &Units) -> Audit {
+    let original_words = &units.words;
     let syms = TexSymbols::new(units.tex_symbols.clone())
+        .with_dirac(units.dirac.iter().cloned())
         .with_functions_of(blocks.iter().map(|(_, tex)| tex.as_str()));
     let mut rels: Vec<AuditRelation> = Vec::new();
     let mut inputs: Vec<Option<Relation>> = Vec::new();
@@ -225,12 +301,13 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
                             crate::algebra::units::ELLIPSIS,
                             crate::algebra::units::INFINITY,
                             crate::algebra::units::OPERAND,
+                            crate::algebra::units::WRITTEN_UNIT,
                         ];
                         let names = r
                             .sides
                             .iter()
                             .flat_map(|s| s.symbols())
-                            .filter(|s| !special.contains(&s.as_str()))
+                            .filter(|s| !s.is_empty() && !special.contains(&s.as_str()))
                             .collect();
                         rels.push(AuditRelation {
                             read: Some(read),
@@ -252,8 +329,45 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
         }
     }
     operator_images(&mut inputs);
-    let inf = infer(&inputs, &units.symbols);
-    judge(&mut rels, &inputs, &inf, units);
+    // a symbol named in passing is that quantity in its own section only
+    let lines: Vec<Option<usize>> = rels.iter().map(|r| r.line).collect();
+    let mut names: Vec<Vec<String>> = rels.iter().map(|r| r.names.clone()).collect();
+    let scoped = super::words::conflicts::scope_passing(&mut inputs, &lines, &mut names, units);
+    let units = &scoped;
+    let (inf, weak, aside) = if units.words.is_empty() {
+        (
+            infer_ordered(&inputs, &units.symbols, false),
+            Default::default(),
+            BTreeMap::new(),
+        )
+    } else {
+        // a key to a display is never set aside, a mention in passing may be
+        let words = units
+            .words
+            .iter()
+            .filter(|(_, w)| !w.key)
+            .map(|(n, _)| n.clone())
+            .collect();
+        super::words::conflicts::infer_with_words(&inputs, &names, &units.symbols, &words)
+    };
+    // a unit of the words set aside is no anchor
+    let mut kept = units.clone();
+    for n in aside.keys() {
+        kept.symbols.remove(n);
+        kept.words.remove(n);
+    }
+    let units = &kept;
+    // with units from the words, a relation that names none of them contradicts only what
+    // other relations gave: no finding
+    let mut weak = weak;
+    if !units.words.is_empty() {
+        weak.extend((0..names.len()).filter(|&i| {
+            !names[i]
+                .iter()
+                .any(|n| units.words.contains_key(&unit_name(n)))
+        }));
+    }
+    judge(&mut rels, &inputs, &inf, units, &weak);
     let place = |i: usize| {
         rels[i].number.as_ref().map_or_else(
             || format!("unnumbered: {}", short(&rels[i].latex)),
@@ -263,15 +377,39 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
     let symbols = inf
         .symbols
         .iter()
-        .map(|s| AuditSymbol {
-            name: s.name.clone(),
-            unit: s.unit.map(|u| u.to_string()),
-            source: if s.declared { "declared" } else { "inferred" },
-            from: {
-                let mut f: Vec<String> = s.from.iter().map(|&i| place(i)).collect();
-                f.dedup();
-                f
-            },
+        .map(|s| {
+            let words = units.words.get(&s.name);
+            AuditSymbol {
+                name: s.name.clone(),
+                unit: s.unit.map(|u| u.to_string()),
+                source: match (s.declared, words) {
+                    (true, Some(_)) => "words",
+                    (true, None) => "declared",
+                    _ => "inferred",
+                },
+                from: {
+                    let mut f: Vec<String> = s.from.iter().map(|&i| place(i)).collect();
+                    f.dedup();
+                    f
+                },
+                quantity: words.map(|w| w.quantity.clone()),
+                quote: words.map(|w| w.quote.clone()),
+                line: words.map(|w| w.line),
+                overrides: units
+                    .overridden
+                    .get(&s.name)
+                    .filter(|_| s.declared)
+                    .map(|w| format!("{} ({})", w.unit, w.source()))
+                    .or_else(|| {
+                        let (against, holds) = aside.get(&s.name)?;
+                        let w = original_words.get(&s.name)?;
+                        Some(format!(
+                            "the words' {} ({}) set aside: {against} relations contradict it, {holds} hold with it",
+                            w.unit,
+                            w.source()
+                        ))
+                    }),
+            }
         })
         .collect();
     Audit {
@@ -328,7 +466,13 @@ fn short(tex: &str) -> String {
 }
 
 /// Each readable relation's status and detail from the inference.
-fn judge(rels: &mut [AuditRelation], inputs: &[Option<Relation>], inf: &Inference, units: &Units) {
+fn judge(
+    rels: &mut [AuditRelation],
+    inputs: &[Option<Relation>],
+    inf: &Inference,
+    units: &Units,
+    weak: &std::collections::BTreeSet<usize>,
+) {
     let unit_of = |name: &str| {
         units.symbols.get(name).copied().or_else(|| {
             inf.symbols
@@ -373,7 +517,28 @@ fn judge(rels: &mut [AuditRelation], inputs: &[Option<Relation>], inf: &Inferenc
                 // relations gave (one letter, two quantities in a long text; alone, its unit
                 // equations are homogeneous and every unknown dimensionless solves them): no
                 // finding, nothing says which of them is right
-                if units.symbols.is_empty() {
+                let from_words: Vec<String> = r
+                    .names
+                    .iter()
+                    .map(|n| unit_name(n))
+                    .collect::<std::collections::BTreeSet<_>>()
+                    .iter()
+                    .filter_map(|n| units.words.get(n))
+                    .map(|w| format!("`{}` in {} ({})", w.symbol, w.unit, w.source()))
+                    .collect();
+                if !from_words.is_empty() {
+                    r.detail.push_str(&format!(
+                        "; units from the paper's words: {}",
+                        from_words.join(", ")
+                    ));
+                }
+                if weak.contains(&i) {
+                    r.status = "undetermined";
+                    r.detail = format!(
+                        "its units conflict with those other relations give ({}); the units declared or named in the paper's words do not decide, through its definitions, which is right",
+                        r.detail
+                    );
+                } else if units.symbols.is_empty() {
                     r.status = "undetermined";
                     r.detail = format!(
                         "its units conflict with those other relations give ({}); no declared unit decides",
@@ -452,15 +617,10 @@ pub fn to_text(a: &Audit) -> String {
     s.push_str("\nsymbols:\n");
     for y in &a.symbols {
         s.push_str(&format!(
-            "  {:<16} {:<22} {}{}\n",
+            "  {:<16} {:<22} {}\n",
             y.name,
             y.unit.as_deref().unwrap_or("?"),
-            y.source,
-            if y.from.is_empty() {
-                String::new()
-            } else {
-                format!(" from {}", y.from.join(", "))
-            }
+            y.provenance()
         ));
     }
     let counts: Vec<String> = a.counts().iter().map(|(k, v)| format!("{v} {k}")).collect();
@@ -515,11 +675,19 @@ pub fn to_markdown(a: &Audit, title: &str) -> String {
     }
     s.push_str("\n## Symbols\n\n| symbol | unit | source | from |\n|---|---|---|---|\n");
     for y in &a.symbols {
+        let source = match (&y.quote, y.line) {
+            (Some(q), Some(l)) => format!("words, line {l}: \"{q}\""),
+            _ => y.source.to_string(),
+        };
+        let source = match &y.overrides {
+            Some(o) => format!("{source} (overrides the words: {o})"),
+            None => source,
+        };
         s.push_str(&format!(
             "| `{}` | {} | {} | {} |\n",
             esc(&y.name),
             y.unit.as_deref().unwrap_or("not fixed"),
-            y.source,
+            esc(&source),
             esc(&y.from.join(", "))
         ));
     }
@@ -563,6 +731,14 @@ pub fn init_claims(
                     q(&written)
                 ));
             }
+            (Some(u), "words") => s.push_str(&format!(
+                "{} = {}    # from the words ({}), line {}: {}\n",
+                key(&y.name),
+                q(u),
+                y.quantity.as_deref().unwrap_or(""),
+                y.line.unwrap_or(0),
+                q(y.quote.as_deref().unwrap_or(""))
+            )),
             (Some(u), _) => s.push_str(&format!(
                 "{} = {}    # inferred from {}\n",
                 key(&y.name),
@@ -685,58 +861,6 @@ pub fn units_of_claims(p: &super::PaperClaims) -> Units {
     u
 }
 
-/// The index's paragraph on the audits: each paper's counts per status and its report.
-pub fn index_section(papers: &[super::PaperClaims]) -> String {
-    let mut rows = Vec::new();
-    for p in papers {
-        let Ok((blocks, doc, _)) = super::tex_claims::paper_displays(p) else {
-            continue;
-        };
-        let a = audit(&blocks, doc.as_ref(), &units_of_claims(p));
-        let c = a.counts();
-        let n = |k: &str| c.get(k).copied().unwrap_or(0);
-        rows.push(format!(
-            "| [{}](audit/{}.md) | {} | {} | {} | {} | {} |",
-            p.paper,
-            p.paper,
-            a.relations.len(),
-            n("consistent"),
-            n("inconsistent"),
-            n("undetermined"),
-            n("unreadable")
-        ));
-    }
-    if rows.is_empty() {
-        return String::new();
-    }
-    format!(
-        "## Units of every relation\n\nEach paper's displays read from its LaTeX and every relation's units checked, the units of the symbols no claims file declares inferred from the relations (`verify audit`; a relation is inconsistent when it contradicts what the declared units and the other relations fix).\n\n| paper | relations | consistent | inconsistent | undetermined | unreadable |\n|---|---|---|---|---|---|\n{}\n\n",
-        rows.join("\n")
-    )
-}
-
-/// The audit of every paper whose displays are found (its `.tex` source, or the extract
-/// `tex/<paper>.tex` beside its claims file) with the units of its claims file:
-/// `audit/<paper>.md` and `audit/<paper>.json` under the reports folder.
-pub fn paper_audits(papers: &[super::PaperClaims]) -> Vec<(String, String)> {
-    let mut files = Vec::new();
-    for p in papers {
-        let Ok((blocks, doc, _)) = super::tex_claims::paper_displays(p) else {
-            continue;
-        };
-        let a = audit(&blocks, doc.as_ref(), &units_of_claims(p));
-        files.push((
-            format!("audit/{}.md", p.paper),
-            to_markdown(&a, &format!("{} ({})", p.title, p.paper)),
-        ));
-        files.push((
-            format!("audit/{}.json", p.paper),
-            serde_json::to_string_pretty(&a).unwrap_or_default() + "\n",
-        ));
-    }
-    files
-}
-
 /// The `\title{..}` of a LaTeX source, on one line.
 pub fn title_of(text: &str) -> Option<String> {
     let at = text.find("\\title")?;
@@ -773,7 +897,7 @@ mod tests {
                 .map(|(k, v)| (k.clone(), Unit::parse(v).unwrap()))
                 .collect(),
             texts,
-            tex_symbols: BTreeMap::new(),
+            ..Units::default()
         }
     }
 
@@ -830,23 +954,6 @@ mod tests {
         let want = format!("# (1): no claim: {}\n", a.relations[0].detail);
         assert!(init.contains(&want), "{init}");
         assert!(!init.contains("[[claim]]"), "{init}");
-    }
-
-    #[test]
-    fn the_index_counts_each_seeds_relations_by_status() {
-        // the counts of tests/audit.rs's the_seeds_audit (reviewed relation by relation)
-        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("verify");
-        let papers = crate::verify::load_claims(&dir).expect("loads");
-        let s = index_section(&papers);
-        for row in [
-            "| [000](audit/000.md) | 51 | 39 | 8 | 1 | 3 |",
-            "| [001](audit/001.md) | 97 | 86 | 1 | 9 | 1 |",
-            "| [002](audit/002.md) | 141 | 100 | 7 | 31 | 3 |",
-        ] {
-            assert!(s.contains(row), "{row} not in {s}");
-        }
-        assert!(s.starts_with("## Units of every relation"));
-        assert_eq!(index_section(&[]), "");
     }
 
     #[test]

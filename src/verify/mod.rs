@@ -7,6 +7,7 @@
 
 pub mod accuracy;
 pub mod audit;
+pub mod audit_reports;
 pub mod coverage;
 /// FNV-1a with a 128-bit state: a stable hash for change detection (the keys of
 /// [`power_cache`]), shared with `build.rs`, which `include!`s this file to hash the
@@ -23,6 +24,7 @@ pub mod power;
 pub mod power_cache;
 pub mod series_numeric;
 pub mod tex_claims;
+pub mod words;
 
 use serde::Deserialize;
 use std::collections::BTreeMap;

@@ -689,6 +689,19 @@ impl Expr {
         }
     }
 
+    /// The terms of a sum (a difference's, a negation's), or the formula itself.
+    pub fn terms(&self) -> Vec<&Expr> {
+        match self {
+            Expr::Bin(Op::Add | Op::Sub, a, b) => {
+                let mut v = a.terms();
+                v.extend(b.terms());
+                v
+            }
+            Expr::Neg(a) => a.terms(),
+            other => vec![other],
+        }
+    }
+
     /// The exact value when the formula is a rational number (no symbols, integer powers).
     pub fn exact_constant(&self) -> Option<Q> {
         self.to_ratfunc().and_then(|r| r.as_constant())

@@ -51,6 +51,13 @@ pub(super) fn lex(src: &str, syms: &TexSymbols) -> Vec<(Tok, usize)> {
                 i += 1;
             }
             out.push((Tok::Num(chars[start..i].iter().collect()), col));
+            // a value's unit (`79\,\text{mm}`, `0.23\mathrm{m/s}`): the number is a value,
+            // its unit no symbol
+            let unit = unit_after_number(&chars[i..]);
+            if unit > 0 {
+                i += unit;
+                out.push((Tok::Sym(super::super::units::WRITTEN_UNIT.into()), col));
+            }
         } else if chars[i..].starts_with(&['.', '.', '.']) {
             // `c_1 N_1 + ... + c_n N_n`: an ellipsis typed as three dots
             out.push((Tok::Cmd("ldots".into()), col));
@@ -183,6 +190,63 @@ pub(super) fn is_space(t: &Tok) -> bool {
         Tok::Ch('~') => true,
         _ => false,
     }
+}
+
+/// The length of a unit written after a number (`\,\text{m/s}`, `~\mathrm{kg\,m^{-3}}`,
+/// `\text{ mm}`), or 0: a text group whose words are units, each with an SI prefix or not.
+fn unit_after_number(rest: &[char]) -> usize {
+    let text: String = rest.iter().take(60).collect();
+    let mut k = 0;
+    loop {
+        let t = &text[k..];
+        let skip = [" ", "\\,", "\\;", "\\ ", "~", "\\!"]
+            .iter()
+            .find(|s| t.starts_with(**s))
+            .map_or(0, |s| s.len());
+        if skip == 0 {
+            break;
+        }
+        k += skip;
+    }
+    let t = &text[k..];
+    let Some(open) = ["\\text{", "\\mathrm{", "\\textrm{", "\\rm{", "\\mbox{"]
+        .iter()
+        .find(|o| t.starts_with(**o))
+    else {
+        return 0;
+    };
+    let Some(close) = t[open.len()..].find('}') else {
+        return 0;
+    };
+    let inner = &t[open.len()..open.len() + close];
+    let words: Vec<&str> = inner
+        .split(|c: char| !c.is_ascii_alphabetic() && c != '°')
+        .filter(|w| !w.is_empty() && *w != "mathrm" && *w != "text")
+        .collect();
+    let named = |w: &str| super::super::units::Unit::named(w).is_some();
+    let is_unit = |w: &str| {
+        let first = w.chars().next().map_or(0, char::len_utf8);
+        named(w)
+            || ["g", "h", "min", "deg", "rpm", "l", "L", "eV", "mph", "°"].contains(&w)
+            || w.len() > first
+                && "kmcunMGdμ".contains(&w[..first])
+                && (named(&w[first..]) || &w[first..] == "g")
+    };
+    if words.is_empty() || !words.iter().all(|w| is_unit(w)) {
+        return 0;
+    }
+    // and its power (`\text{m/s}^{2}`, `\mathrm{m}^2`)
+    let mut end = k + open.len() + close + 1;
+    let after = &text[end..];
+    if let Some(p) = after.strip_prefix('^') {
+        end += 1 + match p.chars().next() {
+            Some('{') => p.find('}').map_or(0, |c| c + 1),
+            Some(c) if c.is_ascii_digit() || c == '-' => c.len_utf8(),
+            _ => 0,
+        };
+    }
+    // characters, not bytes
+    text[..end].chars().count()
 }
 
 pub(super) fn accent_suffix(cmd: &str) -> Option<&'static str> {

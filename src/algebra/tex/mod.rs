@@ -52,6 +52,9 @@ pub struct TexSymbols(
     /// The increment letters (`Delta`, `delta`) the paper also uses alone (`\delta = ..`,
     /// `\Delta^2 w`, `L(\delta)`): there `\delta t` is a product, not an increment.
     pub(super) std::collections::BTreeSet<String>,
+    /// The names the paper's words call a Dirac delta ("$\delta(x - a/2)$ is the Dirac delta
+    /// function"): applied to one argument, the unit of its inverse.
+    pub(super) std::collections::BTreeSet<String>,
 );
 
 impl TexSymbols {
@@ -59,7 +62,12 @@ impl TexSymbols {
     pub fn new(pairs: impl IntoIterator<Item = (String, String)>) -> Self {
         let mut v: Vec<(String, String)> = pairs.into_iter().collect();
         v.sort_by(|a, b| b.0.len().cmp(&a.0.len()).then(a.0.cmp(&b.0)));
-        TexSymbols(v, Default::default(), Default::default())
+        TexSymbols(
+            v,
+            Default::default(),
+            Default::default(),
+            Default::default(),
+        )
     }
 
     /// This table with more pairs.
@@ -67,6 +75,14 @@ impl TexSymbols {
         let mut t = TexSymbols::new(self.0.iter().cloned().chain(more));
         t.1 = self.1.clone();
         t.2 = self.2.clone();
+        t.3 = self.3.clone();
+        t
+    }
+
+    /// This table with the names the paper calls Dirac deltas.
+    pub fn with_dirac(&self, names: impl IntoIterator<Item = String>) -> Self {
+        let mut t = self.clone();
+        t.3.extend(names);
         t
     }
 
@@ -192,7 +208,7 @@ pub fn read_formula(tex: &str, syms: &TexSymbols) -> Result<Expr, TexError> {
 /// Reads one relation (`a = b`, `a \le b = c`) or a bare formula.
 pub fn read_relation(tex: &str, syms: &TexSymbols) -> Result<TexRelation, TexError> {
     let toks = lex(tex, syms);
-    let mut rel = Reader::new(&toks, &syms.1, &syms.2).relation()?;
+    let mut rel = Reader::new(&toks, &syms.1, &syms.2, &syms.3).relation()?;
     let formulas = syms.formulas();
     if !formulas.is_empty() {
         let lookup = |s: &str| {

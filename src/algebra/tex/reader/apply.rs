@@ -3,8 +3,8 @@
 //! `\omega^2(t)`), pairs `(a, b)`, and matrices inside a formula (opaque, a unit of their own).
 
 use super::super::lex::{Tok, accent_suffix, describe, greek, is_space};
-use super::{R, Reader, power};
-use crate::algebra::expr::Expr;
+use super::{R, Reader, one, power};
+use crate::algebra::expr::{Expr, Op};
 use crate::algebra::tex::TexError;
 
 impl Reader<'_> {
@@ -100,7 +100,7 @@ impl Reader<'_> {
     /// arguments as read (`{x(t + T)}`), with the unit of the function; `None` for any other
     /// name (a product follows).
     pub(super) fn applied_to_formulas(&mut self, name: &str, open: usize) -> R<Option<Expr>> {
-        if !self.functions.contains(name) {
+        if !self.functions.contains(name) && !self.dirac.contains(name) {
             return Ok(None);
         }
         let save = self.pos;
@@ -138,6 +138,11 @@ impl Reader<'_> {
         if args.iter().any(|a| a.symbols().iter().any(|s| s == name)) {
             self.pos = save;
             return Ok(None);
+        }
+        // a Dirac delta has the unit of its argument's inverse
+        if self.dirac.contains(name) && args.len() == 1 {
+            let inverse = Expr::Bin(Op::Div, Box::new(one()), Box::new(args[0].clone()));
+            return Ok(Some(super::marks::marked(inverse)));
         }
         let args: Vec<String> = args.iter().map(ToString::to_string).collect();
         Ok(Some(Expr::Sym(format!("{{{name}({})}}", args.join(",")))))

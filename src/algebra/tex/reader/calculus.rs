@@ -166,6 +166,41 @@ impl Reader<'_> {
         }
     }
 
+    /// `d V / d \Omega`, `\mathrm{d}x/\mathrm{d}t^2`: a derivative written with a slash (a
+    /// `d` over a `d` is no product of two depths), or `None` with nothing read.
+    pub(super) fn slash_derivative(&mut self) -> R<Option<Expr>> {
+        let save = self.pos;
+        let mut vars = Vec::new();
+        for k in 0..2 {
+            let mark = self.d_mark(self.pos);
+            if mark == 0 {
+                self.pos = save;
+                return Ok(None);
+            }
+            self.pos += mark;
+            let Ok(var) = self.differential_variable() else {
+                self.pos = save;
+                return Ok(None);
+            };
+            vars.push(var);
+            self.skip_space();
+            if k == 0 {
+                if *self.peek() != Tok::Ch('/') {
+                    self.pos = save;
+                    return Ok(None);
+                }
+                self.bump();
+                self.skip_space();
+            }
+        }
+        let times = self.derivative_order()?;
+        let mut body = Expr::Sym(vars[0].clone());
+        for _ in 0..times {
+            body = Expr::Calc(Calc::Diff, Box::new(body), vars[1].clone(), vec![]);
+        }
+        Ok(Some(body))
+    }
+
     /// Whether `{d ...}{d x}` follows (the denominator of a derivative).
     pub(super) fn diff_denominator_follows(&self) -> bool {
         let mut depth = 0;

@@ -9,6 +9,15 @@ use super::{R, Reader, mul};
 use crate::algebra::expr::{Calc, Expr};
 use crate::algebra::units::OPERAND;
 
+/// A letter, Latin or Greek.
+fn letter(t: &Tok) -> bool {
+    match t {
+        Tok::Ch(c) => c.is_ascii_alphabetic(),
+        Tok::Cmd(c) => greek(c).is_some(),
+        _ => false,
+    }
+}
+
 /// `e` with a mark that keeps its unit ([`Calc::Marked`]).
 pub(super) fn marked(e: Expr) -> Expr {
     Expr::Calc(Calc::Marked, Box::new(e), String::new(), vec![])
@@ -181,16 +190,28 @@ impl Reader<'_> {
             return false;
         };
         let inside = &self.toks[self.pos + 2..close];
-        let letter = |t: &Tok| match t {
-            Tok::Ch(c) => c.is_ascii_alphabetic(),
-            Tok::Cmd(c) => greek(c).is_some(),
-            _ => false,
-        };
         match inside {
             [one] => capital_greek(&one.0),
             [] => false,
             many => many.iter().all(|(t, _)| letter(t)),
         }
+    }
+
+    /// Whether `^{..}_` stands here: a braced script of letters (and digits), a subscript
+    /// right after it.
+    pub(super) fn label_then_subscript(&self) -> bool {
+        if self.at(1) != Some(&Tok::Open) {
+            return false;
+        }
+        let Some(close) = self.group_close(self.pos + 1) else {
+            return false;
+        };
+        let inside = &self.toks[self.pos + 2..close];
+        matches!(self.toks.get(close + 1), Some((Tok::Ch('_'), _)))
+            && inside.iter().any(|(t, _)| letter(t))
+            && inside
+                .iter()
+                .all(|(t, _)| letter(t) || matches!(t, Tok::Num(_)) || is_space(t))
     }
 
     /// Whether an operator here stands without an operand: what follows ends a term.

@@ -36,6 +36,8 @@ pub(super) struct Reader<'a> {
     functions: &'a BTreeSet<String>,
     /// The increment letters the paper uses alone: no increments of these.
     lone: &'a BTreeSet<String>,
+    /// The names the paper calls Dirac deltas.
+    dirac: &'a BTreeSet<String>,
     /// The dotted names and increments met, with their bases.
     pub(super) links: Vec<Link>,
     /// A name just read ended in `^{*` of a starred power (`E^{*2}`): the rest of that group is
@@ -57,6 +59,7 @@ impl<'a> Reader<'a> {
         toks: &'a [(Tok, usize)],
         functions: &'a BTreeSet<String>,
         lone: &'a BTreeSet<String>,
+        dirac: &'a BTreeSet<String>,
     ) -> Self {
         Reader {
             toks,
@@ -67,6 +70,7 @@ impl<'a> Reader<'a> {
             in_norm: 0,
             functions,
             lone,
+            dirac,
             links: Vec::new(),
             star_power: false,
             pending_differential: None,
@@ -268,7 +272,10 @@ impl<'a> Reader<'a> {
     /// A product; `arg` stops before a function (the argument of `\sin` in `\sin a \sin b`).
     fn term_until(&mut self, arg: bool) -> R<Expr> {
         self.skip_space();
-        let mut e = self.unary()?;
+        let mut e = match self.slash_derivative()? {
+            Some(d) => d,
+            None => self.unary()?,
+        };
         loop {
             self.skip_space();
             match self.peek().clone() {

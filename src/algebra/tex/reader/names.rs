@@ -162,6 +162,13 @@ impl Reader<'_> {
                     self.star_power = true;
                     return Ok(name);
                 }
+                // `\mathbf{e}^{\omega}_{\ell}`, `\mathbf{e}^{2\omega}_{b}`: a script of letters with
+                // a subscript after it labels the name (a power is written after the index)
+                Tok::Ch('^') if name != "e" && self.label_then_subscript() => {
+                    self.bump();
+                    let label = self.opaque_label().unwrap_or_default();
+                    name.push_str(&label);
+                }
                 // `T^{v\ell}_{p}`, `\chi^{zxx}`: a label of letters (not of `e`, whose `e^{ikx}` is
                 // an exponential)
                 Tok::Ch('^') if name != "e" && self.letters_label() => {

@@ -1,0 +1,162 @@
+//! The audits the main job writes (`reports/audit/`): each paper's audit under its claims'
+//! units, and (issue 52) the same paper audited from its own words, with no units file, beside
+//! it: how many relations the words decide, and any relation they call inconsistent that the
+//! claims' units do not.
+
+use super::audit::{Audit, audit, to_markdown, units_of_claims};
+use super::words::vocabulary::Vocabulary;
+
+/// The index's paragraph on the audits: each paper's counts per status and its report.
+pub fn index_section(papers: &[super::PaperClaims]) -> String {
+    let mut rows = Vec::new();
+    for p in papers {
+        let Ok((blocks, doc, _)) = super::tex_claims::paper_displays(p) else {
+            continue;
+        };
+        let a = audit(&blocks, doc.as_ref(), &units_of_claims(p));
+        let c = a.counts();
+        let n = |k: &str| c.get(k).copied().unwrap_or(0);
+        rows.push(format!(
+            "| [{}](audit/{}.md) | {} | {} | {} | {} | {} |",
+            p.paper,
+            p.paper,
+            a.relations.len(),
+            n("consistent"),
+            n("inconsistent"),
+            n("undetermined"),
+            n("unreadable")
+        ));
+    }
+    if rows.is_empty() {
+        return String::new();
+    }
+    format!(
+        "## Units of every relation\n\nEach paper's displays read from its LaTeX and every relation's units checked, the units of the symbols no claims file declares inferred from the relations (`verify audit`; a relation is inconsistent when it contradicts what the declared units and the other relations fix).\n\n| paper | relations | consistent | inconsistent | undetermined | unreadable |\n|---|---|---|---|---|---|\n{}\n\n",
+        rows.join("\n")
+    )
+}
+
+/// The audit of every paper whose displays are found (its `.tex` source, or the extract
+/// `tex/<paper>.tex` beside its claims file) with the units of its claims file:
+/// `audit/<paper>.md` and `audit/<paper>.json` under the reports folder.
+pub fn paper_audits(papers: &[super::PaperClaims]) -> Vec<(String, String)> {
+    let mut files = Vec::new();
+    for p in papers {
+        let Ok((blocks, doc, _)) = super::tex_claims::paper_displays(p) else {
+            continue;
+        };
+        let a = audit(&blocks, doc.as_ref(), &units_of_claims(p));
+        files.push((
+            format!("audit/{}.md", p.paper),
+            to_markdown(&a, &format!("{} ({})", p.title, p.paper)),
+        ));
+        files.push((
+            format!("audit/{}.json", p.paper),
+            serde_json::to_string_pretty(&a).unwrap_or_default() + "\n",
+        ));
+        if let Some(w) = words_audit(p) {
+            files.push((
+                format!("audit/{}-words.md", p.paper),
+                to_markdown(&w, &format!("{} ({}), from its words", p.title, p.paper)),
+            ));
+            files.push((
+                format!("audit/{}-words.json", p.paper),
+                serde_json::to_string_pretty(&w).unwrap_or_default() + "\n",
+            ));
+        }
+    }
+    files
+}
+
+/// A paper's audit from its words alone (its text, no units file), when its text is here.
+fn words_audit(p: &super::PaperClaims) -> Option<Audit> {
+    let path = super::coverage::text_path(p, p.papers_dir.as_deref())?;
+    let text = std::fs::read_to_string(&path).ok()?;
+    let (blocks, doc) = super::tex_claims::blocks_at(&text, path.parent(), "");
+    let doc = doc?;
+    let vocab = Vocabulary::builtin().ok()?;
+    let units = super::audit::Units::default();
+    let words = super::audit::paper_words(&text, &blocks, &units, &vocab);
+    Some(audit(&blocks, Some(&doc), &units.with_words(words)))
+}
+
+/// The index's paragraph on the audits from the words: per paper, the relations each audit
+/// decides, and the relations the words call inconsistent that the claims' units do not.
+pub fn words_section(papers: &[super::PaperClaims]) -> String {
+    let mut rows = Vec::new();
+    for p in papers {
+        let Ok((blocks, doc, _)) = super::tex_claims::paper_displays(p) else {
+            continue;
+        };
+        let declared = audit(&blocks, doc.as_ref(), &units_of_claims(p));
+        let Some(words) = words_audit(p) else {
+            rows.push(format!(
+                "| {} | the paper's text is not here | | | |",
+                p.paper
+            ));
+            continue;
+        };
+        let decided = |a: &Audit| {
+            a.relations
+                .iter()
+                .filter(|r| matches!(r.status, "consistent" | "inconsistent"))
+                .count()
+        };
+        let (dw, dd) = (decided(&words), decided(&declared));
+        let named = words.symbols.iter().filter(|s| s.source == "words").count();
+        // the two audits pair up relation by relation (one reader, one paper)
+        let new_findings = if words.relations.len() == declared.relations.len() {
+            words
+                .relations
+                .iter()
+                .zip(&declared.relations)
+                .filter(|(w, d)| w.status == "inconsistent" && d.status != "inconsistent")
+                .count()
+                .to_string()
+        } else {
+            "not paired".into()
+        };
+        rows.push(format!(
+            "| [{}](audit/{}-words.md) | {named} | {dw} | {dd} | {:.0} % | {new_findings} |",
+            p.paper,
+            p.paper,
+            if dd == 0 {
+                100.0
+            } else {
+                100.0 * dw as f64 / dd as f64
+            }
+        ));
+    }
+    if rows.is_empty() {
+        return String::new();
+    }
+    format!(
+        "## Units from the paper's words
+
+Each paper audited again from its text alone, with no units file: the units of its symbols taken from the sentences that name them (\"where $\\rho$ is the density\", \"a ball of mass $m$\", a nomenclature), each with its sentence quoted (`verify audit PAPER`).\n\n| paper | symbols named in words | relations decided from the words | decided with the claims' units | share | inconsistent from the words, not under the claims' units |\n|---|---|---|---|---|---|\n{}\n\n",
+        rows.join("\n")
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    #[test]
+    fn the_index_counts_each_seeds_relations_by_status() {
+        // the counts of tests/audit.rs's the_seeds_audit (reviewed relation by relation)
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("verify");
+        let papers = crate::verify::load_claims(&dir).expect("loads");
+        let s = index_section(&papers);
+        for row in [
+            "| [000](audit/000.md) | 51 | 39 | 8 | 1 | 3 |",
+            "| [001](audit/001.md) | 97 | 86 | 1 | 9 | 1 |",
+            "| [002](audit/002.md) | 141 | 100 | 7 | 31 | 3 |",
+        ] {
+            assert!(s.contains(row), "{row} not in {s}");
+        }
+        assert!(s.starts_with("## Units of every relation"));
+        assert_eq!(index_section(&[]), "");
+    }
+}

@@ -1,0 +1,228 @@
+//! Which inconsistencies a paper's words decide (issue 52). With units from the words rather
+//! than a units file, a relation the inference rejects may contradict only what other
+//! relations gave: a letter used for two quantities, a misread elsewhere, an error in another
+//! relation that came first. Such a relation is judged again against the named units and the
+//! paper's definitions alone; a conflict that then vanishes is no finding.
+
+use crate::algebra::expr::Expr;
+use crate::algebra::infer::{Inference, Relation, Status, infer_ordered, unit_name};
+use crate::algebra::units::Unit;
+use std::collections::BTreeMap;
+
+/// The relations the inference calls inconsistent that contradict only what other relations
+/// gave, not the named units through the paper's definitions: judged again with the declared
+/// and named units and the definitions alone (a bare symbol on the left, defined once), each
+/// that then holds is a conflict between relations (a letter used for two quantities, a
+/// misread elsewhere) that nothing declared or named decides.
+pub fn weak_conflicts(
+    inputs: &[Option<Relation>],
+    inf: &Inference,
+    declared: &BTreeMap<String, Unit>,
+) -> std::collections::BTreeSet<usize> {
+    // a definition claims nothing but its symbol's unit: one term on its right, or terms
+    // of declared symbols only (`A_2 = \eta\zeta(..) + ab C_T/4` also says that C_T is
+    // \eta\zeta(..)/ab: a relation, not a definition)
+    let defined = |r: &Relation| match (r.sides.len(), r.sides.first()) {
+        (2, Some(Expr::Sym(s))) if !declared.contains_key(&unit_name(s)) => {
+            let terms = r.sides[1].terms();
+            let known = |t: &Expr| {
+                t.symbols()
+                    .iter()
+                    .all(|x| declared.contains_key(&unit_name(x)))
+            };
+            (terms.len() == 1 || terms.iter().all(|t| known(t))).then(|| unit_name(s))
+        }
+        _ => None,
+    };
+    let mut count: BTreeMap<String, usize> = BTreeMap::new();
+    for r in inputs.iter().flatten() {
+        if let Some(s) = defined(r) {
+            *count.entry(s).or_insert(0) += 1;
+        }
+    }
+    let core: Vec<usize> = (0..inputs.len())
+        .filter(|&i| {
+            inputs[i]
+                .as_ref()
+                .and_then(defined)
+                .is_some_and(|s| count.get(&s) == Some(&1))
+        })
+        .collect();
+    let mut weak = std::collections::BTreeSet::new();
+    for (i, status) in inf.statuses.iter().enumerate() {
+        if !matches!(status, Status::Inconsistent { .. }) {
+            continue;
+        }
+        let mut subset: Vec<Option<Relation>> = core
+            .iter()
+            .filter(|&&k| k != i)
+            .map(|&k| inputs[k].clone())
+            .collect();
+        subset.push(inputs[i].clone());
+        let again = infer_ordered(&subset, declared, true);
+        if !matches!(again.statuses.last(), Some(Status::Inconsistent { .. })) {
+            weak.insert(i);
+        }
+    }
+    weak
+}
+
+/// The inference with the units of the words: relations taken in the order that trusts known
+/// terms ([`infer_ordered`]), the conflicts that only other relations make set apart
+/// ([`weak_conflicts`]), and each unit from the words that more relations contradict than
+/// hold with it set aside (`against >= 2`, `against >= for`): in a long text a letter named
+/// once ("at time $t$") often stands for another quantity elsewhere (a time made
+/// dimensionless, an angle called q). `words` are the names whose unit the words gave;
+/// `names` each relation's symbols. Returns the inference, the weak conflicts and, for each
+/// unit set aside, how many relations contradicted it and how many held.
+pub fn infer_with_words(
+    inputs: &[Option<Relation>],
+    names: &[Vec<String>],
+    declared: &BTreeMap<String, Unit>,
+    words: &std::collections::BTreeSet<String>,
+) -> (
+    Inference,
+    std::collections::BTreeSet<usize>,
+    BTreeMap<String, (usize, usize)>,
+) {
+    let mut declared = declared.clone();
+    let mut aside = BTreeMap::new();
+    loop {
+        let inf = infer_ordered(inputs, &declared, true);
+        let weak = weak_conflicts(inputs, &inf, &declared);
+        let mut tally: BTreeMap<String, (usize, usize)> = BTreeMap::new();
+        for (i, status) in inf.statuses.iter().enumerate() {
+            let Some(ns) = names.get(i) else { continue };
+            let ns: std::collections::BTreeSet<String> = ns.iter().map(|n| unit_name(n)).collect();
+            for n in ns
+                .iter()
+                .filter(|n| words.contains(*n) && declared.contains_key(*n))
+            {
+                let t = tally.entry(n.clone()).or_insert((0, 0));
+                match status {
+                    Status::Inconsistent { .. } if !weak.contains(&i) => t.0 += 1,
+                    Status::Consistent => t.1 += 1,
+                    _ => {}
+                }
+            }
+        }
+        let drop: Vec<(String, (usize, usize))> = tally
+            .into_iter()
+            .filter(|(_, (against, holds))| *against >= 2 && against >= holds)
+            .collect();
+        if drop.is_empty() {
+            return (inf, weak, aside);
+        }
+        for (n, t) in drop {
+            declared.remove(&n);
+            aside.insert(n, t);
+        }
+    }
+}
+
+/// A symbol the words name in passing ("at time $t$", "a ball of mass $m$"), in a paper of
+/// several sections, is that quantity in its own section: there its name becomes `x_secK` (K the
+/// section), with the unit of the words; elsewhere `x` keeps no unit from them (a long text
+/// reuses its letters). A key to a display ("where $x$ is", a nomenclature) holds everywhere.
+pub fn scope_passing(
+    inputs: &mut [Option<Relation>],
+    lines: &[Option<usize>],
+    names: &mut [Vec<String>],
+    units: &crate::verify::audit::Units,
+) -> crate::verify::audit::Units {
+    let mut out = units.clone();
+    // the paper's time `t`, every dot's variable, named in passing ("at time $t = 0$"): no
+    // anchor (a text that says it in passing often makes it dimensionless elsewhere)
+    if units.words.get("t").is_some_and(|w| !w.key) {
+        out.symbols.remove("t");
+        out.words.remove("t");
+    }
+    if units.sections.is_empty() {
+        return out;
+    }
+    let section = |line: usize| super::section_of(&units.sections, line);
+    // one section with displays: nothing to scope
+    let with_displays: std::collections::BTreeSet<usize> =
+        lines.iter().flatten().map(|&l| section(l)).collect();
+    if with_displays.len() < 2 {
+        return out;
+    }
+    for (x, w) in units.words.iter().filter(|(x, w)| !w.key && *x != "t") {
+        let s = section(w.line);
+        let local = format!("{x}_sec{s}");
+        for (i, input) in inputs.iter_mut().enumerate() {
+            let (Some(r), Some(line)) = (input.as_mut(), lines[i]) else {
+                continue;
+            };
+            if section(line) != s {
+                continue;
+            }
+            // the symbol, its applications `{x(t)}`, and its dotted names `xd`
+            let mut renamed: BTreeMap<String, String> = BTreeMap::new();
+            renamed.insert(x.clone(), local.clone());
+            for (dotted, base, _) in &r.dots {
+                if base == x {
+                    renamed.insert(dotted.clone(), format!("{dotted}_sec{s}"));
+                }
+            }
+            let rename = |n: &str| -> Option<String> {
+                let base = unit_name(n);
+                let new = renamed.get(&base)?;
+                Some(if n == base {
+                    new.clone()
+                } else {
+                    n.replacen(&base, new, 1)
+                })
+            };
+            for side in r.sides.iter_mut() {
+                *side = renamed_in(side, &rename);
+            }
+            for (dotted, base, _) in r.dots.iter_mut() {
+                if let Some(d) = rename(dotted) {
+                    *dotted = d;
+                }
+                if let Some(b) = rename(base) {
+                    *base = b;
+                }
+            }
+            for n in names[i].iter_mut() {
+                if let Some(m) = rename(n) {
+                    *n = m;
+                }
+            }
+        }
+        out.symbols.remove(x);
+        out.words.remove(x);
+        out.symbols.insert(local.clone(), w.unit);
+        out.words.insert(
+            local.clone(),
+            super::WordUnit {
+                symbol: local,
+                ..w.clone()
+            },
+        );
+    }
+    out
+}
+
+/// `e` with its symbols renamed by `rename`, a variable of a derivative or an integral too (`\int
+/// z\,d\sigma` is over the area named in the words).
+fn renamed_in(e: &Expr, rename: &dyn Fn(&str) -> Option<String>) -> Expr {
+    match e {
+        Expr::Sym(s) => rename(s).map_or_else(|| e.clone(), Expr::Sym),
+        Expr::Num(_) | Expr::Pi => e.clone(),
+        Expr::Neg(a) => Expr::Neg(Box::new(renamed_in(a, rename))),
+        Expr::Call(f, a) => Expr::Call(*f, Box::new(renamed_in(a, rename))),
+        Expr::Bin(op, a, b) => Expr::Bin(
+            *op,
+            Box::new(renamed_in(a, rename)),
+            Box::new(renamed_in(b, rename)),
+        ),
+        Expr::Calc(c, body, var, extra) => Expr::Calc(
+            *c,
+            Box::new(renamed_in(body, rename)),
+            rename(var).unwrap_or_else(|| var.clone()),
+            extra.iter().map(|x| renamed_in(x, rename)).collect(),
+        ),
+    }
+}

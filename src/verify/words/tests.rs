@@ -1,0 +1,244 @@
+//! The words reader on sentences written by hand, each with the unit a referee reads in it
+//! (or none, where the words do not fix one).
+
+use super::vocabulary::Vocabulary;
+use super::*;
+
+fn vocab() -> Vocabulary {
+    Vocabulary::builtin().expect("the built-in vocabulary reads")
+}
+
+fn quantity(desc: &str) -> Option<String> {
+    vocab().describe(desc).map(|h| h.quantity.name.clone())
+}
+
+fn before(text: &str) -> Option<String> {
+    vocab().before_symbol(text).map(|h| h.quantity.name.clone())
+}
+
+#[test]
+fn every_quantity_of_the_built_in_vocabulary_has_a_unit_that_parses_or_none() {
+    let v = vocab();
+    assert!(v.quantities().len() >= 30);
+    let mass = v.quantities().iter().find(|q| q.name == "mass").unwrap();
+    assert_eq!(mass.unit.map(|u| u.to_string()), Some("kg".into()));
+    let law = v
+        .quantities()
+        .iter()
+        .find(|q| q.name == "unit_from_law")
+        .unwrap();
+    assert_eq!(law.unit, None);
+}
+
+#[test]
+fn a_description_names_its_head_quantity() {
+    let cases = [
+        ("the relaxed Young's modulus", Some("pressure")),
+        ("the density of plate", Some("density")),
+        ("the mass density of the ball", Some("density")),
+        ("the disk angular velocity vector", Some("angular_velocity")),
+        (
+            "the projections of the velocity of the centre of mass",
+            Some("velocity"),
+        ),
+        (
+            "the absolute value of the tangential component of the relative velocity",
+            Some("velocity"),
+        ),
+        ("the amplitude of the applied force", Some("force")),
+        ("the amplitude of the vibration", Some("length")),
+        (
+            "the moment of inertia about the axis",
+            Some("moment_of_inertia"),
+        ),
+        ("the radii of inertia of the base area", Some("length")),
+        ("odd numbers", Some("count")),
+        ("the penetration depths", Some("length")),
+        ("the coefficient of sliding friction", Some("ratio")),
+        ("the central inertia tensor", Some("moment_of_inertia")),
+        ("the principal moment of the reactions", Some("moment")),
+        // words that do not fix a unit, or fix another quantity than their head
+        ("the Winkler modulus", None),
+        ("the Damper modulus parameters", None),
+        ("Airy function stress", None),
+        ("the moments of inertia of the base area", None),
+        ("the force per unit length", None),
+        ("the force density", None),
+        ("the dimensionless time", None),
+        (
+            "the principal moment of the friction forces referred to the normal reaction",
+            None,
+        ),
+        ("the centre of mass of the body", None),
+        ("the stiffness of the spring", None),
+        ("the Laplace operator", None),
+        ("the minimum eigenvalue of the matrix", None),
+        ("negative", None),
+    ];
+    for (desc, want) in cases {
+        assert_eq!(quantity(desc).as_deref(), want, "{desc}");
+    }
+}
+
+#[test]
+fn the_words_right_before_a_symbol_name_it() {
+    let cases = [
+        ("A ball of mass ", Some("mass")),
+        ("the stiffness ", None),
+        ("with the dimensions ", Some("length")),
+        ("and of thickness ", Some("thickness_is_length")),
+        ("at the moment ", None),
+        ("the force density ", None),
+        ("the velocity of the centre of mass ", None),
+        ("the coefficient of restitution ", Some("ratio")),
+    ];
+    for (text, want) in cases {
+        let want = want.map(|w| {
+            if w == "thickness_is_length" {
+                "length"
+            } else {
+                w
+            }
+        });
+        assert_eq!(before(text).as_deref(), want, "{text}");
+    }
+    assert!(
+        vocab()
+            .before_symbol("with the dimensions ")
+            .unwrap()
+            .plural
+    );
+    assert!(!vocab().before_symbol("of mass ").unwrap().plural);
+}
+
+#[test]
+fn a_unit_written_in_the_paper_is_read_as_written() {
+    let u = |t: &str| written_unit(t).map(|u| u.to_string());
+    assert_eq!(u("Pa").as_deref(), Some("kg m^-1 s^-2"));
+    assert_eq!(u("kg m^{-3}").as_deref(), Some("kg m^-3"));
+    assert_eq!(u("m s$^{-1}$").as_deref(), Some("m s^-1"));
+    assert_eq!(u("\\mathrm{N\\,m}").as_deref(), Some("kg m^2 s^-2"));
+    assert_eq!(u("N·m").as_deref(), Some("kg m^2 s^-2"));
+    assert_eq!(u("m ^2").as_deref(), Some("m^2"));
+    assert_eq!(u("-").as_deref(), Some("1"));
+    // a citation, an equation's number, a variable: no unit
+    for t in ["1", "1.3", "12, 14", "t", "x", "see Fig. 2"] {
+        assert_eq!(u(t), None, "{t}");
+    }
+}
+
+#[test]
+fn symbols_written_without_dollars_are_read_in_a_translated_paper() {
+    assert_eq!(bare_symbol("Ω").as_deref(), Some("\\Omega "));
+    assert_eq!(bare_symbol("M_F").as_deref(), Some("M_F"));
+    assert_eq!(bare_symbol("**n**").as_deref(), Some("\\mathbf{n}"));
+    assert_eq!(bare_symbol("F^*").as_deref(), Some("F^*"));
+    assert_eq!(bare_symbol("ρ_0").as_deref(), Some("\\rho _0"));
+    for w in ["the", "is", "mass", "(1.2)", "G'"] {
+        assert_eq!(bare_symbol(w), None, "{w}");
+    }
+    let syms = TexSymbols::default();
+    let w = read_words(
+        "where m is the mass, J is the central inertia tensor, V is the velocity of the centre of mass G and Ω is the angular velocity of the body. Let Q and M_Q denote the principal vector and principal moment of the active forces.",
+        &syms,
+        &vocab(),
+    );
+    let unit = |s: &str| w.units.get(s).map(|u| u.unit.to_string());
+    assert_eq!(unit("m").as_deref(), Some("kg"));
+    assert_eq!(unit("J").as_deref(), Some("kg m^2"));
+    assert_eq!(unit("V").as_deref(), Some("m s^-1"));
+    assert_eq!(unit("Omega").as_deref(), Some("s^-1"));
+    assert_eq!(unit("MQ").as_deref(), Some("kg m^2 s^-2"));
+    // the point G takes no unit from the angular velocity after it, nor Q from a "vector"
+    assert_eq!(unit("G"), None);
+    assert_eq!(unit("Q"), None);
+}
+
+#[test]
+fn a_symbol_the_words_give_two_units_gets_none() {
+    let w = read_words(
+        "A ball of mass $m$ hits the wall. Here $m$ is the mode number.",
+        &TexSymbols::default(),
+        &vocab(),
+    );
+    assert!(!w.units.contains_key("m"));
+    assert_eq!(w.notes.len(), 1, "{:?}", w.notes);
+    assert!(
+        w.notes[0].contains("`m`") && w.notes[0].contains("kg"),
+        "{:?}",
+        w.notes
+    );
+}
+
+#[test]
+fn lists_respectively_plurals_and_a_verb_in_the_singular() {
+    let w = read_words(
+        "where $E, \\nu, \\eta$ are the relaxed Young's modulus, Poisson's ratio and viscosity, respectively, and $d$, $z$ are the penetration depths; the radius $R$ and $J$ is its moment of inertia.",
+        &TexSymbols::default(),
+        &vocab(),
+    );
+    let unit = |s: &str| w.units.get(s).map(|u| u.unit.to_string());
+    assert_eq!(unit("E").as_deref(), Some("kg m^-1 s^-2"));
+    assert_eq!(unit("nu").as_deref(), Some("1"));
+    assert_eq!(unit("eta").as_deref(), Some("kg m^-1 s^-1"));
+    assert_eq!(unit("d").as_deref(), Some("m"));
+    assert_eq!(unit("z").as_deref(), Some("m"));
+    assert_eq!(unit("R").as_deref(), Some("m"));
+    assert_eq!(unit("J").as_deref(), Some("kg m^2"));
+}
+
+#[test]
+fn a_nomenclature_line_and_a_chain_of_names() {
+    let text = "\\begin{tabular}{ll}\n$E$ & Young's modulus [Pa] \\\\\n$\\rho$ & density [kg m$^{-3}$] \\\\\n$A$ & section (m$^2$) \\\\\n\\end{tabular}\n\nwhere $\\tau=\\lambda^{-1}$ is the creep time and $\\delta(x - a)$ is the Dirac delta function.";
+    let w = read_words(text, &TexSymbols::default(), &vocab());
+    let unit = |s: &str| w.units.get(s).map(|u| u.unit.to_string());
+    assert_eq!(unit("E").as_deref(), Some("kg m^-1 s^-2"));
+    assert_eq!(unit("rho").as_deref(), Some("kg m^-3"));
+    assert_eq!(unit("A").as_deref(), Some("m^2"));
+    assert_eq!(w.units["A"].quantity, "written");
+    assert_eq!(w.units["A"].line, 4);
+    assert_eq!(unit("tau").as_deref(), Some("s"));
+    assert_eq!(unit("lambda").as_deref(), Some("s^-1"));
+    assert!(w.dirac.contains("delta"));
+}
+
+#[test]
+fn a_bad_vocabulary_is_refused_naming_what() {
+    let e = Vocabulary::parse("[a]\nwords = [\"x\"]\nunit = \"parsec\"\n", "v.toml").unwrap_err();
+    assert!(e.contains("v.toml: [a] unit = \"parsec\""), "{e}");
+    let e = Vocabulary::parse(
+        "[a]\nwords = [\"hold\"]\nunit = \"N\"\n[b]\nwords = [\"holds\"]\n",
+        "v.toml",
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("the words \"holds\" are given twice, in [a] and [b]"),
+        "{e}"
+    );
+    let e = Vocabulary::parse("[a]\nwords = []\n", "v.toml").unwrap_err();
+    assert!(e.contains("[a] has no words"), "{e}");
+    let e = Vocabulary::parse("[a]\nwords = [\"x\"]\nunits = \"N\"\n", "v.toml").unwrap_err();
+    assert!(e.contains("units"), "{e}");
+    let e = Vocabulary::parse(
+        "[a]\nwords = [\"x\"]\nunit = \"N\"\ndescription_only = [\"y\"]\n",
+        "v.toml",
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("description_only = \"y\" is not one of its words"),
+        "{e}"
+    );
+    // a user's words replace the built-in ones
+    let mine = Vocabulary::parse(
+        "[spring_rate]\nwords = [\"stiffness\"]\nunit = \"N/m\"\n",
+        "v",
+    )
+    .unwrap();
+    let v = vocab().extended(mine);
+    assert_eq!(
+        v.describe("the stiffness of the spring")
+            .map(|h| h.quantity.name.clone())
+            .as_deref(),
+        Some("spring_rate")
+    );
+}
