@@ -805,4 +805,19 @@ $$ q = r \tag{B} $$
     fn comments_go_but_an_escaped_percent_stays() {
         assert_eq!(strip_comments("a % b\nc \\% d\n"), "a \nc \\% d\n");
     }
+
+    #[test]
+    fn a_package_with_options_in_the_papers_folder_gives_its_macros() {
+        // `\usepackage[opt]{mine}`: the name after the options, read from the folder
+        let src = "\\documentclass{article}\n\\usepackage[utf8,  final]{mine}\n\\begin{document}\n$$ \\vv = a t $$\n\\end{document}";
+        let doc = read_document_with(src, &|name| {
+            if name == "mine.sty" {
+                Ok("\\newcommand{\\vv}{v_{0}}".to_string())
+            } else {
+                Err(format!("no {name}"))
+            }
+        });
+        assert_eq!(doc.displays.len(), 1, "{doc:?}");
+        assert!(doc.displays[0].latex.contains("v_{0}"), "{doc:?}");
+    }
 }

@@ -474,4 +474,11 @@ mod tests {
         assert_eq!((e.name.as_str(), e.line), ("f", 3));
         assert!(e.problem.contains("2 argument"), "{e}");
     }
+
+    #[test]
+    fn an_optional_default_with_a_group_holding_a_bracket() {
+        // the default `{x]}` is one group: its `]` does not close the option
+        let (text, _, _) = expand("\\newcommand{\\pt}[1][{x]}]{#1^2}\n$\\pt$").unwrap();
+        assert!(text.contains("{x]}^2"), "{text}");
+    }
 }

@@ -476,3 +476,55 @@ fn a_listed_sum_keeps_its_top_a_braced_transpose_and_a_starred_index() {
     // a derivative subscript's variable is a letter in a font, not an accented one
     assert_eq!(read(r"(a)_{;\dot{k}}"), "marked(a)");
 }
+
+/// The sides of every relation of a display, as read.
+fn relations_of(tex: &str) -> Vec<String> {
+    read_display(tex, &TexSymbols::default())
+        .iter()
+        .flat_map(|row| row.relations.iter())
+        .map(|r| {
+            let r = r.as_ref().unwrap_or_else(|e| panic!("{tex}: {e}"));
+            r.sides
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(" = ")
+        })
+        .collect()
+}
+
+// The misses of the mutation sample 39/89 (reports/mutation.md), each read as LaTeX reads it.
+
+#[test]
+fn the_argument_of_alignat_and_the_position_of_aligned_are_no_rows() {
+    // `{2}` of alignat after a space, `[t]` of aligned: dropped with the environment
+    assert_eq!(
+        relations_of("\\begin{alignat}  {2} x &= v t \\\\ y &= w \\end{alignat}"),
+        ["x = v*t", "y = w"]
+    );
+    assert_eq!(
+        relations_of("\\begin{aligned}  [t] a &= b \\\\ c &= d \\end{aligned}"),
+        ["a = b", "c = d"]
+    );
+}
+
+#[test]
+fn styling_far_into_a_formula_is_dropped_where_it_stands() {
+    // `\boxed`, `\cancel` after a long start: their groups kept, the command gone
+    assert_eq!(
+        relations_of("a_{1} + a_{2} + a_{3} = \\boxed{b} + \\cancel{c}"),
+        ["a1 + a2 + a3 = b + c"]
+    );
+}
+
+#[test]
+fn a_starred_norm_after_a_factor_is_a_product() {
+    // `\|` opens an atom after a factor (in no norm): m times the squared norm of v
+    let r = read_relation("E = m \\|v\\|^{2}", &TexSymbols::default()).unwrap();
+    let right = r.sides[1].symbols();
+    assert!(
+        right.contains(&"m".to_string()) && right.contains(&"v".to_string()),
+        "{right:?}"
+    );
+    assert!(!right.contains(&"E".to_string()));
+}
