@@ -820,4 +820,14 @@ $$ q = r \tag{B} $$
         assert_eq!(doc.displays.len(), 1, "{doc:?}");
         assert!(doc.displays[0].latex.contains("v_{0}"), "{doc:?}");
     }
+
+    #[test]
+    fn verbatim_blocks_at_the_start_are_skipped_and_the_display_after_them_read() {
+        // the first block opens the text and keeps its two newlines: the search goes on past it
+        let doc = read_document(
+            "\\begin{verbatim}$$ a = b $$\nand a line of code\n\\end{verbatim}\n\\begin{verbatim}$$ c = d $$\n\\end{verbatim}\n$$ x = y $$",
+        );
+        assert_eq!(doc.displays.len(), 1, "{doc:?}");
+        assert!(doc.displays[0].latex.contains("x = y"), "{doc:?}");
+    }
 }

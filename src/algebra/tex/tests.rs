@@ -528,3 +528,13 @@ fn a_starred_norm_after_a_factor_is_a_product() {
     );
     assert!(!right.contains(&"E".to_string()));
 }
+
+// The misses of the mutation sample 55/89 (reports/mutation.md).
+
+#[test]
+fn marks_after_a_name_are_labels_of_it() {
+    // `\breve{x}` is another quantity than x; `^\ast`, `^\prime`, `^\perp` label the name
+    same("\\breve{x} + y", "xbr + y");
+    same("E^\\ast + r^\\prime + v^\\perp", "Estar + rp + vperp");
+    same("E^{\\star} - r^{\\prime}", "Estar - rp");
+}
