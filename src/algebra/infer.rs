@@ -502,10 +502,10 @@ fn constraints(
         && r.sides.last().is_some_and(every_unit)
         && r.rels.iter().all(|rel| *rel == "=");
     for k in 1..forms.len() {
-        // a side that is a literal 0 has every unit; a proportionality links no units
         // in a chain, a side that is a number is a value in some unit (`v = 2\pi r/T =
         // 408/1800 = 0.23\,\text{m/s}`), not a claim that the others are pure numbers
         let value = |e: &Expr| r.sides.len() > 2 && e.symbols().is_empty();
+        // a side that is a literal 0 has every unit; a proportionality links no units
         if all_vanish
             || every_unit(&r.sides[k])
             || every_unit(&r.sides[k - 1])
@@ -567,9 +567,11 @@ pub fn infer(relations: &[Option<Relation>], declared: &BTreeMap<String, Unit>) 
     infer_ordered(relations, declared, false)
 }
 
-/// As [`infer`]; with `anchored_first`, the relations with a term whose unit the declared
-/// units fix alone are taken first (a governing equation whose known term fixes each other
-/// term's unit, before a definition of a derived constant).
+/// As [`infer`]; with `anchored_first` (units from a paper's words), the relations are taken
+/// one at a time against what is fixed so far: a definition that fixes its symbol and claims
+/// nothing else, then the relation with the most terms whose units are all fixed (a governing
+/// equation, whose known terms fix each other term's unit, before a two-term definition of a
+/// derived constant), then the fewest unknowns, in the paper's order.
 pub fn infer_ordered(
     relations: &[Option<Relation>],
     declared: &BTreeMap<String, Unit>,
@@ -618,10 +620,7 @@ pub fn infer_ordered(
         }
     };
     if anchored_first {
-        // one at a time, each chosen against what the system fixes so far: a definition
-        // whose right side is all known (it fixes its symbol and nothing else), then a
-        // relation with a term all known (that term fixes every other term's unit), then the
-        // fewest unknowns, in the paper's order
+        // one at a time, each chosen against what the system fixes so far
         let mut left: Vec<usize> = order.clone();
         while !left.is_empty() {
             let key = |i: usize| {
