@@ -226,7 +226,14 @@ fn the_scaffold_runs_and_its_claim_on_the_planted_relation_fails() {
         String::from_utf8_lossy(&run.stderr)
     );
     let v = verdicts(&run);
-    assert_eq!(v.len(), 6, "{v:?}");
+    // the six numbered relations and three unnumbered ones (`equation*`, `$$`, a second
+    // relation of a row), each read from the paper by its display and place
+    assert_eq!(v.len(), 9, "{v:?}");
+    assert_eq!(
+        v.iter().filter(|(id, _)| id.contains(".display")).count(),
+        3,
+        "{v:?}"
+    );
     for (id, verdict) in &v {
         let want = if id == "sd.eqA1.units" {
             "fails"
@@ -392,7 +399,18 @@ fn a_seeds_scaffold_fails_exactly_on_its_inconsistent_relations() {
         .filter(|(_, v)| v == "fails")
         .map(|(id, _)| id)
         .collect();
-    assert_eq!(failing, ["s.eq1-1.units", "s.eq1-8.units", "s.eq2-6.units"]);
+    // (1.1) and (2.6) each hold two relations the audit calls inconsistent: the second of
+    // each row has its own claim (`relation = 2`), and fails too
+    assert_eq!(
+        failing,
+        [
+            "s.eq1-1-2.units",
+            "s.eq1-1.units",
+            "s.eq1-8.units",
+            "s.eq2-6-2.units",
+            "s.eq2-6.units"
+        ]
+    );
     let audit = verify(&[
         "audit",
         paper.to_str().unwrap(),
@@ -409,6 +427,7 @@ fn a_seeds_scaffold_fails_exactly_on_its_inconsistent_relations() {
         .filter(|r| r["status"] == "inconsistent" && r["number"] != "2.15")
         .map(|r| r["number"].as_str().unwrap().to_string())
         .collect();
+    assert_eq!(bad.len(), failing.len(), "{bad:?}");
     bad.dedup();
     assert_eq!(bad, ["1.1", "1.8", "2.6"]);
 }

@@ -285,7 +285,7 @@ fn bad_claims_exit_2_naming_file_claim_and_key_and_write_nothing() {
         (
             "unknown kind",
             "[[claim]]\nid = \"t.bad\"\nequation = \"(1)\"\nquote = \"q\"\nkind = \"identiy\"\n".into(),
-            "claim t.bad: kind: unknown kind `identiy`; allowed: identity, dimension, model, bound, probability, map, definition, not-checkable, check",
+            "claim t.bad: kind: unknown kind `identiy`; allowed: identity, dimension, model, bound, probability, map, threshold, definition, not-checkable, check",
         ),
         (
             "unknown derivation",

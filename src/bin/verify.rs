@@ -297,7 +297,7 @@ fn check_claims(
     })?;
     bar.inc(outcomes.len() as u64);
     bar.finish_and_clear();
-    outcomes.sort_by(|a, b| a.id.cmp(&b.id));
+    outcomes.sort_by(|a, b| report::natural_cmp(&a.id, &b.id));
     Ok(outcomes)
 }
 

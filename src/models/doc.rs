@@ -75,6 +75,74 @@ pub fn covers(pattern: &str, path: &str) -> bool {
     }
 }
 
+/// The unit of every number of a run's JSON `out`, by its dotted path (`contact.duration`,
+/// `impulse.2`, `outcome.t2`), as the model documents it: a documented unit that names a map of
+/// the run (`outcome_units.*`: a text model's units, derived from its formulas) is read there. A
+/// number whose unit is text, a count, a flag or a phrase (`-`, `derived`, `1 (f N)`) is left
+/// out: the claims file must give it.
+pub fn outcome_units(
+    doc: &ModelDoc,
+    out: &serde_json::Value,
+) -> std::collections::BTreeMap<String, crate::algebra::units::Unit> {
+    use serde_json::Value;
+    fn walk(v: &Value, path: &str, shape: &str, leaf: &mut dyn FnMut(&str, &str)) {
+        let join = |a: &str, k: &str| {
+            if a.is_empty() {
+                k.to_string()
+            } else {
+                format!("{a}.{k}")
+            }
+        };
+        match v {
+            Value::Object(m) => {
+                for (k, x) in m {
+                    walk(x, &join(path, k), &join(shape, k), leaf);
+                }
+            }
+            Value::Array(a) => {
+                for (i, x) in a.iter().enumerate() {
+                    let at = join(path, &i.to_string());
+                    if x.is_object() || x.is_array() {
+                        walk(x, &at, &format!("{shape}[]"), leaf);
+                    } else {
+                        leaf(&at, &format!("{shape}[]"));
+                    }
+                }
+            }
+            Value::Number(_) => leaf(path, shape),
+            _ => {}
+        }
+    }
+    let mut units = std::collections::BTreeMap::new();
+    walk(out, "", "", &mut |path, shape| {
+        let bare = shape.strip_suffix("[]").unwrap_or(shape);
+        let Some(o) = doc
+            .all_outcomes()
+            .find(|o| covers(o.path, shape) || covers(o.path, bare))
+        else {
+            return;
+        };
+        let text = match o.unit.strip_suffix(".*") {
+            Some(map) => {
+                let name = path.rsplit('.').next().unwrap_or(path);
+                match out
+                    .get(map)
+                    .and_then(|m| m.get(name))
+                    .and_then(Value::as_str)
+                {
+                    Some(u) => u.to_string(),
+                    None => return,
+                }
+            }
+            None => o.unit.to_string(),
+        };
+        if let Ok(u) = crate::algebra::units::Unit::parse(&text) {
+            units.insert(path.to_string(), u);
+        }
+    });
+    units
+}
+
 /// `[solve]` of a model integrated to the end of contact or to `t_end`.
 pub const SOLVE: &[Key] = &[
     Key {

@@ -37,12 +37,18 @@ pub struct SummaryClaim {
     /// What it tests beyond the paper (`extends`), when it does.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub extends: Option<String>,
+    /// The printed side as checked (the formula language), read from the paper or typed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub printed: Option<String>,
+    /// The paper's LaTeX it was read from, when read from the paper.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub printed_latex: Option<String>,
     /// Why its printed side is typed by hand, not read from the paper's LaTeX (`retyped`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub retyped: Option<String>,
 }
 
-/// `summary.json`: sorted by id, no timestamps or timings.
+/// `summary.json`: sorted by id ([`natural_cmp`]), no timestamps or timings.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Eq)]
 pub struct Summary {
     /// Every claim.
@@ -77,10 +83,44 @@ pub fn findings(outcomes: &[Outcome]) -> Vec<Finding> {
     }
     by.into_iter()
         .map(|(name, mut claims)| {
-            claims.sort();
+            claims.sort_by(|a, b| natural_cmp(a, b));
             Finding { name, claims }
         })
         .collect()
+}
+
+/// Claim ids in the order a reader expects: runs of digits compared as numbers, so `eq2`
+/// comes before `eq10` and `eq1.2` before `eq1.12`; the rest as text.
+pub fn natural_cmp(a: &str, b: &str) -> std::cmp::Ordering {
+    use std::cmp::Ordering;
+    fn runs(s: &str) -> Vec<(bool, &str)> {
+        let mut out = Vec::new();
+        let mut start = 0;
+        let b = s.as_bytes();
+        for i in 1..=b.len() {
+            if i == b.len() || b[i].is_ascii_digit() != b[start].is_ascii_digit() {
+                out.push((b[start].is_ascii_digit(), &s[start..i]));
+                start = i;
+            }
+        }
+        out
+    }
+    for (x, y) in runs(a).into_iter().zip(runs(b)) {
+        let o = match (x, y) {
+            ((true, x), (true, y)) => {
+                let (tx, ty) = (x.trim_start_matches('0'), y.trim_start_matches('0'));
+                tx.len()
+                    .cmp(&ty.len())
+                    .then(tx.cmp(ty))
+                    .then(x.len().cmp(&y.len()))
+            }
+            ((_, x), (_, y)) => x.cmp(y),
+        };
+        if o != Ordering::Equal {
+            return o;
+        }
+    }
+    runs(a).len().cmp(&runs(b).len()).then(a.cmp(b))
 }
 
 /// Who wrote the summary.
@@ -104,10 +144,12 @@ pub fn summary(outcomes: &[Outcome]) -> Summary {
             power: o.power.clone(),
             weak: o.power.as_ref().is_some_and(Power::weak),
             extends: o.extends.clone(),
+            printed: o.printed.clone(),
+            printed_latex: o.printed_latex.clone(),
             retyped: o.retyped.clone(),
         })
         .collect();
-    claims.sort_by(|a, b| a.id.cmp(&b.id));
+    claims.sort_by(|a, b| natural_cmp(&a.id, &b.id));
     Summary {
         claims,
         findings: findings(outcomes),
@@ -694,6 +736,8 @@ mod tests {
             weak: power.as_ref().is_some_and(Power::weak),
             power,
             extends: None,
+            printed: None,
+            printed_latex: None,
             retyped: None,
         };
         let sum = |power: Option<Power>| Summary {
@@ -734,6 +778,7 @@ mod tests {
             verdict: Verdict::Holds,
             detail: "d".into(),
             printed_latex: latex.then(|| "a = b".to_string()),
+            printed: None,
             derived_latex: None,
             extra_md: None,
             files: vec![],
@@ -799,6 +844,7 @@ mod tests {
             verdict,
             detail: String::new(),
             printed_latex: None,
+            printed: None,
             derived_latex: None,
             extra_md: None,
             files: vec![],

@@ -57,6 +57,9 @@ pub struct Outcome {
     pub detail: String,
     /// The printed expression in LaTeX, if any.
     pub printed_latex: Option<String>,
+    /// The printed side as the claim checks it (the formula language), when it has one: read
+    /// from the paper's LaTeX (`printed_from`, `printed_tex`) or typed in the claims file.
+    pub printed: Option<String>,
     /// The derived expression in LaTeX, if any.
     pub derived_latex: Option<String>,
     /// Extra Markdown (tables, plot links) for the paper's report.

@@ -137,6 +137,12 @@ pub struct AuditRelation {
     /// Which relation of its row (0 for the first).
     #[serde(skip)]
     pub index_in_row: usize,
+    /// Its display's place in the paper (1 for the first), as `printed_from = { display = K }`
+    /// names it.
+    pub display: usize,
+    /// Its place among the formulas of its display (1 for the first), as `relation = k` with
+    /// `display` names it.
+    pub in_display: usize,
     /// Whether a side reads a function application as an opaque symbol (`{z(0)}`).
     #[serde(skip)]
     pub opaque: bool,
@@ -254,6 +260,7 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
     let mut inputs: Vec<Option<Relation>> = Vec::new();
     for (k, (after, tex)) in blocks.iter().enumerate() {
         let line = doc.and_then(|d| d.displays.get(k)).map(|d| d.line);
+        let mut in_display = 0;
         for row in read_display(tex, &syms) {
             let number = row.tag.clone().or_else(|| after.clone());
             let label = number
@@ -262,6 +269,7 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
                 .map(str::to_string);
             let row_dots = dots(&row.tex, &syms);
             for (j, rel) in row.relations.iter().enumerate() {
+                in_display += 1;
                 let base = AuditRelation {
                     number: number.clone(),
                     label: label.clone(),
@@ -271,6 +279,8 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
                     detail: String::new(),
                     read: None,
                     index_in_row: j,
+                    display: k + 1,
+                    in_display,
                     opaque: false,
                     names: Vec::new(),
                     sides: Vec::new(),
@@ -694,157 +704,7 @@ pub fn to_markdown(a: &Audit, title: &str) -> String {
     s
 }
 
-/// A claims file to start from: the header (the `equations` list from the numbers found),
-/// `[symbols]` with the declared and inferred units, and a `dimension` claim per readable
-/// numbered relation whose units are all fixed, its printed side read from the paper.
-pub fn init_claims(
-    a: &Audit,
-    doc_numbers: &[String],
-    id: &str,
-    file: &str,
-    title: &str,
-    units: &Units,
-) -> String {
-    let q = |t: &str| format!("{t:?}");
-    let mut s = format!(
-        "# A claims file to start from, written by `verify init` from {file}: save it beside the paper\n# (printed_from reads the paper from this file's folder), then add the model and identity claims.\npaper = {}\ntitle = {}\nfile = {}\nreport = {}\nequations = [{}]\n\n[symbols]\n",
-        q(id),
-        q(title),
-        q(file),
-        q(&format!("{id}.md")),
-        doc_numbers
-            .iter()
-            .map(|n| q(n))
-            .collect::<Vec<_>>()
-            .join(", ")
-    );
-    for y in &a.symbols {
-        if y.name.starts_with('{') {
-            continue;
-        }
-        match (&y.unit, y.source) {
-            (Some(_), "declared") => {
-                let written = units.texts.get(&y.name).cloned().unwrap_or_default();
-                s.push_str(&format!(
-                    "{} = {}    # declared\n",
-                    key(&y.name),
-                    q(&written)
-                ));
-            }
-            (Some(u), "words") => s.push_str(&format!(
-                "{} = {}    # from the words ({}), line {}: {}\n",
-                key(&y.name),
-                q(u),
-                y.quantity.as_deref().unwrap_or(""),
-                y.line.unwrap_or(0),
-                q(y.quote.as_deref().unwrap_or(""))
-            )),
-            (Some(u), _) => s.push_str(&format!(
-                "{} = {}    # inferred from {}\n",
-                key(&y.name),
-                q(u),
-                y.from.join(", ")
-            )),
-            (None, _) => s.push_str(&format!(
-                "# {} = ?    # nothing fixes its unit\n",
-                key(&y.name)
-            )),
-        }
-    }
-    if !units.tex_symbols.is_empty() {
-        s.push_str("\n[tex_symbols]\n");
-        for (k, v) in &units.tex_symbols {
-            s.push_str(&format!("{} = {}\n", q(k), q(v)));
-        }
-    }
-    let mut seen = std::collections::BTreeSet::new();
-    for r in &a.relations {
-        let Some(n) = &r.number else { continue };
-        if r.index_in_row != 0 || !seen.insert(n.clone()) {
-            continue;
-        }
-        let no_unit: Vec<&str> = r
-            .names
-            .iter()
-            .filter(|n| !a.symbols.iter().any(|y| y.name == **n && y.unit.is_some()))
-            .map(String::as_str)
-            .collect();
-        let why_not = match r.status {
-            "unreadable" => Some(format!("unreadable: {}", r.detail)),
-            "undetermined" => Some(r.detail.clone()),
-            _ if !r.opaque && !no_unit.is_empty() => Some(format!(
-                "nothing fixes the unit of {} ({})",
-                no_unit.join(", "),
-                r.detail
-            )),
-            _ if r.opaque => Some(
-                "reads a function application as an opaque symbol; map its spelling in [tex_symbols] (\"z(t)\" = \"z\")"
-                    .into(),
-            ),
-            _ => None,
-        };
-        // what the dimension kind will compute: a consistent relation it cannot judge (a
-        // symbolic power of a dimensional base) would fail for the kind's sake, not the paper's
-        let why_not = why_not.or_else(|| {
-            let unit = |n: &str| {
-                a.symbols
-                    .iter()
-                    .find(|y| y.name == n)
-                    .and_then(|y| y.unit.as_deref())
-                    .and_then(|u| Unit::parse(u).ok())
-            };
-            let diff = Expr::Bin(
-                crate::algebra::expr::Op::Sub,
-                Box::new(r.sides[0].clone()),
-                Box::new(r.sides[1].clone()),
-            );
-            match crate::algebra::units::dimension(&diff, &unit) {
-                Err(e) if r.status == "consistent" => Some(format!(
-                    "consistent, but a dimension claim cannot judge it: {e}"
-                )),
-                _ => None,
-            }
-        });
-        if let Some(w) = why_not {
-            s.push_str(&format!("\n# ({n}): no claim: {w}\n"));
-            continue;
-        }
-        // an inconsistent relation whose left side has no single unit: its right side's unit (the
-        // claim fails either way; the unit must only be one)
-        let expect = r
-            .side_unit
-            .or(r.right_unit)
-            .map_or_else(|| "1".to_string(), |u| u.to_string());
-        let slug: String = n
-            .chars()
-            .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
-            .collect();
-        s.push_str(&format!(
-            "\n[[claim]]\nid = {}\nequation = {}\nreading = {}\nkind = \"dimension\"\nprinted_from = {{ tag = {}, form = \"difference\" }}\nexpect = {}\n",
-            q(&format!("{id}.eq{slug}.units")),
-            q(&format!("({n})")),
-            q(&format!(
-                "({n}) has one unit on both sides, {expect} (the audit found it {})",
-                r.status
-            )),
-            q(&format!("({n})")),
-            q(&expect)
-        ));
-    }
-    s
-}
-
-/// A TOML key: bare when it can be, quoted otherwise.
-fn key(name: &str) -> String {
-    if name
-        .chars()
-        .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
-    {
-        name.to_string()
-    } else {
-        format!("{name:?}")
-    }
-}
+pub use super::audit_init::init_claims;
 
 /// The units a claims file declares (`[symbols]` that parse as units, `[tex_symbols]`).
 pub fn units_of_claims(p: &super::PaperClaims) -> Units {

@@ -7,6 +7,7 @@
 
 pub mod accuracy;
 pub mod audit;
+mod audit_init;
 pub mod audit_reports;
 pub mod coverage;
 /// FNV-1a with a 128-bit state: a stable hash for change detection (the keys of
@@ -284,6 +285,7 @@ pub(crate) fn outcome(paper: &PaperClaims, c: &Head, verdict: Verdict, detail: S
         verdict,
         detail,
         printed_latex: None,
+        printed: None,
         derived_latex: None,
         extra_md: None,
         files: vec![],
@@ -508,6 +510,6 @@ pub fn run_measured(
         file.measure_power(&mut outcomes, power, &new_session);
         out.extend(outcomes);
     }
-    out.sort_by(|a, b| a.id.cmp(&b.id));
+    out.sort_by(|a, b| crate::report::natural_cmp(&a.id, &b.id));
     Ok(out)
 }

@@ -4,7 +4,9 @@
 //! `printed_tex = "..."` is LaTeX pasted from a paper. `printed_from = { tag = "(16)", lhs =
 //! "A_{5}" }` is the relation of the display numbered (16) whose left side reads as `A_{5}` (its
 //! right side); without `lhs`, the right side of the numbered equation; `{ label =
-//! "eq:restitution" }` the relation with that `\label`. The displays are those of the paper's own
+//! "eq:restitution" }` the relation with that `\label`; `{ display = 7 }` the paper's 7th
+//! display, numbered or not (as `verify audit` counts them); `relation = 2` the second relation
+//! of the row or display named (`a = b, \quad c = d`). The displays are those of the paper's own
 //! LaTeX source when the file's `file` is a `.tex` beside the claims file, numbered as LaTeX
 //! numbers them ([`read_document`]), else those of `tex/<paper>.tex` beside the claims file
 //! (`verify/tex/`, copied once from the seeds' text, so that the reports do not depend on where
@@ -204,6 +206,11 @@ fn from_paper(
         })
     };
     let (blocks, doc, path) = paper_displays(file).map_err(&err)?;
+    if let Some(v) = spec.get("display") {
+        return by_display(&blocks, v, spec)
+            .map(|tex| (tex, None))
+            .map_err(&err);
+    }
     let by_label = match spec.get("label") {
         None => None,
         Some(v) => {
@@ -263,11 +270,17 @@ fn from_paper(
     };
     if let Some(k) = spec
         .keys()
-        .find(|k| !["tag", "label", "after", "lhs", "at", "form"].contains(&k.as_str()))
+        .find(|k| !["tag", "label", "after", "lhs", "at", "form", "relation"].contains(&k.as_str()))
     {
         return Err(err(format!(
-            "unknown key `{k}`; allowed: tag, label, after, lhs, at, form"
+            "unknown key `{k}`; allowed: tag, label, after, lhs, at, form, relation, display"
         )));
+    }
+    if spec.contains_key("relation") && spec.contains_key("lhs") {
+        return Err(err(
+            "give `lhs` (the relation's left side) or `relation` (its place in the row), not both"
+                .into(),
+        ));
     }
     let tagged = |tex: &str, after_tag: &Option<String>| {
         tex.contains(&format!("\\tag{{{tag}}}")) || after_tag.as_deref() == Some(tag.as_str())
@@ -367,6 +380,33 @@ fn from_paper(
     }))
 }
 
+/// `display = K`: the LaTeX of the paper's K-th display, numbered or not, as the audit counts
+/// them (`relation` then picks within it; `tag`, `label`, `after` and `lhs` do not go with it).
+fn by_display(
+    blocks: &[(Option<String>, String)],
+    v: &toml::Value,
+    spec: &toml::Table,
+) -> Result<String, String> {
+    let n = blocks.len();
+    let k = v
+        .as_integer()
+        .filter(|k| *k >= 1 && *k as usize <= n)
+        .ok_or_else(|| {
+            format!(
+                "`display` is a display's place in the paper, 1 to {n} (as `verify audit` counts them)"
+            )
+        })? as usize;
+    if let Some(other) = ["tag", "label", "after", "lhs"]
+        .iter()
+        .find(|o| spec.contains_key(**o))
+    {
+        return Err(format!(
+            "`display` names the display: give `relation` (its place in it), not `{other}`"
+        ));
+    }
+    Ok(blocks[k - 1].1.trim().to_string())
+}
+
 /// `form = "difference"`: the relation read as `left - right` (a condition printed `... = 0`
 /// or `2(rho^2 + c^2) = a^2`, judged as its difference); `"right"` (the default) its right side.
 fn difference_form(
@@ -390,6 +430,31 @@ fn difference_form(
     }
 }
 
+/// `relation = k`: the k-th relation (1-based) of the row named (of the display with
+/// `display`), where a row holds several (`a = b, \quad c = d`).
+fn nth_relation(
+    file: &PaperClaims,
+    id: &str,
+    field: &str,
+    spec: &toml::Table,
+) -> Result<Option<usize>, VerifyError> {
+    match spec.get("relation") {
+        None => Ok(None),
+        Some(v) => v
+            .as_integer()
+            .filter(|k| *k >= 1)
+            .map(|k| Some(k as usize - 1))
+            .ok_or_else(|| {
+                bad(
+                    file,
+                    id,
+                    field,
+                    "`relation` is a relation's place in its row, 1 for the first".into(),
+                )
+            }),
+    }
+}
+
 /// A formula read from the paper: the side asked for (`lhs`, or the right side of the tagged
 /// equation), as text of the formula language, and the LaTeX it was read from.
 fn formula_from_paper(
@@ -410,7 +475,8 @@ fn formula_from_paper(
     })?;
     let (latex, lhs) = from_paper(file, id, field, spec, syms, false)?;
     let difference = difference_form(file, id, field, spec)?;
-    let mut e = read_side(&latex, lhs.as_deref(), syms, difference)
+    let nth = nth_relation(file, id, field, spec)?;
+    let mut e = read_side(&latex, lhs.as_deref(), nth, syms, difference)
         .map_err(|e| bad(file, id, field, format!("`{latex}`: {e}")))?;
     // `at = { k = "k1" }`: the formula at other arguments (f1(k) of (2.3) read as f1(k1))
     if let Some(at) = spec.get("at") {
@@ -438,6 +504,15 @@ fn formula_from_paper(
     Ok((e, latex))
 }
 
+/// For a dimension claim, which judges units only: each application `{z(t)}` as its function
+/// `z`, whose unit it has (as in the audit, [`crate::algebra::infer::unit_name`]).
+fn applications_as_functions(e: &Expr) -> Expr {
+    e.substitute(&|s| {
+        let f = crate::algebra::infer::unit_name(s);
+        (f != s).then_some(Expr::Sym(f))
+    })
+}
+
 /// Refuses a formula that kept an opaque function application (`{w(x,y,t)}`).
 fn no_opaque(file: &PaperClaims, id: &str, field: &str, e: &Expr) -> Result<(), VerifyError> {
     match e.symbols().into_iter().find(|s| s.starts_with('{')) {
@@ -455,10 +530,12 @@ fn no_opaque(file: &PaperClaims, id: &str, field: &str, e: &Expr) -> Result<(), 
 
 /// The side an equation's LaTeX gives: the right side of the relation whose left side is `lhs`
 /// (or of the first relation); failing that, of the one whose left side is `lhs` times a factor,
-/// divided by the factor (`m_2 \rho_2^2 \beta = ...` read for `\beta`).
+/// divided by the factor (`m_2 \rho_2^2 \beta = ...` read for `\beta`). With `nth`, the
+/// relation at that place (0-based) among all those of `tex`.
 fn read_side(
     tex: &str,
     lhs: Option<&str>,
+    nth: Option<usize>,
     syms: &TexSymbols,
     difference: bool,
 ) -> Result<Expr, crate::algebra::tex::TexError> {
@@ -467,18 +544,45 @@ fn read_side(
     let side = |r: &crate::algebra::tex::TexRelation| {
         let last = r.sides.last().cloned().unwrap_or(Expr::Pi);
         let zero = Expr::Num(crate::algebra::poly::Q::from_integer(0.into()));
-        if difference && r.sides.len() > 1 && last == zero {
-            r.sides[0].clone()
-        } else if difference && r.sides.len() > 1 {
+        let minus = |a: &Expr, b: &Expr| {
             Expr::Bin(
                 crate::algebra::expr::Op::Sub,
-                Box::new(r.sides[0].clone()),
-                Box::new(last),
+                Box::new(a.clone()),
+                Box::new(b.clone()),
             )
+        };
+        if difference && r.sides.len() == 2 && last == zero {
+            r.sides[0].clone()
+        } else if difference && r.sides.len() > 1 {
+            // a chain `a = b = c` as `(a - b) + (b - c)`: the value of `a - c`, with every side
+            // in it (a unit check sees each equality)
+            r.sides
+                .windows(2)
+                .map(|p| minus(&p[0], &p[1]))
+                .reduce(|acc, d| {
+                    Expr::Bin(crate::algebra::expr::Op::Add, Box::new(acc), Box::new(d))
+                })
+                .unwrap_or(last)
         } else {
             last
         }
     };
+    if let Some(k) = nth {
+        let all: Vec<_> = pieces.iter().flat_map(|row| &row.relations).collect();
+        return match all.get(k) {
+            Some(Ok(r)) if r.sides.len() > 1 => Ok(side(r)),
+            Some(Err(e)) => Err(e.clone()),
+            _ => Err(crate::algebra::tex::TexError {
+                column: 1,
+                construct: format!(
+                    "a relation at place {} (the LaTeX holds {} formula(s))",
+                    k + 1,
+                    all.len()
+                ),
+                found: tex.into(),
+            }),
+        };
+    }
     for exact in [true, false] {
         for row in &pieces {
             for rel in &row.relations {
@@ -672,7 +776,7 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
         }
         let tex = c.keys.remove("printed_tex");
         let from = c.keys.remove("printed_from");
-        let (field, latex, lhs, difference) = match (tex, from) {
+        let (field, latex, lhs, difference, nth) = match (tex, from) {
             (None, None) => continue,
             (Some(_), Some(_)) => {
                 return Err(bad(
@@ -686,7 +790,7 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
                 let t = t.as_str().map(str::to_string).ok_or_else(|| {
                     bad(&snapshot, &c.head.id, "printed_tex", "is LaTeX text".into())
                 })?;
-                ("printed_tex", t, None, false)
+                ("printed_tex", t, None, false, None)
             }
             (None, Some(f)) => {
                 let spec = f.as_table().cloned().ok_or_else(|| {
@@ -700,10 +804,11 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
                 let (latex, lhs) =
                     from_paper(&snapshot, &c.head.id, "printed_from", &spec, &syms, false)?;
                 let difference = difference_form(&snapshot, &c.head.id, "printed_from", &spec)?;
-                ("printed_from", latex, lhs, difference)
+                let nth = nth_relation(&snapshot, &c.head.id, "printed_from", &spec)?;
+                ("printed_from", latex, lhs, difference, nth)
             }
         };
-        let e = read_side(&latex, lhs.as_deref(), &syms, difference)
+        let e = read_side(&latex, lhs.as_deref(), nth, &syms, difference)
             .map_err(|e| bad(&snapshot, &c.head.id, field, format!("`{latex}`: {e}")))?;
         // with `printed` beside `printed_from` and its `lhs`, the side read stands for the
         // left side's symbol in `printed` (A2 of (16) in `A2*Lop*fd`, a term of (15))
@@ -734,6 +839,11 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
                     "give printed or printed_tex/printed_from, not both (printed beside printed_from needs its lhs: the symbol printed uses)".into(),
                 ));
             }
+        };
+        let e = if c.kind == "dimension" {
+            applications_as_functions(&e)
+        } else {
+            e
         };
         no_opaque(&snapshot, &c.head.id, field, &e)?;
         c.keys

@@ -46,7 +46,9 @@ mod parse;
 
 pub use parse::{ParseError, parse, parse_inequality};
 
-/// The functions a formula may call.
+/// The functions a formula may call. Each name is a call only before `(`; elsewhere it is a
+/// symbol, so a paper's `gamma`, `beta` or `erf` may name a parameter (`gamma*(1 + x)` is a
+/// product, `gamma(x)` the function).
 pub const FUNCTIONS: &[&str] = &[
     "sqrt",
     "exp",
@@ -75,10 +77,6 @@ pub const FUNCTIONS: &[&str] = &[
     "min",
     "beta",
 ];
-
-/// Names that are functions when followed by `(` and symbols otherwise (`gamma` is also a rate
-/// of paper 000, `beta` an angle of 001).
-pub const SYMBOL_OR_FUNCTION: &[&str] = &["gamma", "beta"];
 
 /// A function of one argument.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

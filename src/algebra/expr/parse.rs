@@ -224,15 +224,18 @@ impl Parser {
             }
             Tok::Name(n) => {
                 self.bump();
-                if matches!(n.as_str(), "max" | "min" | "beta") {
+                // a function's name is a call before `(` and a symbol elsewhere (a paper's
+                // gamma, beta, erf ... as a parameter); before a name or a number it is a call
+                // missing its parentheses
+                let is_function = FUNCTIONS.contains(&n.as_str());
+                if is_function && matches!(self.peek(), Tok::Name(_) | Tok::Num(..)) {
+                    return Err(self.err(&format!("`(` after the function `{n}`")));
+                }
+                let called = *self.peek() == Tok::LParen;
+                if called && matches!(n.as_str(), "max" | "min" | "beta") {
                     return self.two(&n);
                 }
-                let symbol_here =
-                    super::SYMBOL_OR_FUNCTION.contains(&n.as_str()) && *self.peek() != Tok::LParen;
-                if let Some(f) = Func::from_name(&n).filter(|_| !symbol_here) {
-                    if *self.peek() != Tok::LParen {
-                        return Err(self.err(&format!("`(` after the function `{n}`")));
-                    }
+                if let Some(f) = Func::from_name(&n).filter(|_| called) {
                     self.bump();
                     let arg = self.expr()?;
                     if *self.peek() != Tok::RParen {
@@ -270,14 +273,8 @@ impl Parser {
     }
 
     /// `max(a, b)`, `min(a, b)` as $(a + b \pm |a - b|)/2$ (exact in floating point when one
-    /// side is 0), `beta(a, b)` as $\Gamma(a)\Gamma(b)/\Gamma(a + b)$, after the name.
+    /// side is 0), `beta(a, b)` as $\Gamma(a)\Gamma(b)/\Gamma(a + b)$, after the name (at its `(`).
     fn two(&mut self, n: &str) -> Result<Expr, ParseError> {
-        if *self.peek() != Tok::LParen {
-            if n == "beta" {
-                return Ok(Expr::Sym(n.into()));
-            }
-            return Err(self.err(&format!("`(` after the function `{n}`")));
-        }
         self.bump();
         let a = self.expr()?;
         if *self.peek() != Tok::Comma {

@@ -340,6 +340,11 @@ fn hyperbolic_functions_and_inverses_as_papers_print_them() {
     );
     same("\\tanh^{-1} \\frac{u}{2 + u}", "atanh(u/(2 + u))");
     same("\\sin^{-1} \\frac{s}{2 + s}", "asin(s/(2 + s))");
+    // the circular inverses as LaTeX names them
+    same(
+        "\\arcsin \\frac{x}{4} + \\arccos \\frac{y}{4} - \\arctan(w)",
+        "asin(x/4) + acos(y/4) - atan(w)",
+    );
     same("\\sinh^{2} x", "sinh(x)^2");
     same("\\exp^{-1} x", "exp(x)^(-1)");
 }
@@ -537,4 +542,37 @@ fn marks_after_a_name_are_labels_of_it() {
     same("\\breve{x} + y", "xbr + y");
     same("E^\\ast + r^\\prime + v^\\perp", "Estar + rp + vperp");
     same("E^{\\star} - r^{\\prime}", "Estar - rp");
+}
+
+#[test]
+fn a_limit_names_its_variable_and_its_point_with_to_or_rightarrow() {
+    let syms = TexSymbols::default();
+    let to = read_formula("\\lim_{k \\to \\infty} a_{k}", &syms).unwrap();
+    let arrow = read_formula("\\lim_{k \\rightarrow \\infty} a_{k}", &syms).unwrap();
+    assert_eq!(to, arrow);
+    match &arrow {
+        crate::algebra::expr::Expr::Calc(crate::algebra::expr::Calc::Lim, _, var, at) => {
+            assert_eq!(var, "k");
+            assert_eq!(at.len(), 1);
+            assert_ne!(
+                at[0],
+                crate::algebra::expr::Expr::Sym(crate::algebra::units::ELLIPSIS.into())
+            );
+        }
+        other => panic!("not a limit: {other:?}"),
+    }
+}
+
+#[test]
+fn a_differential_in_braces_with_a_space_or_a_font_and_a_bar_written_vert() {
+    let syms = TexSymbols::default();
+    let read = |t: &str| read_formula(t, &syms).unwrap_or_else(|e| panic!("{t}: {e}"));
+    // `{\, d}` and `{\rm d}`: the d of a derivative or an increment, as a plain d
+    assert_eq!(read("{\\, d} x / {\\, d} t"), read("d x / d t"));
+    assert_eq!(
+        read("\\int_{0}^{T} v \\, {\\rm d}t"),
+        read("\\int_{0}^{T} v \\, dt")
+    );
+    // an evaluation bar written `\vert`: the formula where it is taken, its unit unchanged
+    assert_eq!(read("v \\vert_{t = 0} + w"), read("v |_{t = 0} + w"));
 }

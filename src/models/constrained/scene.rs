@@ -724,13 +724,13 @@ pub const DOC: d::ModelDoc = d::ModelDoc {
             },
             d::Out {
                 path: "support_analysis.alpha",
-                unit: "1",
-                meaning: "alpha of (3.6)",
+                unit: "1/kg",
+                meaning: "alpha of (3.6), -(B~ f, N) for the unit direction f of C's impulse",
             },
             d::Out {
                 path: "support_analysis.beta",
-                unit: "1",
-                meaning: "beta: (4.4) when sliding, else (B_A N, N)",
+                unit: "1/kg",
+                meaning: "beta: (4.4) when sliding, else (B_A N, N) (an inverse mass, as B_A)",
             },
             d::Out {
                 path: "support_analysis",

@@ -27,7 +27,7 @@ pub const DOC: d::ModelDoc = d::ModelDoc {
         d::Key {
             key: "parameters.*",
             unit: "as [units] says",
-            range: "finite numbers; names of letters, digits and _ (not t, pi, hits or a function)",
+            range: "finite numbers; names of letters, digits and _ (not t, pi, hits, diff, int, at or sum; a function's name such as gamma is a parameter, called only before `(`)",
             default: "required",
             meaning: "the parameters",
         },

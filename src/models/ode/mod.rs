@@ -686,12 +686,38 @@ impl OdeScene {
             return Err(RunError::BadArgument {
                 arg: format!("state.{}", self.states[i]),
                 message: format!(
-                    "the initial value is {} (not finite) with these parameters",
-                    y[i]
+                    "the initial value is {} (not finite) with {}",
+                    y[i],
+                    self.parameters_text()
                 ),
             });
         }
         Ok(y)
+    }
+
+    /// `name = value` of each of `names`, for a message.
+    fn named_text(&self, names: &[String], values: &[f64]) -> String {
+        let pairs: Vec<String> = names
+            .iter()
+            .zip(values)
+            .map(|(n, v)| format!("{n} = {v}"))
+            .collect();
+        if pairs.is_empty() {
+            "no values".into()
+        } else {
+            pairs.join(", ")
+        }
+    }
+
+    /// The parameters and their values, for a message on a value that is not finite.
+    fn parameters_text(&self) -> String {
+        if self.param_names.is_empty() {
+            return "no parameters".into();
+        }
+        format!(
+            "the parameters {}",
+            self.named_text(&self.param_names, &self.params)
+        )
     }
 
     /// Every user event that fires at the stop, in the order written, each jump applied to the
@@ -713,7 +739,12 @@ impl OdeScene {
                 if let Some(i) = y.iter().position(|x| !x.is_finite()) {
                     return Err(RunError::BadArgument {
                         arg: format!("event {}: jump of {}", ev.name, self.states[i]),
-                        message: format!("at t = {t:e} s the jump gives {} (not finite)", y[i]),
+                        message: format!(
+                            "at t = {t:e} s the jump gives {} (not finite) from the state {} with {}",
+                            y[i],
+                            self.named_text(&self.states, &before),
+                            self.parameters_text()
+                        ),
                     });
                 }
             }
@@ -766,6 +797,14 @@ impl OdeScene {
             },
             &mut warnings,
         );
+        for (name, v) in &outcome {
+            if let Some(v) = v.filter(|v| !v.is_finite()) {
+                warnings.push(format!(
+                    "outcome.{name} is {v} (not finite; written null) with {}",
+                    self.parameters_text()
+                ));
+            }
+        }
         OdeOutcome {
             model: <Self as Model>::NAME,
             outcome,

@@ -145,16 +145,14 @@ pub(super) fn read(root: &toml::Table, path: &str) -> Result<OdeScene, SceneErro
 }
 
 /// Whether `n` may name a parameter, state or definition: letters, digits and _, not `t`, `pi`,
-/// `hits` or a function.
+/// `hits` or a word of the calculus (`diff`, `int`, `at`, `sum`). A function's name may (a
+/// paper's `gamma` or `beta`): in a formula it is a call only before `(`.
 fn name_ok(n: &str) -> bool {
     n.chars()
         .next()
         .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
         && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
-        && n != "t"
-        && n != "pi"
-        && n != "hits"
-        && !crate::algebra::expr::FUNCTIONS.contains(&n)
+        && !matches!(n, "t" | "pi" | "hits" | "diff" | "int" | "at" | "sum")
 }
 
 /// `[parameters]`: each name with its value (SI).
@@ -166,7 +164,7 @@ fn read_parameters(f: &Fields, table: &toml::Table) -> Result<Vec<(String, f64)>
             return Err(f.out_of_range(
                 &field,
                 k.clone(),
-                "a name of letters, digits and _ (not t, pi, hits or a function)",
+                "a name of letters, digits and _ (not t, pi, hits, diff, int, at or sum)",
             ));
         }
         params.push((
@@ -198,7 +196,7 @@ fn read_states(
             return Err(f.out_of_range(
                 &format!("state.{s}"),
                 s.clone(),
-                "a name of letters, digits and _, not a parameter's, not t, pi, hits or a function",
+                "a name of letters, digits and _, not a parameter's, not t, pi, hits, diff, int, at or sum",
             ));
         }
         if !equations.contains_key(s) {
@@ -252,7 +250,7 @@ fn read_definitions(r: &mut Reader, table: &toml::Table) -> Result<(), SceneErro
             return Err(r.bad(
                 &field,
                 k,
-                "a new name (not a parameter, state, t or a function)",
+                "a new name (not a parameter or state; not t, pi, hits, diff, int, at or sum)",
             ));
         }
         // the names it uses, read before any definition is expanded (a formula that does not

@@ -157,7 +157,6 @@ impl Kind for Map {
             let (i, j) = (idx / ny, idx % ny);
             cells[j * nx + i] = r.as_ref().ok().map(|(l, r)| inside(*l, *r));
         }
-        let ran = cells.iter().filter(|c| c.is_some()).count();
         let valid = cells.iter().filter(|c| **c == Some(true)).count();
         let share = valid as f64 / points.len() as f64;
         let what = self.what();
@@ -176,8 +175,8 @@ impl Kind for Map {
             bounds(&axes[0]),
             bounds(&axes[1])
         );
-        if ran < points.len() {
-            detail.push_str(&format!("; {} point(s) did not run", points.len() - ran));
+        if let Some(f) = super::scene::failed_points(&points, &rows) {
+            detail.push_str(&format!("; {f}"));
         }
         detail.push_str(&boundary(axes, &cells));
         let verdict = if valid == points.len() {

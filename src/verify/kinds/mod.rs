@@ -13,6 +13,8 @@
 //! - `bound`: `require`, an inequality over outcome quantities and bound symbols, on `count`
 //!   samples of the scene fields drawn from `sample` (statrs quantiles of a seeded generator);
 //!   `holds` when no sample violates it.
+//! - `threshold`: where a model's behaviour changes along one parameter, located by bisection
+//!   at each point of a grid of the others, against the printed formula for that value.
 //! - `probability`, `map`, `not-checkable`, `check`: see their files.
 //!
 //! Each kind is a type implementing [`Kind`] in a file of its own: its keys are a serde struct
@@ -30,6 +32,7 @@ use serde::de::DeserializeOwned;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+mod approximation;
 mod bound;
 mod check;
 mod definition;
@@ -42,6 +45,7 @@ mod model;
 mod not_checkable;
 mod probability;
 mod scene;
+mod threshold;
 
 pub use check::NamedCheck;
 pub use derivations::{DERIVATIONS, Derivations};
@@ -175,6 +179,7 @@ pub const BUILTIN: &[KindEntry] = &[
     kind::<bound::Bound>(),
     kind::<probability::Probability>(),
     kind::<map::Map>(),
+    kind::<threshold::Threshold>(),
     kind::<definition::Definition>(),
     kind::<not_checkable::NotCheckable>(),
     kind::<check::Check>(),
@@ -366,6 +371,11 @@ impl<'a> Checked<'a> {
                     o.kind = c.kind.clone();
                 }
                 o.finding = c.head.finding.clone();
+                o.printed = c
+                    .keys
+                    .get("printed")
+                    .and_then(|v| v.as_str())
+                    .map(str::to_string);
                 o.extends = c.head.extends.clone();
                 if let Some(tex) = &c.head.tex {
                     o.printed_latex = Some(tex.clone());
@@ -430,8 +440,22 @@ impl<'a> Checked<'a> {
 
     /// Every symbol of `e` has a unit (or is a definition, or one of `also`).
     fn units_of(&self, c: &Head, field: &str, e: &Expr, also: &[&str]) -> Result<(), VerifyError> {
+        self.units_of_in(c, field, e, also, &BTreeMap::new())
+    }
+
+    /// [`Checked::units_of`], where the numbers a model produces have the model's units
+    /// (`model`, [`scene::Scene::model_units`]).
+    fn units_of_in(
+        &self,
+        c: &Head,
+        field: &str,
+        e: &Expr,
+        also: &[&str],
+        model: &BTreeMap<String, Unit>,
+    ) -> Result<(), VerifyError> {
         for s in e.symbols() {
             if self.declared(&s).is_none()
+                && !model.contains_key(&s)
                 && !self.defs.contains_key(&s)
                 && !also.contains(&s.as_str())
                 && !s.starts_with("at_ref_")
@@ -453,6 +477,15 @@ impl<'a> Checked<'a> {
             }
         }
         Ok(())
+    }
+
+    /// [`Checked::unit_fn`], where the numbers a model produces have the model's units first.
+    fn unit_fn_in<'m>(
+        &'m self,
+        model: &'m BTreeMap<String, Unit>,
+    ) -> impl Fn(&str) -> Option<Unit> + 'm {
+        let file = self.unit_fn();
+        move |s: &str| model.get(s).copied().or_else(|| file(s))
     }
 
     fn unit_fn(&self) -> impl Fn(&str) -> Option<Unit> + '_ {

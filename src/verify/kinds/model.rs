@@ -36,6 +36,16 @@ pub struct ModelSpec {
     /// Definitions for this claim only.
     #[serde(default, rename = "where")]
     where_: Where,
+    /// The printed formula is an approximation right to this order in `small`
+    /// ([`super::approximation`]).
+    #[serde(default)]
+    order: Option<f64>,
+    /// The small parameter of an approximation, a formula of bound symbols.
+    #[serde(default)]
+    small: Option<String>,
+    /// The largest value of `small` where `rtol` is claimed (default: the whole grid).
+    #[serde(default)]
+    small_max: Option<f64>,
 }
 
 /// A checked `model` claim.
@@ -49,6 +59,8 @@ pub struct Model {
     rtol: f64,
     /// The printed formula's unit against the quantity's, when both have one.
     units_note: Option<String>,
+    /// An approximation's order and small parameter, when the claim states them.
+    order: Option<super::approximation::Order>,
 }
 
 impl Kind for Model {
@@ -63,24 +75,20 @@ impl Kind for Model {
         let printed = cx.formula(c, &s.where_, "printed", &s.printed)?;
         let outcome = scene.probe(cx, c, &probe, &[("printed", &printed)])?;
         scene::check_quantity(cx, c, &outcome, &s.quantity)?;
-        // the quantity's unit: the claims file's, or the model's own (a text model states the
-        // unit of each outcome, `outcome_units`)
-        // (with `runs`, the quantity `a.outcome.x` is run a's `outcome.x`)
-        let (run_out, path) = match s.quantity.split_once('.') {
-            Some((run, rest)) if scene.runs.iter().any(|(r, _)| r == run) => {
-                (outcome.get(run).unwrap_or(&outcome), rest)
-            }
-            _ => (&outcome, s.quantity.as_str()),
-        };
-        let model_unit = path
-            .strip_prefix("outcome.")
-            .and_then(|q| run_out.get("outcome_units")?.get(q)?.as_str())
-            .and_then(|u| units::Unit::parse(u).ok());
+        // the quantity's unit: the model's own (every model states the unit of each number it
+        // produces; a text model derives it from its formulas), else the claims file's; a
+        // declared unit that contradicts the model's is an error naming both
+        let quantity = Expr::Sym(s.quantity.clone());
+        scene.declared_against_model(cx, c, "quantity", &quantity, &outcome)?;
+        let model_units = scene.model_units(&outcome);
         let units_note = match (
-            cx.declared(&s.quantity).or(model_unit),
+            model_units
+                .get(&s.quantity)
+                .copied()
+                .or_else(|| cx.declared(&s.quantity)),
             units::dimension(
                 &cx.formula(c, &cx.where_for_units(&s.where_), "printed", &s.printed)?,
-                &cx.unit_fn(),
+                &cx.unit_fn_in(&model_units),
             ),
         ) {
             (Some(u), Ok(pu)) if pu != u => {
@@ -88,7 +96,16 @@ impl Kind for Model {
             }
             _ => None,
         };
+        let order = super::approximation::Order::read(
+            cx,
+            c,
+            s.order,
+            s.small.as_deref(),
+            s.small_max,
+            &|sym| scene.bind.contains_key(sym),
+        )?;
         Ok(Model {
+            order,
             scene,
             axes,
             vary: s.vary,
@@ -101,72 +118,33 @@ impl Kind for Model {
     }
 
     fn check(&self, cx: &Checked, c: &Head, _: &mut Session) -> Result<Outcome, VerifyError> {
-        let (quantity, rtol) = (&self.quantity, self.rtol);
+        let quantity = &self.quantity;
         let q = Expr::Sym(quantity.clone());
         let (points, rows) = scene::grid(&self.scene, &self.axes, (&q, &self.printed));
-        let mut worst: Option<(f64, usize)> = None;
-        let mut errors = Vec::new();
-        for (i, r) in rows.iter().enumerate() {
-            match r {
-                Ok((m, p)) => {
-                    let rel = (p - m).abs() / m.abs().max(f64::MIN_POSITIVE);
-                    let rel = if rel.is_nan() { f64::INFINITY } else { rel };
-                    if worst.is_none_or(|(w, _)| rel > w) {
-                        worst = Some((rel, i));
-                    }
-                }
-                Err(e) => errors.push(format!("at {}: {e}", point_text(&points[i]))),
+        let what = format!("model {quantity}");
+        let (verdict, mut detail) = match &self.order {
+            None => compare_rows(&points, &rows, self.rtol, &what),
+            Some(order) => {
+                let smalls: Vec<Result<f64, String>> = points
+                    .iter()
+                    .map(|pt| self.scene.bound_value(pt, &order.small))
+                    .collect();
+                order.judge(&points, &rows, &smalls, self.rtol, &what)
             }
-        }
-        let n = points.len();
-        let (verdict, mut detail) = match worst {
-            Some((w, i)) => {
-                let (m, p) = rows[i].clone().unwrap_or((f64::NAN, f64::NAN));
-                (
-                    if w <= rtol && errors.is_empty() {
-                        Verdict::Holds
-                    } else {
-                        Verdict::Fails
-                    },
-                    format!(
-                        "{n} grid points: largest relative difference {} (rtol {}) at {}: model {quantity} = {}, printed {}",
-                        g4(w),
-                        g4(rtol),
-                        point_text(&points[i]),
-                        g4(m),
-                        g4(p)
-                    ),
-                )
-            }
-            None => (Verdict::NotCheckable, format!("{n} grid points, none ran")),
         };
-        // model/printed the same at every point: a constant factor, a coefficient misprint
-        if verdict == Verdict::Fails && errors.is_empty() {
-            let ratios: Vec<f64> = rows.iter().flatten().map(|(m, p)| m / p).collect();
-            if let Some(k) = super::identity::constant_factor(&ratios, rtol) {
-                detail.push_str(&format!(
-                    "; model/printed = {} at every point (within rtol): {}",
-                    g4(k),
-                    super::identity::factor_text(&g4(k))
-                ));
-            }
-        }
-        if !errors.is_empty() {
-            detail.push_str(&format!(
-                "; {} point(s) failed: {}",
-                errors.len(),
-                errors[0]
-            ));
-            if worst.is_some() && verdict == Verdict::Fails {
-                detail.push_str(" (a failed point counts against the claim)");
-            }
-        }
         if let Some(u) = &self.units_note {
             detail.push_str(u);
         }
         let mut o = outcome(cx.file, c, verdict, detail);
         if self.axes.len() == 1 && rows.iter().filter(|r| r.is_ok()).count() > 1 {
-            self.plot(c, &mut o, &rows);
+            curve_figure(
+                c,
+                &mut o,
+                &self.axes[0],
+                &rows,
+                &self.quantity,
+                &self.printed.to_string(),
+            );
         }
         Ok(o)
     }
@@ -183,45 +161,114 @@ impl Kind for Model {
     }
 }
 
-impl Model {
-    /// The model's and the printed curve against the grid's one axis, with their data.
-    fn plot(&self, c: &Head, o: &mut Outcome, rows: &[Result<(f64, f64), String>]) {
-        let (a, quantity) = (&self.axes[0], &self.quantity);
-        let mut model_curve = Vec::new();
-        let mut printed_curve = Vec::new();
-        for (v, r) in a.values.iter().zip(rows) {
-            if let Ok((m, p)) = r {
-                model_curve.push((*v, *m));
-                printed_curve.push((*v, *p));
+/// The model's and the printed curve against a grid's one axis `a`, with their data, in the
+/// claim's outcome: `quantity` names the model's value, `printed` the formula.
+pub(super) fn curve_figure(
+    c: &Head,
+    o: &mut Outcome,
+    a: &Axis,
+    rows: &[Result<(f64, f64), String>],
+    quantity: &str,
+    printed: &str,
+) {
+    let mut model_curve = Vec::new();
+    let mut printed_curve = Vec::new();
+    for (v, r) in a.values.iter().zip(rows) {
+        if let Ok((m, p)) = r {
+            model_curve.push((*v, *m));
+            printed_curve.push((*v, *p));
+        }
+    }
+    let scale = if a.log {
+        crate::report::svg::Scale::Log
+    } else {
+        crate::report::svg::Scale::Linear
+    };
+    let name = format!("{}.svg", c.id.replace('.', "_"));
+    let svg = crate::report::svg::plot_curves(
+        &format!("{}: {quantity} (model) and the printed formula", c.id),
+        &a.field,
+        quantity,
+        scale,
+        crate::report::svg::Scale::Linear,
+        &[
+            ("model".to_string(), model_curve.clone()),
+            ("printed".to_string(), printed_curve.clone()),
+        ],
+    );
+    let csv_name = format!("{}.csv", c.id.replace('.', "_"));
+    let mut csv = format!("{},model {quantity},printed\n", a.field);
+    for ((x, m), (_, p)) in model_curve.iter().zip(&printed_curve) {
+        csv.push_str(&format!("{x:e},{m:e},{p:e}\n"));
+    }
+    o.extra_md = Some(format!(
+        "\n\n![{}: the model's {quantity} and the printed formula against {}]({name})\n\n*Figure: claim {}, the model's {quantity} and the printed `{}` against {} (data: [{csv_name}]({csv_name})).*",
+        c.id, a.field, c.id, printed, a.field
+    ));
+    o.files.push((name, svg));
+    o.files.push((csv_name, csv));
+}
+
+/// The verdict of a model's values against the printed formula's at the points of a grid
+/// (`rows`: (model, printed) or why the point did not run): `holds` when the largest relative
+/// difference is at most `rtol` and every point ran; the detail names the worst point, a
+/// constant factor between the two and the first point that did not run. `what` names the
+/// model's value (`model contact.duration`).
+pub(super) fn compare_rows(
+    points: &[Vec<(String, f64)>],
+    rows: &[Result<(f64, f64), String>],
+    rtol: f64,
+    what: &str,
+) -> (Verdict, String) {
+    let mut worst: Option<(f64, usize)> = None;
+    for (i, r) in rows.iter().enumerate() {
+        if let Ok((m, p)) = r {
+            let rel = (p - m).abs() / m.abs().max(f64::MIN_POSITIVE);
+            let rel = if rel.is_nan() { f64::INFINITY } else { rel };
+            if worst.is_none_or(|(w, _)| rel > w) {
+                worst = Some((rel, i));
             }
         }
-        let scale = if a.log {
-            crate::report::svg::Scale::Log
-        } else {
-            crate::report::svg::Scale::Linear
-        };
-        let name = format!("{}.svg", c.id.replace('.', "_"));
-        let svg = crate::report::svg::plot_curves(
-            &format!("{}: {quantity} (model) and the printed formula", c.id),
-            &a.field,
-            quantity,
-            scale,
-            crate::report::svg::Scale::Linear,
-            &[
-                ("model".to_string(), model_curve.clone()),
-                ("printed".to_string(), printed_curve.clone()),
-            ],
-        );
-        let csv_name = format!("{}.csv", c.id.replace('.', "_"));
-        let mut csv = format!("{},model {quantity},printed\n", a.field);
-        for ((x, m), (_, p)) in model_curve.iter().zip(&printed_curve) {
-            csv.push_str(&format!("{x:e},{m:e},{p:e}\n"));
-        }
-        o.extra_md = Some(format!(
-            "\n\n![{}: the model's {quantity} and the printed formula against {}]({name})\n\n*Figure: claim {}, the model's {quantity} and the printed `{}` against {} (data: [{csv_name}]({csv_name})).*",
-            c.id, a.field, c.id, self.printed, a.field
-        ));
-        o.files.push((name, svg));
-        o.files.push((csv_name, csv));
     }
+    let failed = scene::failed_points(points, rows);
+    let n = points.len();
+    let (verdict, mut detail) = match worst {
+        Some((w, i)) => {
+            let (m, p) = rows[i].clone().unwrap_or((f64::NAN, f64::NAN));
+            (
+                if w <= rtol && failed.is_none() {
+                    Verdict::Holds
+                } else {
+                    Verdict::Fails
+                },
+                format!(
+                    "{n} grid points: largest relative difference {} (rtol {}) at {}: {what} = {}, printed {}",
+                    g4(w),
+                    g4(rtol),
+                    point_text(&points[i]),
+                    g4(m),
+                    g4(p)
+                ),
+            )
+        }
+        None => (Verdict::NotCheckable, format!("{n} grid points, none ran")),
+    };
+    // model/printed the same at every point: a constant factor, a coefficient misprint
+    if verdict == Verdict::Fails && failed.is_none() {
+        let ratios: Vec<f64> = rows.iter().flatten().map(|(m, p)| m / p).collect();
+        if let Some(k) = super::identity::constant_factor(&ratios, rtol) {
+            detail.push_str(&format!(
+                "; model/printed = {} at every point (within rtol): {}",
+                g4(k),
+                super::identity::factor_text(&g4(k))
+            ));
+        }
+    }
+    if let Some(f) = &failed {
+        detail.push_str(&format!("; {f}"));
+        if worst.is_some() && verdict == Verdict::Fails {
+            detail.push_str(" (a failed point counts against the claim)");
+        }
+    }
+    (verdict, detail)
 }

@@ -4,6 +4,7 @@
 
 use super::{Checked, Where, claim_err, g4};
 use crate::algebra::expr::{self, Expr, Inequality};
+use crate::algebra::units::Unit;
 use crate::scene::field_value;
 use crate::verify::{Head, VerifyError};
 use serde::Deserialize;
@@ -154,6 +155,34 @@ impl Scene {
         field_value(t, field)
     }
 
+    /// Runs the scene with the fields of `pt` set: the table run and its outcome.
+    pub fn run_point(&self, pt: &[(String, f64)]) -> Result<(toml::Table, Value), String> {
+        let mut t = self.base.clone();
+        for (fields, v) in pt {
+            set_fields(&mut t, fields, *v, &self.label)?;
+        }
+        let out = self.run_all(&t).map_err(|(_, m)| m)?;
+        Ok((t, out))
+    }
+
+    /// The value of a formula of bound symbols only at the grid point `pt`, without a run.
+    pub fn bound_value(&self, pt: &[(String, f64)], e: &Expr) -> Result<f64, String> {
+        let mut t = self.base.clone();
+        for (fields, v) in pt {
+            set_fields(&mut t, fields, *v, &self.label)?;
+        }
+        e.eval(&|s: &str| self.bind.get(s).and_then(|f| self.field(&t, f)))
+    }
+
+    /// The value of a formula's symbol at a run: its bound field of `t` (`bind`), else the
+    /// number of the outcome `out` it names.
+    pub fn value(&self, t: &toml::Table, out: &Value, s: &str) -> Option<f64> {
+        match self.bind.get(s) {
+            Some(field) => self.field(t, field),
+            None => lookup(out, s),
+        }
+    }
+
     /// One run of the scene at `probe` (the first grid point, or the samples' medians), to know
     /// that the bound fields are numbers and that every symbol of `formulas` (key, formula) is
     /// bound or a number the model produces; returns the outcome.
@@ -179,9 +208,15 @@ impl Scene {
                 ));
             }
         }
+        let at = if probe.is_empty() {
+            String::new()
+        } else {
+            let pt: Vec<(String, f64)> = probe.iter().map(|(_, f, v)| (f.clone(), *v)).collect();
+            format!(" (the claim's first point: {})", exact_point_text(&pt))
+        };
         let outcome = self
             .run_all(&table)
-            .map_err(|(key, m)| claim_err(cx.file, c, &key, m))?;
+            .map_err(|(key, m)| claim_err(cx.file, c, &key, format!("{m}{at}")))?;
         for (field, e) in formulas {
             for s in e.free_symbols() {
                 if !self.bind.contains_key(&s) && lookup(&outcome, &s).is_none() {
@@ -196,25 +231,97 @@ impl Scene {
                     ));
                 }
             }
-            cx.units_of(c, field, e, &[])?;
+            self.declared_against_model(cx, c, field, e, &outcome)?;
+            cx.units_of_in(c, field, e, &[], &self.model_units(&outcome))?;
         }
         Ok(outcome)
+    }
+
+    /// The unit of each number the model produced in `outcome` (a run's JSON, or with `runs`
+    /// each run's under its name), as the model states it ([`crate::models::doc::outcome_units`]).
+    pub fn model_units(&self, outcome: &Value) -> BTreeMap<String, Unit> {
+        let Some(doc) = self
+            .base
+            .get("model")
+            .and_then(|m| m.as_str())
+            .and_then(|m| crate::scene::describe(m).ok())
+        else {
+            return BTreeMap::new();
+        };
+        if self.runs.is_empty() {
+            return crate::models::doc::outcome_units(doc, outcome);
+        }
+        let mut all = BTreeMap::new();
+        for (run, _) in &self.runs {
+            if let Some(out) = outcome.get(run) {
+                for (path, u) in crate::models::doc::outcome_units(doc, out) {
+                    all.insert(format!("{run}.{path}"), u);
+                }
+            }
+        }
+        all
+    }
+
+    /// A unit `[symbols]` gives to a number the model produces must be the model's own: the
+    /// model knows what it computes; a contradiction is an error naming both.
+    pub fn declared_against_model(
+        &self,
+        cx: &Checked,
+        c: &Head,
+        field: &str,
+        e: &Expr,
+        outcome: &Value,
+    ) -> Result<(), VerifyError> {
+        let model = self.model_units(outcome);
+        for s in e.free_symbols() {
+            if self.bind.contains_key(&s) {
+                continue;
+            }
+            if let (Some(declared), Some(own)) = (cx.units.get(&s), model.get(&s))
+                && declared != own
+            {
+                return Err(claim_err(
+                    cx.file,
+                    c,
+                    field,
+                    format!(
+                        "`{s}`: [symbols] gives it in {declared}, but the model computes it in {own}; remove `{s}` from [symbols] (the model's unit is taken) or correct it"
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Runs the scene with the fields of one grid point or sample set, and evaluates two
     /// formulas there: a symbol is a bound scene field (`bind`) or a number the model produces.
     fn point(&self, pt: &[(String, f64)], sides: (&Expr, &Expr)) -> Result<(f64, f64), String> {
-        let mut t = self.base.clone();
-        for (fields, v) in pt {
-            set_fields(&mut t, fields, *v, &self.label)?;
-        }
-        let out = self.run_all(&t).map_err(|(_, m)| m)?;
-        let value = |s: &str| match self.bind.get(s) {
-            Some(field) => self.field(&t, field),
-            None => lookup(&out, s),
+        let (t, out) = self.run_point(pt)?;
+        let value = |s: &str| self.value(&t, &out, s);
+        let why = |e: String| match model_warnings(&out) {
+            w if w.is_empty() => e,
+            w => format!("{e} (the model: {w})"),
         };
-        Ok((sides.0.eval(&value)?, sides.1.eval(&value)?))
+        Ok((
+            sides.0.eval(&value).map_err(why)?,
+            sides.1.eval(&value).map_err(why)?,
+        ))
     }
+}
+
+/// The warnings of a run (or of each run of `runs`), joined, for a value the model did not give.
+fn model_warnings(out: &Value) -> String {
+    let mut all = Vec::new();
+    let mut take = |v: &Value| {
+        if let Some(ws) = v.get("warnings").and_then(Value::as_array) {
+            all.extend(ws.iter().filter_map(Value::as_str).map(str::to_string));
+        }
+    };
+    take(out);
+    if let Some(m) = out.as_object() {
+        m.values().for_each(&mut take);
+    }
+    all.join("; ")
 }
 
 /// The model's quantity is in the outcome, else an error listing what the model produces.
@@ -307,6 +414,13 @@ pub(super) type GridRows = (Vec<Vec<(String, f64)>>, Vec<Result<(f64, f64), Stri
 /// Runs the scene at every point of the grid of `axes`.
 pub(super) fn grid(scene: &Scene, axes: &[Axis], sides: (&Expr, &Expr)) -> GridRows {
     use rayon::prelude::*;
+    let points = grid_points(axes);
+    let rows = points.par_iter().map(|pt| scene.point(pt, sides)).collect();
+    (points, rows)
+}
+
+/// The points of the grid of `axes` (first axis slowest); one empty point without axes.
+pub(super) fn grid_points(axes: &[Axis]) -> Vec<Vec<(String, f64)>> {
     let mut points: Vec<Vec<(String, f64)>> = vec![vec![]];
     for a in axes {
         points = points
@@ -320,8 +434,7 @@ pub(super) fn grid(scene: &Scene, axes: &[Axis], sides: (&Expr, &Expr)) -> GridR
             })
             .collect();
     }
-    let rows = points.par_iter().map(|pt| scene.point(pt, sides)).collect();
-    (points, rows)
+    points
 }
 
 /// A distribution of `sample`.
@@ -506,8 +619,8 @@ pub(super) fn inequality(
     Ok(ineq)
 }
 
-/// The number at a dotted path of a model's outcome (`contact.duration`, `impulse.2`).
-pub fn lookup(v: &Value, path: &str) -> Option<f64> {
+/// The value at a dotted path of a run's JSON (a number after an array is its index).
+pub(super) fn at_path<'v>(v: &'v Value, path: &str) -> Option<&'v Value> {
     let mut cur = v;
     for part in path.split('.') {
         cur = match cur {
@@ -516,7 +629,12 @@ pub fn lookup(v: &Value, path: &str) -> Option<f64> {
             _ => return None,
         };
     }
-    match cur {
+    Some(cur)
+}
+
+/// The number at a dotted path of a model's outcome (`contact.duration`, `impulse.2`).
+pub fn lookup(v: &Value, path: &str) -> Option<f64> {
+    match at_path(v, path)? {
         Value::Number(n) => n.as_f64(),
         Value::Bool(b) => Some(f64::from(u8::from(*b))),
         _ => None,
@@ -580,6 +698,42 @@ pub fn clopper_pearson(k: usize, n: usize, confidence: f64) -> (f64, f64) {
         Beta::new(kf + 1.0, nf - kf).map_or(f64::NAN, |b| b.inverse_cdf(1.0 - alpha / 2.0))
     };
     (lo, hi)
+}
+
+/// The points of a grid that did not run, for a verdict: how many, and the first named by its
+/// place in the grid and every varied value, with its error (a NaN names the formula, event or
+/// outcome that gave it).
+pub(super) fn failed_points(
+    points: &[Vec<(String, f64)>],
+    rows: &[Result<(f64, f64), String>],
+) -> Option<String> {
+    let failed: Vec<(usize, &String)> = rows
+        .iter()
+        .enumerate()
+        .filter_map(|(i, r)| r.as_ref().err().map(|e| (i, e)))
+        .collect();
+    let (i, e) = failed.first()?;
+    Some(format!(
+        "{} of {} grid point(s) did not run; the first, point {} ({}): {e}",
+        failed.len(),
+        points.len(),
+        i + 1,
+        exact_point_text(&points[*i])
+    ))
+}
+
+/// `field = value, ...` with each value to ten digits (a point to rerun, without the noise of
+/// a grid's arithmetic: 10000, not 10000.00000000001).
+pub(super) fn exact_point_text(pt: &[(String, f64)]) -> String {
+    let ten = |v: f64| {
+        format!("{v:.9e}")
+            .parse::<f64>()
+            .map_or_else(|_| v.to_string(), |r| r.to_string())
+    };
+    pt.iter()
+        .map(|(k, v)| format!("{k} = {}", ten(*v)))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 pub(super) fn point_text(pt: &[(String, f64)]) -> String {

@@ -1,0 +1,204 @@
+//! `verify init`: a claims file to start from, written from a paper's audit ([`super::audit`]):
+//! every symbol with its unit and where it comes from, and for every relation the audit reads a
+//! dimension claim on it (named by its tag, or by its display and place) or one line saying why
+//! none.
+
+use super::audit::{Audit, AuditRelation, Units};
+use crate::algebra::expr::Expr;
+use crate::algebra::units::Unit;
+
+/// A claims file to start from: the header (the `equations` list from the numbers found),
+/// `[symbols]` with the declared and inferred units, and a `dimension` claim per relation the
+/// audit reads whose units are all fixed, numbered or not, its printed side read from the paper;
+/// for every other relation a line saying why it has none.
+pub fn init_claims(
+    a: &Audit,
+    doc_numbers: &[String],
+    id: &str,
+    file: &str,
+    title: &str,
+    units: &Units,
+) -> String {
+    let q = |t: &str| format!("{t:?}");
+    let mut s = format!(
+        "# A claims file to start from, written by `verify init` from {file}: save it beside the paper\n# (printed_from reads the paper from this file's folder), then add the model and identity claims.\npaper = {}\ntitle = {}\nfile = {}\nreport = {}\nequations = [{}]\n\n[symbols]\n",
+        q(id),
+        q(title),
+        q(file),
+        q(&format!("{id}.md")),
+        doc_numbers
+            .iter()
+            .map(|n| q(n))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    for y in &a.symbols {
+        if y.name.starts_with('{') {
+            continue;
+        }
+        match (&y.unit, y.source) {
+            (Some(_), "declared") => {
+                let written = units.texts.get(&y.name).cloned().unwrap_or_default();
+                s.push_str(&format!(
+                    "{} = {}    # declared\n",
+                    key(&y.name),
+                    q(&written)
+                ));
+            }
+            (Some(u), "words") => s.push_str(&format!(
+                "{} = {}    # from the words ({}), line {}: {}\n",
+                key(&y.name),
+                q(u),
+                y.quantity.as_deref().unwrap_or(""),
+                y.line.unwrap_or(0),
+                q(y.quote.as_deref().unwrap_or(""))
+            )),
+            (Some(u), _) => s.push_str(&format!(
+                "{} = {}    # inferred from {}\n",
+                key(&y.name),
+                q(u),
+                y.from.join(", ")
+            )),
+            (None, _) => s.push_str(&format!(
+                "# {} = ?    # nothing fixes its unit\n",
+                key(&y.name)
+            )),
+        }
+    }
+    if !units.tex_symbols.is_empty() {
+        s.push_str("\n[tex_symbols]\n");
+        for (k, v) in &units.tex_symbols {
+            s.push_str(&format!("{} = {}\n", q(k), q(v)));
+        }
+    }
+    // the first row of each number: a claim names it by its tag; another row of the same
+    // number, and an unnumbered relation, by its display and place (`display = K, relation = m`)
+    let mut first_row: std::collections::BTreeMap<&str, &str> = std::collections::BTreeMap::new();
+    for r in &a.relations {
+        let first = r
+            .number
+            .as_deref()
+            .is_some_and(|n| *first_row.entry(n).or_insert(r.latex.as_str()) == r.latex);
+        let (here, reference, slug) = match &r.number {
+            Some(n) => {
+                let slug: String = n
+                    .chars()
+                    .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+                    .collect();
+                let tag = q(&format!("({n})"));
+                match (first, r.index_in_row) {
+                    (true, 0) => (
+                        format!("({n})"),
+                        format!("tag = {tag}"),
+                        format!("eq{slug}"),
+                    ),
+                    (true, j) => (
+                        format!("({n}), relation {}", j + 1),
+                        format!("tag = {tag}, relation = {}", j + 1),
+                        format!("eq{slug}-{}", j + 1),
+                    ),
+                    (false, _) => (
+                        format!("({n}), display {} relation {}", r.display, r.in_display),
+                        format!("display = {}, relation = {}", r.display, r.in_display),
+                        format!("eq{slug}-d{}-{}", r.display, r.in_display),
+                    ),
+                }
+            }
+            None => (
+                format!(
+                    "display {} (unnumbered), relation {}",
+                    r.display, r.in_display
+                ),
+                format!("display = {}, relation = {}", r.display, r.in_display),
+                format!("display{}-{}", r.display, r.in_display),
+            ),
+        };
+        match init_claim(a, r) {
+            Err(w) => s.push_str(&format!("\n# {here}: no claim: {w}\n")),
+            Ok(expect) => s.push_str(&format!(
+                "\n[[claim]]\nid = {}\nequation = {}\nreading = {}\nkind = \"dimension\"\nprinted_from = {{ {reference}, form = \"difference\" }}\nexpect = {}\n",
+                q(&format!("{id}.{slug}.units")),
+                q(&here),
+                q(&format!(
+                    "{here} has one unit on both sides, {expect} (the audit found it {})",
+                    r.status
+                )),
+                q(&expect)
+            )),
+        }
+    }
+    s
+}
+
+/// The unit a dimension claim on the relation `r` expects, or why `verify init` writes none.
+fn init_claim(a: &Audit, r: &AuditRelation) -> Result<String, String> {
+    let unit = |n: &str| {
+        let n = crate::algebra::infer::unit_name(n);
+        a.symbols
+            .iter()
+            .find(|y| y.name == n)
+            .and_then(|y| y.unit.as_deref())
+            .and_then(|u| Unit::parse(u).ok())
+    };
+    let no_unit: Vec<&str> = r
+        .names
+        .iter()
+        .filter(|n| unit(n).is_none())
+        .map(String::as_str)
+        .collect();
+    // a pair or scalar product `{(F, n)}` has no function whose unit a claim could take
+    if let Some(pair) = r
+        .names
+        .iter()
+        .find(|n| n.starts_with('{') && crate::algebra::infer::unit_name(n) == **n)
+    {
+        return Err(format!(
+            "reads `{pair}` (a pair or a product of vectors) as one symbol the formula language has no name for; map its spelling in [tex_symbols]"
+        ));
+    }
+    match r.status {
+        "unreadable" => return Err(format!("unreadable: {}", r.detail)),
+        "undetermined" => return Err(r.detail.clone()),
+        _ if !no_unit.is_empty() => {
+            return Err(format!(
+                "nothing fixes the unit of {} ({})",
+                no_unit.join(", "),
+                r.detail
+            ));
+        }
+        _ => {}
+    }
+    // what the dimension kind will compute: a consistent relation it cannot judge (a symbolic
+    // power of a dimensional base) would fail for the kind's sake, not the paper's
+    for pair in r.sides.windows(2) {
+        let diff = Expr::Bin(
+            crate::algebra::expr::Op::Sub,
+            Box::new(pair[0].clone()),
+            Box::new(pair[1].clone()),
+        );
+        if let Err(e) = crate::algebra::units::dimension(&diff, &unit)
+            && r.status == "consistent"
+        {
+            return Err(format!(
+                "consistent, but a dimension claim cannot judge it: {e}"
+            ));
+        }
+    }
+    // an inconsistent relation whose left side has no single unit: its right side's unit (the
+    // claim fails either way; the unit must only be one)
+    Ok(r.side_unit
+        .or(r.right_unit)
+        .map_or_else(|| "1".to_string(), |u| u.to_string()))
+}
+
+/// A TOML key: bare when it can be, quoted otherwise.
+fn key(name: &str) -> String {
+    if name
+        .chars()
+        .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+    {
+        name.to_string()
+    } else {
+        format!("{name:?}")
+    }
+}
