@@ -573,6 +573,9 @@ fn a_differential_in_braces_with_a_space_or_a_font_and_a_bar_written_vert() {
         read("\\int_{0}^{T} v \\, {\\rm d}t"),
         read("\\int_{0}^{T} v \\, dt")
     );
+    // outside an integral: the work of a force over an increment, not a product by d
+    assert_eq!(read("F \\, {\\rm d}x"), read("F \\, \\mathrm{d} x"));
+    assert_ne!(read("F \\, {\\rm d}x"), read("F \\, {\\rm e}x"));
     // an evaluation bar written `\vert`: the formula where it is taken, its unit unchanged
     assert_eq!(read("v \\vert_{t = 0} + w"), read("v |_{t = 0} + w"));
 }
