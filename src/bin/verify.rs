@@ -393,7 +393,7 @@ fn write_reports(
     if let Some((_, readme)) = files.iter_mut().find(|(n, _)| n == "README.md") {
         let at = readme
             .find("## Power of the checks")
-            .or_else(|| readme.find("| claim | paper |"))
+            .or_else(|| readme.find("## Every claim"))
             .unwrap_or(readme.len());
         let audits = if custom {
             String::new()
@@ -401,7 +401,7 @@ fn write_reports(
             verify::audit_reports::index_section(papers)
                 + &verify::audit_reports::words_section(papers)
         };
-        readme.insert_str(at, &format!("{coverage}{audits}## Every claim\n\n"));
+        readme.insert_str(at, &format!("{coverage}{audits}"));
     }
     if !custom {
         // the units of every relation of each paper, from its LaTeX and its claims' units

@@ -4,6 +4,7 @@
 //! Files are rendered in memory, written to a temporary folder beside the target and only then
 //! moved into place, so a run that fails leaves the old reports untouched.
 
+pub mod formulas;
 mod outcome;
 pub mod svg;
 
@@ -56,6 +57,9 @@ pub struct Summary {
     /// The distinct errors the claims show ([`findings`]).
     #[serde(default)]
     pub findings: Vec<Finding>,
+    /// The power of the checks per printed formula ([`formulas::formula_power`]).
+    #[serde(default)]
+    pub formulas: Vec<formulas::FormulaPower>,
     /// The version that wrote it.
     pub generated_by: GeneratedBy,
 }
@@ -153,6 +157,7 @@ pub fn summary(outcomes: &[Outcome]) -> Summary {
     Summary {
         claims,
         findings: findings(outcomes),
+        formulas: formulas::formula_power(outcomes),
         generated_by: GeneratedBy {
             version: env!("CARGO_PKG_VERSION").to_string(),
         },
@@ -256,7 +261,13 @@ pub fn render(papers: &[PaperInfo], outcomes: &[Outcome]) -> Vec<(String, String
          (identity, dimension, model, bound: see `verify/README.md`); the others by a named Rust check.\n\n"
     ));
     readme.push_str(&power_section(papers, outcomes));
-    readme.push_str("| claim | paper | equation | verdict | detail |\n|---|---|---|---|---|\n");
+    readme.push_str(&formulas::section(
+        &formulas::formula_power(outcomes),
+        &|paper| report_of(papers, paper),
+    ));
+    readme.push_str(
+        "## Every claim\n\n| claim | paper | equation | verdict | detail |\n|---|---|---|---|---|\n",
+    );
     for p in papers {
         for o in by_paper.get(p.paper.as_str()).into_iter().flatten() {
             readme.push_str(&format!(
@@ -380,6 +391,25 @@ fn findings_section(list: &[&Outcome]) -> String {
     md
 }
 
+/// The report file of `paper`.
+fn report_of(papers: &[PaperInfo], paper: &str) -> String {
+    papers
+        .iter()
+        .find(|p| p.paper == paper)
+        .map(|p| p.report.clone())
+        .unwrap_or_default()
+}
+
+/// The first three surviving misprints, as code.
+fn first_three(survivors: &[String]) -> String {
+    survivors
+        .iter()
+        .take(3)
+        .map(|s| format!("`{s}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// The README's account of the checks' power: how many misprints they see, the weak claims
 /// (a misprint survives) with what each cannot see, and why some were not measured.
 fn power_section(papers: &[PaperInfo], outcomes: &[Outcome]) -> String {
@@ -413,28 +443,15 @@ fn power_section(papers: &[PaperInfo], outcomes: &[Outcome]) -> String {
         md.push_str(
             "| weak claim | killed | surviving misprints (first 3) | what the check cannot see |\n|---|---|---|---|\n",
         );
-        let report_of = |paper: &str| {
-            papers
-                .iter()
-                .find(|p| p.paper == paper)
-                .map(|p| p.report.clone())
-                .unwrap_or_default()
-        };
         for (o, p) in &weak {
-            let survivors: Vec<String> = p
-                .survivors
-                .iter()
-                .take(3)
-                .map(|s| format!("`{s}`"))
-                .collect();
             md.push_str(&format!(
                 "| [{}]({}#{}) | {}/{} | {} | {} |\n",
                 o.id,
-                report_of(&o.paper),
+                report_of(papers, &o.paper),
                 anchor(&o.id),
                 p.killed,
                 p.mutants,
-                escape_cell(&survivors.join(", ")),
+                escape_cell(&first_three(&p.survivors)),
                 escape_cell(p.blind.as_deref().unwrap_or("**not stated**"))
             ));
         }
@@ -743,6 +760,7 @@ mod tests {
         let sum = |power: Option<Power>| Summary {
             claims: vec![claim(power)],
             findings: vec![],
+            formulas: vec![],
             generated_by: GeneratedBy {
                 version: "0".into(),
             },

@@ -221,6 +221,26 @@ fn local(e: &Expr, in_exponent: bool, swaps: &dyn Fn(&str) -> Vec<String>, out: 
                     expr: Expr::Bin(Op::Pow, base.clone(), Box::new(shifted)),
                 });
             }
+            // a fractional exponent misprinted in its numerator or its denominator (2/5 as
+            // 3/5, 1/5, 2/3 or 2/4): the misprints a typeset fraction suffers
+            if let Some(v) = x.exact_constant().filter(|v| !v.is_integer()) {
+                let (p, q) = (v.numer().clone(), v.denom().clone());
+                let one = num_bigint::BigInt::from(1);
+                for (name, np, nq) in [
+                    ("numerator +1", &p + &one, q.clone()),
+                    ("numerator -1", &p - &one, q.clone()),
+                    ("denominator +1", p.clone(), &q + &one),
+                    ("denominator -1", p.clone(), &q - &one),
+                ] {
+                    let w = Q::new(np, nq);
+                    if w != v && !w.is_zero() {
+                        out.push(Mutant {
+                            what: format!("exponent {v} of {} by its {name}", short(base)),
+                            expr: Expr::Bin(Op::Pow, base.clone(), Box::new(num(w))),
+                        });
+                    }
+                }
+            }
         }
         Expr::Bin(op @ (Op::Add | Op::Sub), a, b) => {
             let flipped = if *op == Op::Add { Op::Sub } else { Op::Add };
@@ -523,7 +543,14 @@ pub fn measure<'s>(
         };
         return Power::not_measured(why);
     }
-    let picked = sample(all.len(), MAX_MUTANTS, &spec.id);
+    // drawn by the printed text, not the claim: claims printing the same formula meet the same
+    // misprints, so that a formula's power is that of all its claims (`report::formulas`)
+    let seed: String = targets(&spec.keys, &keys)
+        .iter()
+        .map(|t| t.text.as_str())
+        .collect::<Vec<_>>()
+        .join("\n");
+    let picked = sample(all.len(), MAX_MUTANTS, &seed);
     let base_margin = least_margin(original);
     let fates: Vec<Fate> = picked
         .par_iter()
@@ -657,8 +684,19 @@ mod tests {
         ] {
             assert!(t.contains(&want.to_string()), "{want} missing from {t:?}");
         }
-        // the exponent's literals are not scaled as coefficients
-        assert!(!t.iter().any(|x| x.contains("(4/5)") || x.contains("(1/5)")));
+        // the exponent's literals are not scaled as coefficients (2/5 x2, x1.1, x0.9), but a
+        // fractional exponent is misprinted in its numerator and its denominator
+        for scaled in ["^0.8 ", "^0.44 ", "^0.36 "] {
+            assert!(!t.iter().any(|x| x.contains(scaled)), "{scaled} in {t:?}");
+        }
+        for want in [
+            "3.2*(m/k)^0.6 - v",
+            "3.2*(m/k)^0.2 - v",
+            "3.2*(m/k)^(1/3) - v",
+            "3.2*(m/k)^0.5 - v",
+        ] {
+            assert!(t.contains(&want.to_string()), "{want} missing from {t:?}");
+        }
         // a misprint's text reads back as the misprint: (m/k)^-0.6 at m = 2, k = 1 is 2^-0.6
         let back = expr::parse("3.2*(m/k)^-0.6 - v").unwrap();
         let at = |s: &str| match s {
