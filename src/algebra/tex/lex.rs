@@ -215,7 +215,20 @@ fn unit_after_number(rest: &[char]) -> usize {
     else {
         return 0;
     };
-    let Some(close) = t[open.len()..].find('}') else {
+    // the group's own closing brace (`\mathrm{kg\,m^{-3}}` holds one of a power)
+    let mut depth = 0usize;
+    let Some(close) = t[open.len()..].char_indices().find_map(|(i, c)| match c {
+        '{' => {
+            depth += 1;
+            None
+        }
+        '}' if depth == 0 => Some(i),
+        '}' => {
+            depth -= 1;
+            None
+        }
+        _ => None,
+    }) else {
         return 0;
     };
     let inner = &t[open.len()..open.len() + close];

@@ -225,4 +225,6 @@ pub fn read_relation(tex: &str, syms: &TexSymbols) -> Result<TexRelation, TexErr
 }
 
 #[cfg(test)]
+mod lex_tests;
+#[cfg(test)]
 mod tests;

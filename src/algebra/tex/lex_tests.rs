@@ -1,0 +1,254 @@
+//! The lexer's tables read one entry at a time (every function name, accent, Greek spelling
+//! and written unit it knows), each against the reading typed by hand, and its tokens on the
+//! spellings that only it sees (spaces, one-character commands, numbers, ellipses, empty
+//! groups, a spelling of the paper's own).
+
+use super::lex::{Tok, lex};
+use super::*;
+use crate::algebra::expr::parse;
+
+fn read(tex: &str) -> String {
+    read_formula(tex, &TexSymbols::default())
+        .unwrap_or_else(|e| panic!("{tex}: {e}"))
+        .to_string()
+}
+
+#[test]
+fn every_function_name_is_its_function() {
+    for (cmd, f) in [
+        ("sin", "sin"),
+        ("cos", "cos"),
+        ("tan", "tan"),
+        ("exp", "exp"),
+        ("ln", "ln"),
+        ("arcsin", "asin"),
+        ("arccos", "acos"),
+        ("arctan", "atan"),
+        ("sinh", "sinh"),
+        ("cosh", "cosh"),
+        ("tanh", "tanh"),
+        ("arsinh", "asinh"),
+        ("arcsinh", "asinh"),
+        ("arcosh", "acosh"),
+        ("arccosh", "acosh"),
+        ("artanh", "atanh"),
+        ("arctanh", "atanh"),
+    ] {
+        let want = parse(&format!("{f}(x)")).unwrap().to_string();
+        assert_eq!(read(&format!("\\{cmd} x")), want, "\\{cmd}");
+    }
+}
+
+#[test]
+fn every_accent_and_font_names_its_letter() {
+    for (cmd, suffix) in [
+        ("tilde", "t"),
+        ("widetilde", "t"),
+        ("hat", "h"),
+        ("widehat", "h"),
+        ("bar", "b"),
+        ("overline", "b"),
+        ("dot", "d"),
+        ("ddot", "dd"),
+        ("dddot", "ddd"),
+        ("mathbf", ""),
+        ("boldsymbol", ""),
+        ("mathit", ""),
+        ("vec", ""),
+        ("bm", ""),
+        ("pmb", ""),
+        ("textbf", ""),
+        ("textit", ""),
+        ("mathnormal", ""),
+        ("overrightarrow", ""),
+        ("vb", ""),
+        ("textnormal", ""),
+        ("textup", ""),
+        ("texttt", ""),
+        ("textsf", ""),
+        ("mathtt", ""),
+        ("bold", ""),
+        ("vv", ""),
+        ("mathsf", ""),
+        ("symbf", ""),
+        ("symbfit", ""),
+        ("mathbfit", ""),
+        ("mathcal", "cal"),
+        ("mathscr", "scr"),
+        ("mathbb", "bb"),
+        ("mathfrak", "frak"),
+        ("check", "c"),
+        ("breve", "br"),
+        ("underline", "u"),
+    ] {
+        assert_eq!(
+            read(&format!("\\{cmd}{{E}} + y")),
+            format!("E{suffix} + y"),
+            "\\{cmd}"
+        );
+    }
+}
+
+#[test]
+fn every_greek_spelling_is_its_letter() {
+    for (cmd, name) in [
+        ("varepsilon", "epsilon"),
+        ("varphi", "phi"),
+        ("vartheta", "theta"),
+        ("varrho", "rho"),
+        ("varsigma", "sigma"),
+        ("varkappa", "kappa"),
+        ("ell", "l"),
+        ("hbar", "hbar"),
+        ("upalpha", "alpha"),
+        ("upOmega", "Omega"),
+        ("varOmega", "Omega"),
+        ("varGamma", "Gamma"),
+        ("omega", "omega"),
+        ("Psi", "Psi"),
+    ] {
+        assert_eq!(
+            read(&format!("\\{cmd} + y")),
+            format!("{name} + y"),
+            "\\{cmd}"
+        );
+    }
+    // a command that only starts like a Greek letter is none
+    assert!(read_formula("\\upsilonx + y", &TexSymbols::default()).is_err());
+    assert!(read_formula("\\varfoo + y", &TexSymbols::default()).is_err());
+}
+
+/// The tokens of `tex` without their columns.
+fn toks(tex: &str) -> Vec<Tok> {
+    lex(tex, &TexSymbols::default())
+        .into_iter()
+        .map(|(t, _)| t)
+        .collect()
+}
+
+#[test]
+fn a_unit_written_after_a_number_is_one_token() {
+    let unit = || Tok::Sym(crate::algebra::units::WRITTEN_UNIT.into());
+    let num = |n: &str| Tok::Num(n.into());
+    for space in ["", " ", "\\,", "\\;", "\\ ", "~", "\\!", "\\, ~"] {
+        for open in ["\\text{", "\\mathrm{", "\\textrm{", "\\rm{", "\\mbox{"] {
+            for u in [
+                "m/s",
+                "kg",
+                "mm",
+                "km",
+                "g",
+                "mg",
+                "h",
+                "min",
+                "deg",
+                "rpm",
+                "l",
+                "L",
+                "eV",
+                "mph",
+                "°",
+                "MPa",
+                "GPa",
+                "kN",
+                "μm",
+                "cm",
+                "dm",
+                "N m",
+                "kg\\,m^{-3}",
+            ] {
+                let tex = format!("12.5{space}{open}{u}}} + x");
+                assert_eq!(
+                    toks(&tex),
+                    [num("12.5"), unit(), Tok::Ch('+'), Tok::Ch('x'), Tok::End],
+                    "{tex}"
+                );
+            }
+        }
+    }
+    // its power belongs to it
+    for p in ["^{2}", "^2", "^{-1}"] {
+        let tex = format!("3\\,\\mathrm{{m}}{p} + x");
+        assert_eq!(
+            toks(&tex),
+            [num("3"), unit(), Tok::Ch('+'), Tok::Ch('x'), Tok::End],
+            "{tex}"
+        );
+    }
+    // words that are no units, and a unit not in a text group, stay what they are
+    for tex in [
+        "3\\,\\text{apples}",
+        "3\\,\\text{m and s}",
+        "3 m",
+        "3\\,\\textbf{m}",
+        "3\\,\\text{m",
+    ] {
+        assert!(!toks(tex).contains(&unit()), "{tex}: {:?}", toks(tex));
+    }
+    // `xm` is no prefix: only k, m, c, u, n, M, G, d, μ are
+    assert!(!toks("3\\,\\text{xm}").contains(&unit()));
+}
+
+#[test]
+fn the_lexer_on_what_only_it_sees() {
+    let cmd = |c: &str| Tok::Cmd(c.into());
+    // spaces dropped; a command of letters, or of one other character
+    assert_eq!(
+        toks(" \\alpha \\, x\t\\\\"),
+        [cmd("alpha"), cmd(","), Tok::Ch('x'), cmd("\\"), Tok::End]
+    );
+    // a trailing backslash is a command with no name
+    assert_eq!(toks("x\\"), [Tok::Ch('x'), cmd(""), Tok::End]);
+    // numbers with a point, and a point that starts one
+    assert_eq!(
+        toks("1.25 + .5 - 3."),
+        [
+            Tok::Num("1.25".into()),
+            Tok::Ch('+'),
+            Tok::Num(".5".into()),
+            Tok::Ch('-'),
+            Tok::Num("3.".into()),
+            Tok::End
+        ]
+    );
+    // three dots are an ellipsis; a point alone a character
+    assert_eq!(
+        toks("a + ... + b."),
+        [
+            Tok::Ch('a'),
+            Tok::Ch('+'),
+            cmd("ldots"),
+            Tok::Ch('+'),
+            Tok::Ch('b'),
+            Tok::Ch('.'),
+            Tok::End
+        ]
+    );
+    // an empty group only separates, and an empty script is none
+    assert_eq!(
+        toks("x{ }^2 + d^{}y"),
+        [
+            Tok::Ch('x'),
+            Tok::Ch('^'),
+            Tok::Num("2".into()),
+            Tok::Ch('+'),
+            Tok::Ch('d'),
+            Tok::Ch('y'),
+            Tok::End
+        ]
+    );
+    assert_eq!(toks("{a}"), [Tok::Open, Tok::Ch('a'), Tok::Close, Tok::End]);
+    // a spelling of the paper's own is one symbol, wherever it stands; columns count characters
+    let mut syms = TexSymbols::default();
+    syms.0 = vec![("\\tilde{E}".into(), "Et".into())];
+    let t = lex("μ \\tilde{E}2", &syms);
+    assert_eq!(
+        t,
+        [
+            (Tok::Ch('μ'), 1),
+            (Tok::Sym("Et".into()), 3),
+            (Tok::Num("2".into()), 12),
+            (Tok::End, 13)
+        ]
+    );
+}
