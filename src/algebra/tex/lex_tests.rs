@@ -239,8 +239,7 @@ fn the_lexer_on_what_only_it_sees() {
     );
     assert_eq!(toks("{a}"), [Tok::Open, Tok::Ch('a'), Tok::Close, Tok::End]);
     // a spelling of the paper's own is one symbol, wherever it stands; columns count characters
-    let mut syms = TexSymbols::default();
-    syms.0 = vec![("\\tilde{E}".into(), "Et".into())];
+    let syms = TexSymbols::new([("\\tilde{E}".to_string(), "Et".to_string())]);
     let t = lex("μ \\tilde{E}2", &syms);
     assert_eq!(
         t,
@@ -251,4 +250,42 @@ fn the_lexer_on_what_only_it_sees() {
             (Tok::End, 13)
         ]
     );
+}
+
+#[test]
+fn every_conjugate_and_transpose_mark_keeps_the_unit() {
+    // each spelling of a conjugate or a transpose after a bracket reads as the same mark
+    let plain = read("(a + b)^{*} + c");
+    for mark in [
+        "^*",
+        "^\\ast",
+        "^{\\ast}",
+        "^\\dagger",
+        "^{\\dagger}",
+        "^\\star",
+        "^{\\top}",
+        "^\\intercal",
+        "^{\\mathrm{T}}",
+        "^{\\mathrm T}",
+        "^{\\rm T}",
+        "^{\\mathsf{T}}",
+        "^{\\mathrm{H}}",
+    ] {
+        assert_eq!(read(&format!("(a + b){mark} + c")), plain, "{mark}");
+    }
+    // a power is none of them, nor a letter in a font that is not T or H
+    assert_ne!(read("(a + b)^{2} + c"), plain);
+    assert_ne!(read("(a + b)^{\\mathrm{T}2} + c"), plain);
+    assert!(!read("(a + b)^{\\mathrm{K}} + c").contains(&plain));
+}
+
+#[test]
+fn a_comma_at_the_top_of_a_superscript_makes_a_label() {
+    // `p^{a,b}`: a label of p, not a power; `p^{a}` is a power
+    assert!(
+        !read("p^{a,b} + q").contains('^'),
+        "{}",
+        read("p^{a,b} + q")
+    );
+    assert!(read("p^{a} + q").contains('^'));
 }
