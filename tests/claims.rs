@@ -78,6 +78,16 @@ derived = "(x + y)^2"
     assert_eq!(v[0].1, Verdict::Holds, "{:?}", v[0]);
     assert_eq!(v[1].1, Verdict::Fails, "{:?}", v[1]);
     assert!(v[1].2.contains("derived - printed = 2*x*y"), "{}", v[1].2);
+    // its size as a share of the derived value: 2xy/(x + y)^2 is at most 1/2 (x = y), and at
+    // least 2*0.5*2/(2.5)^2 = 0.32 over [0.5, 2]^2
+    let share: f64 = v[1]
+        .2
+        .split("(up to ")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .and_then(|x| x.parse().ok())
+        .unwrap_or_else(|| panic!("no share in {}", v[1].2));
+    assert!((32.0..=50.0).contains(&share), "{share}: {}", v[1].2);
 }
 
 #[test]
