@@ -698,6 +698,16 @@ mod tests {
     }
 
     #[test]
+    fn an_html_comment_is_blanked_to_its_end_and_no_further() {
+        // by hand: each comment goes, its newlines stay, and what follows it is kept whole
+        assert_eq!(drop_verbatim("<!-- c -->x\n<!--\n-->y"), "x\n\ny");
+        let d = read_document("<!-- $$ u = v $$ -->$$ a = b $$\n<!-- c -->\n$$ e = f $$");
+        let rows: Vec<&str> = d.displays.iter().map(|x| x.latex.trim()).collect();
+        assert_eq!(rows, ["a = b", "e = f"], "{:?}", d.displays);
+        assert_eq!(d.displays[1].line, 3);
+    }
+
+    #[test]
     fn subequations_number_3a_3b_and_the_counter_goes_on() {
         // by hand, as LaTeX numbers them: 1, then 2a 2b 2c (the counter takes 2), then 3
         let d = read_document(

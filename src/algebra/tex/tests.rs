@@ -157,6 +157,19 @@ fn errors_name_the_column_and_the_construct() {
 }
 
 #[test]
+fn a_volume_element_closes_no_integral_with_bounds() {
+    // `d^3 x` after bounds would integrate over x alone: refused, naming the construct; a
+    // differential of power 1 closes it
+    let s = TexSymbols::default();
+    for bad in [r"\int_0^1 f \, d^3 x", r"\int_0^1 f \, d^{2} x"] {
+        let e = read_formula(bad, &s).unwrap_err();
+        assert!(e.construct.contains("volume element"), "{bad}: {e}");
+    }
+    let e = read_formula(r"\int_0^1 f \, dx", &s).unwrap();
+    assert_eq!(e.to_string(), parse("int(f, x, 0, 1)").unwrap().to_string());
+}
+
+#[test]
 fn displays_split_into_rows_tags_and_relations() {
     let rows = read_display(
         "\\begin{align*}\n& A_{1}=E \\zeta \\tag{16}\\\\\n& A_{7}=\\frac{2}{\\pi \\tan \\theta}, \\quad x = 1\n\\end{align*}",
