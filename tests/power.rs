@@ -94,3 +94,62 @@ fn misprints_are_killed_or_the_claim_is_weak_and_says_why() {
     let out = run_measured(&papers, root, kinds::BUILTIN, &|_| false).expect("runs");
     assert!(out.iter().all(|o| o.power.is_none()));
 }
+
+#[test]
+fn a_statement_against_zero_is_not_misprinted_by_a_positive_factor_nor_its_allowance() {
+    // by hand: 2 (-x y) <= 0 states -x y <= 0, so "the whole side x2" of a side against zero is
+    // not a misprint; the allowance (the integration error, the claim's) is not misprinted at
+    // all; the negation x y <= 0 is false for positive x, y and is killed. Two claims printing
+    // the same inequality are one formula of the paper, whose misprints are those of both.
+    let keys = |seed: u32| {
+        format!(
+            "sample = {{ x = \"uniform(0.1, 2)\", y = \"uniform(0.1, 2)\" }}\ncount = 50\nseed = {seed}\nrequire = \"-x*y <= 0\"\nallowance = \"1e-9*x*y\""
+        )
+    };
+    let body = [
+        claim("toy.sign", "bound", &keys(1)),
+        claim("toy.sign-again", "bound", &keys(2)),
+        claim(
+            "toy.sign-unit",
+            "bound",
+            "sample = { x = \"uniform(0.1, 2)\" }\ncount = 5\nseed = 1\nrequire = \"-x <= 0\"\nallowance = \"1e-9\"",
+        ),
+    ]
+    .concat();
+    let p = claims("zero", &body);
+    let papers = load_claims(&p).expect("loads");
+    let root = p.parent().expect("dir");
+    // an allowance in another unit than the sides is refused, naming both
+    let err = impactcheck::verify::validate_all(&papers)
+        .expect_err("an allowance in 1 against sides in m")
+        .to_string();
+    assert!(
+        err.contains(
+            "toy.sign-unit: allowance: `1e-9` is in 1, but the sides of `require` are in m"
+        ),
+        "{err}"
+    );
+    let body = [
+        claim("toy.sign", "bound", &keys(1)),
+        claim("toy.sign-again", "bound", &keys(2)),
+    ]
+    .concat();
+    let p = claims("zero", &body);
+    let papers = load_claims(&p).expect("loads");
+    let out = run_measured(&papers, root, kinds::BUILTIN, &|_| true).expect("runs");
+    let power = out[0].power.as_ref().expect("measured");
+    assert_eq!(out[0].verdict, Verdict::Holds, "{}", out[0].detail);
+    assert!(power.mutants > 0 && power.killed > 0, "{power:?}");
+    assert!(
+        power
+            .survivors
+            .iter()
+            .all(|s| !s.contains("the whole side x") && !s.contains("right:")),
+        "{power:?}"
+    );
+    assert_eq!(power.formula.as_deref(), Some("-x*y <= 0"));
+    let formulas = impactcheck::report::formulas::formula_power(&out);
+    assert_eq!(formulas.len(), 1, "{formulas:?}");
+    assert_eq!(formulas[0].claims, ["toy.sign", "toy.sign-again"]);
+    assert_eq!(formulas[0].formula, "-x*y <= 0");
+}

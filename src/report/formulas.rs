@@ -5,7 +5,9 @@
 //! the formula it prints; claims of one paper printing the same formula are one formula here.
 //! Their misprints are the same ones (`verify::power` draws them from the formula's text, not the
 //! claim's id), so a misprint survives the formula when it survives every one of its claims.
-//! A claim measured on other keys (an inequality, a list of equations) is a formula of its own.
+//! A claim misprinted in one text that is not `printed` (its `require`) reads that text, and
+//! claims with the same text are one formula as well; a claim misprinted in several (a list of
+//! equations) is a formula of its own.
 //! No physics and no claim types here: outcomes in, rows and Markdown out.
 
 use super::{Outcome, Power, anchor, escape_cell, first_three};
@@ -58,8 +60,11 @@ pub fn formula_power(outcomes: &[Outcome]) -> Vec<FormulaPower> {
             continue;
         };
         let of_printed = p.survivors.iter().all(|s| misprint(s).1);
-        let formula = match &o.printed {
-            Some(text) if of_printed => text.clone(),
+        let formula = match (&o.printed, &p.formula) {
+            (Some(text), _) if of_printed => text.clone(),
+            // a claim misprinted in one text (its `require`): claims with the same text meet
+            // the same misprints of it
+            (_, Some(text)) => text.clone(),
             _ => o.id.clone(),
         };
         groups
@@ -119,8 +124,9 @@ pub fn section(formulas: &[FormulaPower], report_of: &dyn Fn(&str) -> String) ->
     }
     let mut md = String::from(
         "## Power per printed formula\n\nThe claims of one paper that print the same formula are checked against the same \
-         misprints of it; a misprint is caught when any of them catches it. A formula is weak when a misprint \
-         survives every claim on it.\n\n| paper | formulas measured | read by more than one claim | weak | share weak |\n|---|---|---|---|---|\n",
+         misprints of it; a misprint is caught when any of them catches it (a formula printed in a claim's \
+         inequality, such as (1.12)'s `energy_change <= 0`, is one formula for all the claims that state it). A formula \
+         is weak when a misprint survives every claim on it.\n\n| paper | formulas measured | read by more than one claim | weak | share weak |\n|---|---|---|---|---|\n",
     );
     let mut by_paper: BTreeMap<&str, Vec<&FormulaPower>> = BTreeMap::new();
     for f in formulas {

@@ -431,6 +431,8 @@ fn power_section(papers: &[PaperInfo], outcomes: &[Outcome]) -> String {
         "## Power of the checks\n\nEach claim's printed side is misprinted the way misprints happen (a coefficient \
          x2, x1/2, x1.1, x0.9; an exponent +-1; a sign; a dropped term; a symbol swapped for another of the same \
          unit; at most 40 per claim) and the claim is checked again: a misprint that keeps the verdict survives. \
+         Not counted: a misprint that states the same (a side against zero times a positive factor) or only weakens \
+         a true inequality; a claim's `allowance` for the integration error is not the paper's and is not misprinted. \
          {} claims measured: {mutants} misprints, {killed} killed ({:.0} %); {} claims see every misprint, \
          **{} are weak** (a misprint survives), {} not measured.\n\n",
         run.len(),

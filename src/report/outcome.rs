@@ -99,6 +99,11 @@ pub struct Power {
     /// misprint survives.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub blind: Option<String>,
+    /// The one text its misprints were made in, when they were all made in one (a claim's
+    /// `require`, `printed`): claims of a paper misprinting the same text are one formula
+    /// ([`super::formulas`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub formula: Option<String>,
     /// What it was measured from (`verify::power_cache`): the main job reuses it while
     /// the key is the same.
     #[serde(default, skip_serializing_if = "Option::is_none")]

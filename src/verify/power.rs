@@ -18,7 +18,9 @@
 //! the printed side or to an earlier mutant (the same values at three points of its symbols:
 //! `a*b` with `a` and `b` swapped), and, for an inequality that holds, a misprint that only
 //! weakens it (it still holds, with a least margin over the samples at least the printed one's:
-//! a true but weaker statement that no check could refute). The file definitions a printed side
+//! a true but weaker statement that no check could refute), nor a side of an inequality against
+//! zero scaled by a positive factor (`2 A <= 0` states `A <= 0`; a claim's `allowance`, kept
+//! apart from the paper's inequality, is not misprinted). The file definitions a printed side
 //! uses are expanded first, so a misprint inside a definition is among the mutants.
 //!
 //! A claim that fails is not measured (a misprint of a wrong formula stays wrong; its check's
@@ -63,7 +65,25 @@ pub fn mutants(e: &Expr, swaps: &dyn Fn(&str) -> Vec<String>) -> Vec<Mutant> {
     };
     let mut out = whole(e);
     walk(e, false, &swaps, &mut out);
+    numbered(&mut out);
     out
+}
+
+/// Misprints that read alike (a symbol swapped at two places) numbered by place, so that a
+/// misprint is named the same in every claim that prints the formula, and no other is.
+fn numbered(out: &mut [Mutant]) {
+    let mut count: BTreeMap<String, usize> = BTreeMap::new();
+    for m in out.iter() {
+        *count.entry(m.what.clone()).or_default() += 1;
+    }
+    let mut seen: BTreeMap<String, usize> = BTreeMap::new();
+    for m in out.iter_mut() {
+        if count[&m.what] > 1 {
+            let k = seen.entry(m.what.clone()).or_default();
+            *k += 1;
+            m.what = format!("{} (place {k})", m.what);
+        }
+    }
 }
 
 /// The variables that `int`, `diff` and `at` bind in `e`.
@@ -449,11 +469,23 @@ impl Side {
                 }
             }
             Side::Relation(i) => {
+                // against zero, a side scaled by a positive factor states the same (2 A <= 0 is
+                // A <= 0): not a misprint of the statement
+                let same = |m: &Mutant, other: &Expr| {
+                    matches!(other, Expr::Num(q) if q.is_zero())
+                        && m.what.starts_with("the whole side x")
+                };
                 for m in mutants(&i.lhs, swaps) {
+                    if same(&m, &i.rhs) {
+                        continue;
+                    }
                     let text = format!("{} {} {}", m.expr, i.rel.symbol(), i.rhs);
                     keep(format!("left: {}", m.what), text, vec![&m.expr, &i.rhs]);
                 }
                 for m in mutants(&i.rhs, swaps) {
+                    if same(&m, &i.lhs) {
+                        continue;
+                    }
                     let text = format!("{} {} {}", i.lhs, i.rel.symbol(), m.expr);
                     keep(format!("right: {}", m.what), text, vec![&i.lhs, &m.expr]);
                 }
@@ -579,8 +611,12 @@ pub fn measure<'s>(
         excused: 0,
         not_measured: None,
         blind: None,
+        formula: None,
         key: None,
     };
+    if let [one] = targets(&spec.keys, &keys).as_slice() {
+        power.formula = Some(one.text.clone());
+    }
     for fate in fates {
         match fate {
             Fate::Killed => {
@@ -732,6 +768,28 @@ mod tests {
             );
         }
         assert!(!texts("exp(x)").iter().any(|m| !m.contains("exp")));
+    }
+
+    #[test]
+    fn misprints_that_read_alike_are_numbered_by_place() {
+        // by hand: k at two places, each swapped for c; every other misprint named once
+        let e = expr::parse("x*k + y*k").unwrap();
+        let names: Vec<String> = mutants(&e, &|s| if s == "k" { vec!["c".into()] } else { vec![] })
+            .into_iter()
+            .map(|m| m.what)
+            .collect();
+        assert!(
+            names.contains(&"`k` swapped for `c` (place 1)".to_string()),
+            "{names:?}"
+        );
+        assert!(
+            names.contains(&"`k` swapped for `c` (place 2)".to_string()),
+            "{names:?}"
+        );
+        let mut unique = names.clone();
+        unique.sort();
+        unique.dedup();
+        assert_eq!(unique.len(), names.len(), "{names:?}");
     }
 
     #[test]

@@ -4,8 +4,10 @@
 
 use super::scene::{self, Samples, Scene, point_text};
 use super::{Checked, Kind, Session, Where, claim_err, extreme, g4};
-use crate::algebra::expr::Inequality;
+use crate::algebra::expr::{self, Expr, Inequality, Op, Rel};
+use crate::algebra::units;
 use crate::verify::{Head, Outcome, Verdict, VerifyError, outcome};
+use num_traits::Zero;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 
@@ -35,6 +37,11 @@ pub struct BoundSpec {
     seed: u64,
     /// The inequality every sample must satisfy.
     require: String,
+    /// A slack for the integration error, not the paper's: the side `require` allows to be the
+    /// larger gains it (`lhs <= rhs + allowance`, `lhs >= rhs - allowance`). Kept apart from
+    /// `require`, so that the power measurement misprints the paper's inequality only.
+    #[serde(default)]
+    allowance: Option<String>,
     /// The bound is attained: the extreme found must come within [`SHARP`] (relative) of it.
     #[serde(default)]
     sharp: bool,
@@ -48,6 +55,8 @@ pub struct Bound {
     scene: Option<Scene>,
     samples: Samples,
     require: Inequality,
+    /// `require` as the claim states it (in backquotes), its allowance apart (for the detail).
+    stated: String,
     sharp: bool,
 }
 
@@ -85,7 +94,12 @@ impl Kind for Bound {
 
     fn validate(cx: &Checked, c: &Head, s: BoundSpec) -> Result<Self, VerifyError> {
         let samples = Samples::read(cx, c, s.sample, s.count, s.seed)?;
-        let require = scene::inequality(cx, c, &s.where_, "require", &s.require)?;
+        let mut require = scene::inequality(cx, c, &s.where_, "require", &s.require)?;
+        let mut stated = format!("`{require}`");
+        if let Some(text) = &s.allowance {
+            require = with_allowance(cx, c, &s.where_, require, text)?;
+            stated = format!("{stated} (allowance `{text}`)");
+        }
         let scene = match &s.scene {
             Some(name) => {
                 let scene = Scene::open(cx, c, name, &s.set, s.bind, s.runs)?;
@@ -114,6 +128,7 @@ impl Kind for Bound {
             scene,
             samples,
             require,
+            stated,
             sharp: s.sharp,
         })
     }
@@ -141,8 +156,8 @@ impl Kind for Bound {
         }
         let ran = count - errors.len();
         let mut detail = format!(
-            "{ran} of {count} samples ran (seed {}): {violations} violate `{ineq}`",
-            self.samples.seed
+            "{ran} of {count} samples ran (seed {}): {violations} violate {}",
+            self.samples.seed, self.stated
         );
         if let Some((m, i)) = worst {
             let (l, r) = rows[i].clone().unwrap_or((f64::NAN, f64::NAN));
@@ -229,15 +244,58 @@ impl Kind for Bound {
 
     fn report(&self, _: &Head) -> String {
         format!(
-            "Kind `bound`. {}; sampled: {}; required: `{}`.",
+            "Kind `bound`. {}; sampled: {}; required: {}.",
             self.scene
                 .as_ref()
                 .map(|s| format!("Scene `{}`", s.name))
                 .unwrap_or_else(|| "Formulas alone (no scene)".into()),
             self.samples.described(),
-            self.require
+            self.stated
         )
     }
+}
+
+/// `require` with its `allowance` on the side that may be the larger; the allowance has the
+/// sides' unit where the file gives their units.
+fn with_allowance(
+    cx: &Checked,
+    c: &Head,
+    w: &Where,
+    ineq: Inequality,
+    text: &str,
+) -> Result<Inequality, VerifyError> {
+    let slack = expr::parse(text)
+        .map_err(|e| claim_err(cx.file, c, "allowance", format!("`{text}`: {e}")))?;
+    let slack = cx.expand_all(c, w, &slack)?;
+    // a side against zero (the literal 0) has the other side's unit
+    let side = if is_zero(&ineq.rhs) {
+        &ineq.lhs
+    } else {
+        &ineq.rhs
+    };
+    let unit = cx.unit_fn();
+    if let (Ok(side), Ok(own)) = (
+        units::dimension(side, &unit),
+        units::dimension(&slack, &unit),
+    ) && side != own
+    {
+        return Err(claim_err(
+            cx.file,
+            c,
+            "allowance",
+            format!("`{text}` is in {own}, but the sides of `require` are in {side}"),
+        ));
+    }
+    let rhs = match ineq.rel {
+        Rel::Lt | Rel::Le => Expr::Bin(Op::Add, Box::new(ineq.rhs), Box::new(slack)),
+        Rel::Gt | Rel::Ge => Expr::Bin(Op::Sub, Box::new(ineq.rhs), Box::new(slack)),
+    };
+    Ok(Inequality { rhs, ..ineq })
+}
+
+/// Whether `e` is the literal 0 (a side against zero has no unit of its own).
+fn is_zero(e: &Expr) -> bool {
+    matches!(e, Expr::Num(q) if q.is_zero())
 }
 
 /// A bound without a scene: every sampled symbol has a unit and every symbol of the
