@@ -423,6 +423,11 @@ mod tests {
             expanded("\\DeclareMathOperator{\\sgn}{sgn} \\sgn x").trim(),
             "\\operatorname{sgn} x"
         );
+        // the starred form (limits under the name) defines it the same way
+        assert_eq!(
+            expanded("\\DeclareMathOperator*{\\argmax}{arg\\,max} \\argmax_x f").trim(),
+            "\\operatorname{arg\\,max}_x f"
+        );
         // a later \renewcommand replaces; \providecommand of a defined name does nothing
         assert_eq!(
             expanded(

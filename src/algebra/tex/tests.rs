@@ -592,3 +592,23 @@ fn a_differential_in_braces_with_a_space_or_a_font_and_a_bar_written_vert() {
     // an evaluation bar written `\vert`: the formula where it is taken, its unit unchanged
     assert_eq!(read("v \\vert_{t = 0} + w"), read("v |_{t = 0} + w"));
 }
+
+#[test]
+fn words_separate_relations_only_at_the_top_level() {
+    // by hand: after a closed bracket the words are at the top level and separate the two
+    // relations; inside a group they belong to the formula
+    let w = |t: &str| display::words_as_separators(t);
+    assert!(w(r"x = f(a) \text{ and } y = 2").contains(" ; "));
+    assert!(!w(r"\frac{a \text{ and } b}{c} = d").contains(';'));
+}
+
+#[test]
+fn an_increment_is_of_a_name_not_of_a_field() {
+    // by hand: `\Delta \theta(t)` is the Laplacian of a field (Delta times the application), not
+    // an increment named after it; `\Delta \theta` alone is the increment
+    let s = TexSymbols::default();
+    let e = read_formula(r"\Delta \theta(t)", &s).unwrap();
+    assert_eq!(e.symbols(), ["Delta", "{theta(t)}"], "{e}");
+    let e = read_formula(r"\Delta \theta", &s).unwrap();
+    assert_eq!(e.symbols(), ["Deltatheta"], "{e}");
+}
