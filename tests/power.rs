@@ -153,3 +153,42 @@ fn a_statement_against_zero_is_not_misprinted_by_a_positive_factor_nor_its_allow
     assert_eq!(formulas[0].claims, ["toy.sign", "toy.sign-again"]);
     assert_eq!(formulas[0].formula, "-x*y <= 0");
 }
+
+#[test]
+fn a_printed_side_against_a_derived_zero_is_not_misprinted_as_a_whole() {
+    // by hand: x - y = 0 with y = x states the same times any factor, or negated; a dropped
+    // term (x = 0, -y = 0) or the sign of one (x + y = 0) breaks it
+    let body = claim(
+        "toy.zero",
+        "identity",
+        "printed = \"x - y\"\nderived = \"0\"\nwhere = { y = \"x\" }",
+    );
+    let p = claims("derived-zero", &body);
+    let papers = load_claims(&p).expect("loads");
+    let out =
+        run_measured(&papers, p.parent().expect("dir"), kinds::BUILTIN, &|_| true).expect("runs");
+    let power = out[0].power.as_ref().expect("measured");
+    assert_eq!(out[0].verdict, Verdict::Holds, "{}", out[0].detail);
+    assert!(
+        power
+            .equivalent
+            .iter()
+            .any(|s| s == "printed: the whole side x2"),
+        "{power:?}"
+    );
+    assert!(
+        power
+            .equivalent
+            .iter()
+            .all(|s| s.contains("the whole side")),
+        "{power:?}"
+    );
+    // x for y gives y - y, zero as well: the one misprint this check cannot see
+    assert_eq!(
+        power.survivors,
+        ["printed: `x` swapped for `y`"],
+        "{power:?}"
+    );
+    assert_eq!(power.killed, 3, "{power:?}");
+    assert_eq!(power.killed_names.len(), power.killed, "{power:?}");
+}

@@ -75,16 +75,21 @@ pub fn formula_power(outcomes: &[Outcome]) -> Vec<FormulaPower> {
     groups
         .into_iter()
         .map(|((paper, formula), claims)| {
-            // survivors of every claim (each claim's misprints are the formula's)
-            let mut survivors: Vec<String> = claims[0]
-                .1
-                .survivors
+            // a misprint some claim let through, unless another claim killed it, or found it the
+            // same statement or a weaker true one (each claim's misprints are the formula's,
+            // named alike)
+            let caught: Vec<&str> = claims
                 .iter()
-                .map(|s| misprint(s).0.to_string())
+                .flat_map(|(_, p)| p.killed_names.iter().chain(&p.equivalent).chain(&p.weaker))
+                .map(|s| misprint(s).0)
                 .collect();
-            for (_, p) in &claims[1..] {
-                let theirs: Vec<&str> = p.survivors.iter().map(|s| misprint(s).0).collect();
-                survivors.retain(|s| theirs.contains(&s.as_str()));
+            let mut survivors: Vec<String> = Vec::new();
+            for (_, p) in &claims {
+                for s in p.survivors.iter().map(|s| misprint(s).0) {
+                    if !caught.contains(&s) && !survivors.iter().any(|x| x == s) {
+                        survivors.push(s.to_string());
+                    }
+                }
             }
             let mut blind: Vec<String> = Vec::new();
             for (_, p) in &claims {
@@ -210,7 +215,10 @@ mod tests {
     fn a_misprint_is_caught_when_any_claim_on_the_formula_catches_it() {
         // two claims on a*b: one blind to x2, the other to x2 and the sign; a third formula
         let out = [
-            claim("p.a", "a*b", &["printed: the whole side x2"]),
+            killing(
+                claim("p.a", "a*b", &["printed: the whole side x2"]),
+                &["printed: sign of the term a*b"],
+            ),
             claim(
                 "p.b",
                 "a*b",
@@ -231,6 +239,32 @@ mod tests {
         assert!(!f[2].weak());
         let md = section(&f, &|_| "p.md".into());
         assert!(md.contains("| p | 3 | 1 | 2 | 67 % |"), "{md}");
+    }
+
+    fn killing(mut o: Outcome, killed: &[&str]) -> Outcome {
+        if let Some(p) = o.power.as_mut() {
+            p.killed_names = killed.iter().map(|s| s.to_string()).collect();
+        }
+        o
+    }
+
+    #[test]
+    fn a_misprint_no_claim_ran_or_killed_survives_and_one_stating_the_same_does_not() {
+        // p.e did not draw `x1.1` (not among its killed), so p.f's survivor stands; p.f's
+        // `x2` was judged the same statement by p.e (`equivalent`), so it is not a survivor
+        let mut e = claim("p.e", "e", &[]);
+        if let Some(p) = e.power.as_mut() {
+            p.equivalent = vec!["printed: the whole side x2".into()];
+        }
+        let e = killing(e, &["printed: sign of the term e"]);
+        let f = claim(
+            "p.f",
+            "e",
+            &["printed: the whole side x1.1", "printed: the whole side x2"],
+        );
+        let out = formula_power(&[e, f]);
+        assert_eq!(out.len(), 1);
+        assert_eq!(out[0].survivors, ["the whole side x1.1"]);
     }
 
     #[test]

@@ -104,6 +104,17 @@ pub struct Power {
     /// ([`super::formulas`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub formula: Option<String>,
+    /// The misprints it killed, named as `survivors` (so that a formula's misprint is caught
+    /// when any claim on it killed it, [`super::formulas`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub killed_names: Vec<String>,
+    /// The misprints not run because they state the same as the printed side (a side against
+    /// zero times a factor), named as `survivors`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub equivalent: Vec<String>,
+    /// The misprints of an inequality that only weakened it (`excused`), named as `survivors`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub weaker: Vec<String>,
     /// What it was measured from (`verify::power_cache`): the main job reuses it while
     /// the key is the same.
     #[serde(default, skip_serializing_if = "Option::is_none")]

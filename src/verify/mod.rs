@@ -130,6 +130,10 @@ pub struct Head {
     /// The LaTeX the printed side was read from (`printed_tex`, `printed_from`), for the report.
     #[serde(skip)]
     pub tex: Option<String>,
+    /// The printed keys read from the paper as conditions, `left - right` (`form =
+    /// "difference"`: `printed`, `printed_equations[0]`): `c (left - right) = 0` states the same.
+    #[serde(skip)]
+    pub conditions: Vec<String>,
 }
 
 impl Head {

@@ -303,14 +303,16 @@ fn disk_centre_solution(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, 
 /// formula of rho, c, a), and Delta omega as printed (a formula of f, S, a, m). rho is found
 /// where the printed condition holds (bisection on rho in (0, a)).
 fn disk_no_transverse(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, VerifyError> {
-    let (zeta, f): (f64, f64) = (0.2, 0.3);
+    // a and m away from 1, so that a misprinted power of either is seen
+    let (a, m, f): (f64, f64, f64) = (1.3, 0.7, 0.3);
+    let zeta = 0.2 * a;
     let printed = |rho: f64, s: f64| {
         let values = |name: &str| {
             Some(match name {
                 "rho" => rho,
                 "c" => zeta,
-                "a" => 1.0,
-                "m" => 1.0,
+                "a" => a,
+                "m" => m,
                 "f" => f,
                 "S" => s,
                 _ => return None,
@@ -322,7 +324,7 @@ fn disk_no_transverse(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, Ve
             &values,
         )
     };
-    let (mut lo, mut hi) = (1e-9, 1.0);
+    let (mut lo, mut hi) = (1e-9 * a, a);
     let (g_lo, g_hi) = (printed(lo, 0.0)?[0], printed(hi, 0.0)?[0]);
     if g_lo.signum() == g_hi.signum() {
         return Ok(outcome(
@@ -330,7 +332,7 @@ fn disk_no_transverse(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, Ve
             c,
             Verdict::Fails,
             format!(
-                "the printed condition {} = 0 has no root rho in (0, a) at a = m = 1, c = 0.2 a (values {g_lo:.3e} and {g_hi:.3e} at the ends)",
+                "the printed condition {} = 0 has no root rho in (0, a) at a = {a} m, m = {m} kg, c = 0.2 a (values {g_lo:.3e} and {g_hi:.3e} at the ends)",
                 c.printed_equations[0]
             ),
         ));
@@ -344,12 +346,13 @@ fn disk_no_transverse(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, Ve
         }
     }
     let theta = 0.5 * (lo + hi);
-    let s_end = 0.9 / (4.0 * f / 3.0);
+    // omega from 1 to 0.1 rad/s by the printed Delta omega = -4 f S/(3 a m)
+    let s_end = 0.9 * 3.0 * a * m / (4.0 * f);
     let run = |theta: f64| {
         let p = Plate {
-            m: 1.0,
+            m,
             rho: theta,
-            a: 1.0,
+            a,
             f,
             c: [0.0, zeta],
         };
@@ -358,21 +361,24 @@ fn disk_no_transverse(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, Ve
     let path = run(theta).map_err(|e| integration_failed(c, e))?;
     let (mut v_max, mut w_err): (f64, f64) = (0.0, 0.0);
     for (s, y) in &path {
-        v_max = v_max.max(y[0].hypot(y[1]));
+        v_max = v_max.max(y[0].hypot(y[1]) / a);
         w_err = w_err.max((y[2] - (1.0 + printed(theta, *s)?[1])).abs());
     }
-    let control = run((1.1 * 0.5 - zeta * zeta).sqrt()).map_err(|e| integration_failed(c, e))?;
+    let control =
+        run((1.1 * 0.5 * a * a - zeta * zeta).sqrt()).map_err(|e| integration_failed(c, e))?;
     let v_ctrl = control
         .iter()
-        .map(|(_, y)| y[0].hypot(y[1]))
+        .map(|(_, y)| y[0].hypot(y[1]) / a)
         .fold(0.0, f64::max);
     Ok(outcome(
         paper,
         c,
         holds(v_max <= 1e-9 && w_err <= 1e-9 && v_ctrl > 1e-3),
         format!(
-            "Plate with a = m = 1, f = 0.3, c = 0.2 a, rho = {theta:.6} a where the printed {} = 0, spinning about O (V = 0, omega = 1), integrated in the normal impulse (DOP853, rtol 1e-11, force and moment by quadrature) to S = {s_end:.3}: max |v_O| = {v_max:.1e} a omega0, omega(S) - omega0 against the printed Delta omega = {} within {w_err:.1e}; with rho^2 10 % larger the base centre reaches |v_O| = {v_ctrl:.3e} a omega0. Hence the closing statement too: a^2 = 2 l c with l = (rho^2 + c^2)/c the reduced length, and c = a/4 gives l = 2a",
-            c.printed_equations[0], c.printed_equations[1]
+            "Plate with a = {a} m, m = {m} kg, f = 0.3, c = 0.2 a, rho = {:.6} a where the printed {} = 0, spinning about O (V = 0, omega = 1), integrated in the normal impulse (DOP853, rtol 1e-11, force and moment by quadrature) to S = {s_end:.3}: max |v_O| = {v_max:.1e} a omega0, omega(S) - omega0 against the printed Delta omega = {} within {w_err:.1e}; with rho^2 10 % larger the base centre reaches |v_O| = {v_ctrl:.3e} a omega0. Hence the closing statement too: a^2 = 2 l c with l = (rho^2 + c^2)/c the reduced length, and c = a/4 gives l = 2a",
+            theta / a,
+            c.printed_equations[0],
+            c.printed_equations[1]
         ),
     ))
 }

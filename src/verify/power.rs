@@ -20,7 +20,8 @@
 //! weakens it (it still holds, with a least margin over the samples at least the printed one's:
 //! a true but weaker statement that no check could refute), nor a side of an inequality against
 //! zero scaled by a positive factor (`2 A <= 0` states `A <= 0`; a claim's `allowance`, kept
-//! apart from the paper's inequality, is not misprinted). The file definitions a printed side
+//! apart from the paper's inequality, is not misprinted), nor a printed side whose derived
+//! side is the literal 0 scaled or negated as a whole (`2 A = 0` states `A = 0`). The file definitions a printed side
 //! uses are expanded first, so a misprint inside a definition is among the mutants.
 //!
 //! A claim that fails is not measured (a misprint of a wrong formula stays wrong; its check's
@@ -419,6 +420,15 @@ fn replaced(keys: &toml::Table, path: &[PathPart], text: String) -> toml::Table 
     }
 }
 
+/// A misprint of a side: what was changed, the side's text with it, and whether it states the
+/// same as the side (then not run, and named so that no claim on the formula counts it).
+#[derive(Debug)]
+struct Misprint {
+    what: String,
+    text: String,
+    equivalent: bool,
+}
+
 /// A side read as a formula or as an inequality, to mutate.
 enum Side {
     Formula(Expr),
@@ -448,11 +458,12 @@ impl Side {
         }
     }
 
-    /// Every misprint, as (what, text).
-    fn mutants(&self, swaps: &dyn Fn(&str) -> Vec<String>) -> Vec<(String, String, Vec<f64>)> {
+    /// Every misprint, marked `equivalent` where it states the same as the side (a side of an
+    /// inequality against zero times a positive factor).
+    fn mutants(&self, swaps: &dyn Fn(&str) -> Vec<String>) -> Vec<Misprint> {
         let mut out = Vec::new();
         let mut seen: Vec<Vec<f64>> = fingerprint(&self.exprs()).into_iter().collect();
-        let mut keep = |what: String, text: String, vals: Vec<&Expr>| {
+        let mut keep = |what: String, text: String, vals: Vec<&Expr>, equivalent: bool| {
             let fp = fingerprint(&vals);
             if let Some(fp) = &fp {
                 if seen.iter().any(|s| same(s, fp)) {
@@ -460,12 +471,16 @@ impl Side {
                 }
                 seen.push(fp.clone());
             }
-            out.push((what, text, fp.unwrap_or_default()));
+            out.push(Misprint {
+                what,
+                text,
+                equivalent,
+            });
         };
         match self {
             Side::Formula(e) => {
                 for m in mutants(e, swaps) {
-                    keep(m.what, m.expr.to_string(), vec![&m.expr]);
+                    keep(m.what, m.expr.to_string(), vec![&m.expr], false);
                 }
             }
             Side::Relation(i) => {
@@ -476,18 +491,19 @@ impl Side {
                         && m.what.starts_with("the whole side x")
                 };
                 for m in mutants(&i.lhs, swaps) {
-                    if same(&m, &i.rhs) {
-                        continue;
-                    }
                     let text = format!("{} {} {}", m.expr, i.rel.symbol(), i.rhs);
-                    keep(format!("left: {}", m.what), text, vec![&m.expr, &i.rhs]);
+                    let eq = same(&m, &i.rhs);
+                    keep(format!("left: {}", m.what), text, vec![&m.expr, &i.rhs], eq);
                 }
                 for m in mutants(&i.rhs, swaps) {
-                    if same(&m, &i.lhs) {
-                        continue;
-                    }
                     let text = format!("{} {} {}", i.lhs, i.rel.symbol(), m.expr);
-                    keep(format!("right: {}", m.what), text, vec![&i.lhs, &m.expr]);
+                    let eq = same(&m, &i.lhs);
+                    keep(
+                        format!("right: {}", m.what),
+                        text,
+                        vec![&i.lhs, &m.expr],
+                        eq,
+                    );
                 }
             }
         }
@@ -534,11 +550,11 @@ fn least_margin(o: &Outcome) -> Option<f64> {
 
 /// What became of one mutant.
 enum Fate {
-    Killed,
+    Killed(String),
     Survived(String),
     /// An inequality's mutant that keeps the verdict by weakening the inequality (its least
     /// margin is no smaller than the printed one's): no check could kill it.
-    Excused,
+    Excused(String),
 }
 
 /// Measures the power of one claim: each misprint validated and checked as the claim would
@@ -557,14 +573,31 @@ pub fn measure<'s>(
     };
     let swaps = |s: &str| cx.same_unit(s);
     let mut all: Vec<(String, Target, String)> = Vec::new();
+    let mut equivalent: Vec<String> = Vec::new();
     let mut unread = Vec::new();
     for t in targets(&spec.keys, &keys) {
         let Some(side) = Side::read(&t.text, cx) else {
             unread.push(path_text(&t.path));
             continue;
         };
-        for (what, text, _) in side.mutants(&swaps) {
-            all.push((what, t.clone(), text));
+        // a printed side whose derived value is the literal 0 states `side = 0`, as a condition
+        // read from the paper as `left - right` does: the whole side times a factor, or
+        // negated, states the same
+        let against_zero = t.text.trim() != "0"
+            && (spec.head.conditions.contains(&path_text(&t.path))
+                || matches!(&t.path[..], [PathPart::Key(k)] if k == "printed" || k == "corrected")
+                    && spec
+                        .keys
+                        .get("derived")
+                        .and_then(|v| v.as_str())
+                        .map(str::trim)
+                        == Some("0"));
+        for m in side.mutants(&swaps) {
+            if m.equivalent || (against_zero && m.what.starts_with("the whole side")) {
+                equivalent.push(format!("{}: {}", path_text(&t.path), m.what));
+                continue;
+            }
+            all.push((m.what, t.clone(), m.text));
         }
     }
     if all.is_empty() {
@@ -597,10 +630,12 @@ pub fn measure<'s>(
                 Ok(o) if o.verdict == original.verdict => match (base_margin, least_margin(&o)) {
                     // strictly wider: a margin that stays the same (an inequality against 0, whose
                     // relative margin is 1 whatever the factor) cannot tell, and survives
-                    (Some(b), Some(m)) if m > b + 1e-9 * b.abs().max(1e-300) => Fate::Excused,
+                    (Some(b), Some(m)) if m > b + 1e-9 * b.abs().max(1e-300) => {
+                        Fate::Excused(format!("{}: {what}", path_text(&target.path)))
+                    }
                     _ => Fate::Survived(format!("{}: {what}", path_text(&target.path))),
                 },
-                _ => Fate::Killed,
+                _ => Fate::Killed(format!("{}: {what}", path_text(&target.path))),
             }
         })
         .collect();
@@ -612,6 +647,9 @@ pub fn measure<'s>(
         not_measured: None,
         blind: None,
         formula: None,
+        killed_names: Vec::new(),
+        equivalent,
+        weaker: Vec::new(),
         key: None,
     };
     if let [one] = targets(&spec.keys, &keys).as_slice() {
@@ -619,15 +657,19 @@ pub fn measure<'s>(
     }
     for fate in fates {
         match fate {
-            Fate::Killed => {
+            Fate::Killed(what) => {
                 power.mutants += 1;
                 power.killed += 1;
+                power.killed_names.push(what);
             }
             Fate::Survived(what) => {
                 power.mutants += 1;
                 power.survivors.push(what);
             }
-            Fate::Excused => power.excused += 1,
+            Fate::Excused(what) => {
+                power.excused += 1;
+                power.weaker.push(what);
+            }
         }
     }
     if power.weak() {
@@ -804,11 +846,12 @@ mod tests {
         });
         let doubled = m
             .iter()
-            .filter(|(_, t, _)| t.contains("4*a*b") || t.starts_with("2*(2*a*b)") || t == "2*2*a*b")
+            .map(|m| m.text.as_str())
+            .filter(|t| t.contains("4*a*b") || t.starts_with("2*(2*a*b)") || *t == "2*2*a*b")
             .count();
         assert_eq!(doubled, 1, "{m:?}");
-        assert!(m.iter().any(|(_, t, _)| t == "2*b*b"));
-        assert!(m.iter().any(|(_, t, _)| t == "2*a*a"));
+        assert!(m.iter().any(|x| x.text == "2*b*b"));
+        assert!(m.iter().any(|x| x.text == "2*a*a"));
     }
 
     #[test]

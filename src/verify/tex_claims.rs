@@ -14,7 +14,7 @@
 //! "z"`). Either key becomes the claim's `printed` (as text, which the kinds read as before) and
 //! the LaTeX read is kept for the report.
 
-use super::{PaperClaims, VerifyError};
+use super::{ClaimSpec, PaperClaims, VerifyError};
 use crate::algebra::expr::Expr;
 use crate::algebra::tex::document::{Document, read_document};
 use crate::algebra::tex::{TexSymbols, read_display, read_formula};
@@ -407,6 +407,55 @@ fn by_display(
     Ok(blocks[k - 1].1.trim().to_string())
 }
 
+/// `printed_equations_from`: each entry read from the paper (or, as text, a formula printed in
+/// prose) into `printed_equations`, a `form = "difference"` entry marked as a condition.
+fn equations_from(
+    snapshot: &PaperClaims,
+    c: &mut ClaimSpec,
+    list: toml::Value,
+    syms: &TexSymbols,
+) -> Result<(), VerifyError> {
+    let field = "printed_equations_from";
+    if c.keys.contains_key("printed_equations") {
+        return Err(bad(
+            snapshot,
+            &c.head.id,
+            field,
+            "give printed_equations or printed_equations_from, not both".into(),
+        ));
+    }
+    let specs = list.as_array().cloned().ok_or_else(|| {
+            bad(
+                snapshot,
+                &c.head.id,
+                field,
+                "is a list of { tag = ..., lhs = ... } (or { after = ..., lhs = ... }, or a formula printed in prose, retyped as text)".into(),
+            )
+        })?;
+    let mut texts = Vec::new();
+    let mut rows: Vec<String> = Vec::new();
+    for (k, spec) in specs.iter().enumerate() {
+        // a formula the paper prints in prose, retyped, stands in the list as text
+        if let Some(text) = spec.as_str() {
+            texts.push(toml::Value::String(text.to_string()));
+            continue;
+        }
+        let (e, latex) =
+            formula_from_paper(snapshot, &c.head.id, &format!("{field}[{k}]"), spec, syms)?;
+        if spec.get("form").and_then(|f| f.as_str()) == Some("difference") {
+            c.head.conditions.push(format!("printed_equations[{k}]"));
+        }
+        texts.push(toml::Value::String(e.to_string()));
+        if !rows.contains(&latex) {
+            rows.push(latex);
+        }
+    }
+    c.keys
+        .insert("printed_equations".into(), toml::Value::Array(texts));
+    c.head.tex = Some(rows.join(" \\\\ "));
+    Ok(())
+}
+
 /// `form = "difference"`: the relation read as `left - right` (a condition printed `... = 0`
 /// or `2(rho^2 + c^2) = a^2`, judged as its difference); `"right"` (the default) its right side.
 fn difference_form(
@@ -691,46 +740,7 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
             ));
         }
         if let Some(list) = c.keys.remove("printed_equations_from") {
-            let field = "printed_equations_from";
-            if c.keys.contains_key("printed_equations") {
-                return Err(bad(
-                    &snapshot,
-                    &c.head.id,
-                    field,
-                    "give printed_equations or printed_equations_from, not both".into(),
-                ));
-            }
-            let specs = list.as_array().cloned().ok_or_else(|| {
-                bad(
-                    &snapshot,
-                    &c.head.id,
-                    field,
-                    "is a list of { tag = ..., lhs = ... } (or { after = ..., lhs = ... }, or a formula printed in prose, retyped as text)".into(),
-                )
-            })?;
-            let mut texts = Vec::new();
-            let mut rows: Vec<String> = Vec::new();
-            for (k, spec) in specs.iter().enumerate() {
-                // a formula the paper prints in prose, retyped, stands in the list as text
-                if let Some(text) = spec.as_str() {
-                    texts.push(toml::Value::String(text.to_string()));
-                    continue;
-                }
-                let (e, latex) = formula_from_paper(
-                    &snapshot,
-                    &c.head.id,
-                    &format!("{field}[{k}]"),
-                    spec,
-                    &syms,
-                )?;
-                texts.push(toml::Value::String(e.to_string()));
-                if !rows.contains(&latex) {
-                    rows.push(latex);
-                }
-            }
-            c.keys
-                .insert("printed_equations".into(), toml::Value::Array(texts));
-            c.head.tex = Some(rows.join(" \\\\ "));
+            equations_from(&snapshot, c, list, &syms)?;
         }
         if let Some(spec) = c.keys.remove("printed_matrix_from") {
             let field = "printed_matrix_from";
@@ -849,6 +859,9 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
         c.keys
             .insert("printed".into(), toml::Value::String(e.to_string()));
         c.head.tex = Some(latex);
+        if difference {
+            c.head.conditions.push("printed".into());
+        }
     }
     Ok(())
 }
