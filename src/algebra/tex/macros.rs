@@ -423,6 +423,11 @@ mod tests {
             expanded("\\DeclareMathOperator{\\sgn}{sgn} \\sgn x").trim(),
             "\\operatorname{sgn} x"
         );
+        // a starred \newcommand (no paragraph in its arguments) defines as the plain one
+        assert_eq!(
+            expanded("\\newcommand*{\\vrel}[1]{v_{#1}} \\vrel{r}").trim(),
+            "v_{r}"
+        );
         // the starred form (limits under the name) defines it the same way
         assert_eq!(
             expanded("\\DeclareMathOperator*{\\argmax}{arg\\,max} \\argmax_x f").trim(),
