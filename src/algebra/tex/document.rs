@@ -708,6 +708,21 @@ mod tests {
     }
 
     #[test]
+    fn an_unbraced_input_is_replaced_by_its_file_and_nothing_of_its_name_stays() {
+        // by hand: `\input chap` is the file's text; what follows the name is kept as it was
+        let load = |_: &str| Ok("c = d".to_string());
+        let mut problems = Vec::new();
+        let text = inline_inputs("\\input chap\nX", &load, 0, &mut problems);
+        assert_eq!(text, "c = d\nX");
+        assert!(problems.is_empty(), "{problems:?}");
+        // a file that cannot be read is named with the line of its `\input` (here the third)
+        let missing = |name: &str| Err(format!("no file {name}"));
+        let text = inline_inputs("a\nb\n\\input{gone}\nc", &missing, 0, &mut problems);
+        assert_eq!(problems, ["line 3: no file gone"]);
+        assert_eq!(text, "a\nb\n\nc");
+    }
+
+    #[test]
     fn subequations_number_3a_3b_and_the_counter_goes_on() {
         // by hand, as LaTeX numbers them: 1, then 2a 2b 2c (the counter takes 2), then 3
         let d = read_document(

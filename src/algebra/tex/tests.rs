@@ -612,3 +612,23 @@ fn an_increment_is_of_a_name_not_of_a_field() {
     let e = read_formula(r"\Delta \theta", &s).unwrap();
     assert_eq!(e.symbols(), ["Deltatheta"], "{e}");
 }
+
+#[test]
+fn a_separator_word_is_not_the_start_of_a_longer_command() {
+    // by hand: `\quadx` is another command, not `\quad` and x; `\quad x` separates
+    let parts = display::split_top(r"a = 1 \quadx = 2", &["\\quad"]);
+    assert_eq!(parts.len(), 1, "{parts:?}");
+    let parts = display::split_top(r"a = 1 \quad x = 2", &["\\quad"]);
+    assert_eq!(parts.len(), 2, "{parts:?}");
+}
+
+#[test]
+fn an_increment_takes_a_letter_or_an_accented_one_and_no_other_command() {
+    // by hand: `\Delta \infty` is Delta times infinity (no increment of a command that is not
+    // a letter); `\Delta \mathrm{x}` and `\Delta \hbar` are increments of a name
+    let s = TexSymbols::default();
+    let e = read_formula(r"\Delta \infty", &s).unwrap();
+    assert_eq!(e.symbols(), ["Delta", "infinity"], "{e}");
+    let e = read_formula(r"\Delta \mathrm{x}", &s).unwrap();
+    assert_eq!(e.symbols(), ["Deltax"], "{e}");
+}
