@@ -91,13 +91,35 @@ pub fn parse_vary(spec: &str, log: bool) -> Result<SweepValues, RunError> {
             if i == n - 1 {
                 b
             } else if log {
-                (a.ln() + f * (b.ln() - a.ln())).exp()
+                tidy((a.ln() + f * (b.ln() - a.ln())).exp())
             } else {
-                a + f * (b - a)
+                tidy(a + f * (b - a))
             }
         })
         .collect();
     Ok(SweepValues::new(key, values))
+}
+
+/// A grid value to 12 significant digits, rounded as a number (an integer over a power of ten),
+/// so that `0:1:11` gives 0.3 and not the 0.30000000000000004 of `0 + 0.3 * 1`: the sweep's
+/// inputs and its CSV show the value the user asked for. Values whose power of ten does not fit
+/// an `f64` scale are kept as they are.
+fn tidy(v: f64) -> f64 {
+    if v == 0.0 || !v.is_finite() {
+        return v;
+    }
+    let digits = 11 - v.abs().log10().floor() as i32;
+    if !(-290..=290).contains(&digits) {
+        return v;
+    }
+    let r = if digits >= 0 {
+        let p = 10f64.powi(digits);
+        (v * p).round() / p
+    } else {
+        let p = 10f64.powi(-digits);
+        (v / p).round() * p
+    };
+    if r.is_finite() { r } else { v }
 }
 
 /// Parses `--param FIELD --values V1,V2,...`.
