@@ -632,3 +632,13 @@ fn an_increment_takes_a_letter_or_an_accented_one_and_no_other_command() {
     let e = read_formula(r"\Delta \mathrm{x}", &s).unwrap();
     assert_eq!(e.symbols(), ["Deltax"], "{e}");
 }
+
+#[test]
+fn an_increment_across_a_thin_space() {
+    // by hand: a thin space between `\Delta` and its letter is typography: the increment of t
+    let s = TexSymbols::default();
+    for t in [r"\Delta \, t", r"\Delta~t", r"\Delta\;\theta"] {
+        let e = read_formula(t, &s).unwrap();
+        assert_eq!(e.symbols().len(), 1, "{t} read as {e}");
+    }
+}
