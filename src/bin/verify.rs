@@ -133,15 +133,23 @@ struct Args {
     /// Print the summary on stdout: text (a line per claim) or json.
     #[arg(long, value_enum)]
     format: Option<Fmt>,
-    /// Solves per work-precision point (median reported).
+    /// Measure what accuracy costs in time: the work-precision diagrams of every model and
+    /// method, written to <out>/timing/ (accuracy_cost.md and its SVGs). Off by default: they
+    /// are the only files that hold measured times, which differ run to run, and the main job
+    /// leaves a clean checkout clean.
+    #[arg(long)]
+    timing: bool,
+    /// Solves per work-precision point of --timing (median reported).
     #[arg(long, default_value_t = 5)]
     repeats: usize,
     /// Measure the power of every claim's check: misprint its printed side (a coefficient x2,
     /// x1/2, +-10 %, an exponent +-1, a sign, a dropped term, a symbol swapped for another of
     /// the same unit) and rerun it; a misprint that keeps the verdict survives, and the claim
     /// is marked weak (summary.json: `power`, `weak`; reports/README.md: the weak claims).
-    /// The default run (writing reports/) always measures it; --check, --only and --claims
-    /// only with this flag or --power-sample.
+    /// The default run (writing reports/) measures the claims whose power is not in the
+    /// committed reports/summary.json under the same key (what they depend on changed);
+    /// this flag measures every claim afresh; --check, --only and --claims measure none
+    /// without it or --power-sample.
     #[arg(long)]
     power: bool,
     /// Measure the power of N claims only, picked by --power-seed (with --check: compared with
@@ -228,7 +236,8 @@ impl Reused {
 }
 
 /// The default run (every claim's power, the project's reports): the power of each claim whose
-/// key is the one `summary.json` in the output folder holds is reused, and the claim is taken
+/// key is the one `summary.json` in the output folder holds (else the committed
+/// `reports/summary.json`: a key is the same wherever it was written) is reused, and the claim is taken
 /// out of `measured`. `--power` measures every claim afresh; other runs reuse nothing.
 fn reusable_power(
     args: &Args,
@@ -244,58 +253,88 @@ fn reusable_power(
         return r;
     }
     r.keys = verify::power_cache::keys(papers);
+    let mut from_file = PathBuf::new();
     if args.power || args.power_sample.is_some() || args.check {
         return r;
     }
-    let previous: Option<report::Summary> = std::fs::read_to_string(out_dir.join("summary.json"))
-        .ok()
-        .and_then(|t| serde_json::from_str(&t).ok());
-    if let Some(previous) = previous {
+    // the output folder's summary, else the committed one: a key names what a power depends
+    // on, so a power under the same key is the same wherever it was written
+    let read = |p: PathBuf| -> Option<(report::Summary, PathBuf)> {
+        let t = std::fs::read_to_string(&p).ok()?;
+        Some((serde_json::from_str(&t).ok()?, p))
+    };
+    let previous = read(out_dir.join("summary.json"))
+        .or_else(|| read(default_dir("reports").join("summary.json")));
+    if let Some((previous, from)) = previous {
+        from_file = from;
         r.power = verify::power_cache::reuse(&previous, &r.keys, measured);
     }
     if !r.power.is_empty() {
         eprintln!(
             "verify: the power of {} claims reused (nothing they depend on changed since {}), {} measured; --power measures all",
             r.power.len(),
-            out_dir.join("summary.json").display(),
+            from_file.display(),
             measured.len()
         );
     }
     r
 }
 
-/// A progress bar over `total` claims on a terminal, hidden elsewhere.
+/// A progress bar over `total` steps on a terminal, hidden elsewhere.
 fn progress_bar(total: u64, progress: bool) -> indicatif::ProgressBar {
     if !progress {
         return indicatif::ProgressBar::hidden();
     }
     let b = indicatif::ProgressBar::new(total);
     b.set_style(
-        indicatif::ProgressStyle::with_template("verify [{bar:40}] {pos}/{len} claims: {msg}")
+        indicatif::ProgressStyle::with_template("verify [{bar:30}] {pos}/{len} {msg} ({elapsed})")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
     b
 }
 
+/// What the progress says after `done` of `checked` verdicts and `powered` of `measured`
+/// powers, and the claim just finished.
+fn progress_message(checked: (u64, u64), powered: (u64, u64), id: &str) -> String {
+    if checked.0 < checked.1 || powered.1 == 0 {
+        format!("verdicts: {}/{} claims, last {id}", checked.0, checked.1)
+    } else {
+        format!("power: {}/{} claims, last {id}", powered.0, powered.1)
+    }
+}
+
 /// Every verdict, then the power of the `measured` claims, in one run over all papers; sorted
-/// by claim id.
+/// by claim id. The progress moves per claim: a bar on a terminal, elsewhere a line at every
+/// tenth of the power measured (it is the long part: about a minute for every claim).
 fn check_claims(
     papers: &[verify::PaperClaims],
     root: &std::path::Path,
     measured: &std::collections::BTreeSet<String>,
     progress: bool,
 ) -> Result<Vec<verify::Outcome>> {
-    let bar = progress_bar(papers.iter().map(|p| p.claim.len() as u64).sum(), progress);
-    bar.set_message(if measured.is_empty() {
-        "checking".to_string()
-    } else {
-        format!("checking, then the power of {} claims", measured.len())
-    });
+    use std::sync::atomic::{AtomicU64, Ordering};
+    let claims: u64 = papers.iter().map(|p| p.claim.len() as u64).sum();
+    let powers = measured.len() as u64;
+    let bar = progress_bar(claims + powers, progress);
     bar.enable_steady_tick(std::time::Duration::from_millis(500));
-    let mut outcomes = verify::run_measured(papers, root, verify::kinds::BUILTIN, &|id| {
-        measured.contains(id)
-    })?;
-    bar.inc(outcomes.len() as u64);
+    let (checked, powered) = (AtomicU64::new(0), AtomicU64::new(0));
+    let start = std::time::Instant::now();
+    let tick = |id: &str, power: bool| {
+        let c = if power { &powered } else { &checked };
+        c.fetch_add(1, Ordering::Relaxed);
+        let (c, p) = (checked.load(Ordering::Relaxed), powered.load(Ordering::Relaxed));
+        bar.set_position(c + p);
+        bar.set_message(progress_message((c, claims), (p, powers), id));
+        let tenth = powers.div_ceil(10).max(1);
+        if !progress && power && powers >= 10 && (p % tenth == 0 || p == powers) {
+            eprintln!(
+                "verify: power {p}/{powers} claims measured, {:.0} s",
+                start.elapsed().as_secs_f64()
+            );
+        }
+    };
+    let mut outcomes =
+        verify::run_with_progress(papers, root, verify::kinds::BUILTIN, &|id| measured.contains(id), &tick)?;
     bar.finish_and_clear();
     outcomes.sort_by(|a, b| report::natural_cmp(&a.id, &b.id));
     Ok(outcomes)
@@ -399,17 +438,21 @@ fn write_reports(
             String::new()
         } else {
             verify::audit_reports::index_section(papers)
-                + &verify::audit_reports::words_section(papers)
+                + &verify::audit_reports::words_section(papers, out_dir)
         };
         readme.insert_str(at, &format!("{coverage}{audits}"));
     }
     if !custom {
         // the units of every relation of each paper, from its LaTeX and its claims' units
         files.extend(verify::audit_reports::paper_audits(papers));
-        if progress {
-            eprintln!("verify: work-precision diagrams ...");
+        if args.timing {
+            if progress {
+                eprintln!("verify: work-precision diagrams ...");
+            }
+            files.extend(
+                verify::accuracy::render(args.repeats.max(1)).context("work-precision runs")?,
+            );
         }
-        files.extend(verify::accuracy::render(args.repeats.max(1)).context("work-precision runs")?);
     }
     // the reports link only files that are there: those written now, and for the project's
     // own reports the benchmark pages kept beside them (performance*, written by benches/peers)
@@ -422,6 +465,13 @@ fn write_reports(
             .flatten()
             .map(|e| e.file_name().to_string_lossy().to_string())
             .filter(|n| n.starts_with("performance"))
+            .chain(
+                // the work-precision page of an earlier --timing run
+                out_dir
+                    .join("timing/accuracy_cost.md")
+                    .is_file()
+                    .then(|| "timing/accuracy_cost.md".to_string()),
+            )
             .collect()
     };
     report::keep_written_links(&mut files, &kept);
@@ -597,6 +647,9 @@ fn run(args: Args) -> Result<bool> {
     let progress = std::io::stderr().is_terminal();
     // every file checked before any claim runs: a bad claim exits 2 with nothing run or written
     verify::validate_all(&papers)?;
+    if let Some(missing) = verify::coverage::missing_texts(&papers, args.papers.as_deref()) {
+        eprintln!("verify: {missing}");
+    }
     for p in &papers {
         verify::coverage::check_equations(p, args.papers.as_deref())?;
         verify::coverage::check_quotes(p, args.papers.as_deref())?;

@@ -80,37 +80,73 @@ fn words_audit(p: &super::PaperClaims) -> Option<Audit> {
     Some(audit(&blocks, Some(&doc), &units.with_words(words)))
 }
 
+/// What the index's row needs of an audit from the words: the symbols named in words and
+/// each relation's status, in order.
+struct WordsCounts {
+    named: usize,
+    statuses: Vec<String>,
+}
+
+/// The counts of the paper's audit from its words: computed when its text is here, else read
+/// from the `audit/<paper>-words.json` an earlier run wrote into `out` (kept, as the text is
+/// needed to remake it).
+fn words_counts(p: &super::PaperClaims, out: &std::path::Path) -> Option<WordsCounts> {
+    if let Some(w) = words_audit(p) {
+        return Some(WordsCounts {
+            named: w.symbols.iter().filter(|s| s.source == "words").count(),
+            statuses: w.relations.iter().map(|r| r.status.to_string()).collect(),
+        });
+    }
+    let text = std::fs::read_to_string(out.join(format!("audit/{}-words.json", p.paper))).ok()?;
+    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+    let field = |list: &str, key: &str| -> Option<Vec<String>> {
+        v.get(list)?
+            .as_array()?
+            .iter()
+            .map(|x| x.get(key).and_then(|s| s.as_str()).map(str::to_string))
+            .collect()
+    };
+    Some(WordsCounts {
+        named: field("symbols", "source")?
+            .iter()
+            .filter(|s| *s == "words")
+            .count(),
+        statuses: field("relations", "status")?,
+    })
+}
+
 /// The index's paragraph on the audits from the words: per paper, the relations each audit
-/// decides, and the relations the words call inconsistent that the claims' units do not.
-pub fn words_section(papers: &[super::PaperClaims]) -> String {
+/// decides, and the relations the words call inconsistent that the claims' units do not. A
+/// paper whose text is missing keeps the audit an earlier run wrote into `out`.
+pub fn words_section(papers: &[super::PaperClaims], out: &std::path::Path) -> String {
     let mut rows = Vec::new();
     for p in papers {
         let Ok((blocks, doc, _)) = super::tex_claims::paper_displays(p) else {
             continue;
         };
         let declared = audit(&blocks, doc.as_ref(), &units_of_claims(p));
-        let Some(words) = words_audit(p) else {
+        let Some(words) = words_counts(p, out) else {
             rows.push(format!(
                 "| {} | the paper's text is not here | | | |",
                 p.paper
             ));
             continue;
         };
-        let decided = |a: &Audit| {
-            a.relations
-                .iter()
-                .filter(|r| matches!(r.status, "consistent" | "inconsistent"))
+        let decided = |statuses: &mut dyn Iterator<Item = &str>| {
+            statuses
+                .filter(|s| matches!(*s, "consistent" | "inconsistent"))
                 .count()
         };
-        let (dw, dd) = (decided(&words), decided(&declared));
-        let named = words.symbols.iter().filter(|s| s.source == "words").count();
+        let dw = decided(&mut words.statuses.iter().map(String::as_str));
+        let dd = decided(&mut declared.relations.iter().map(|r| r.status));
+        let named = words.named;
         // the two audits pair up relation by relation (one reader, one paper)
-        let new_findings = if words.relations.len() == declared.relations.len() {
+        let new_findings = if words.statuses.len() == declared.relations.len() {
             words
-                .relations
+                .statuses
                 .iter()
                 .zip(&declared.relations)
-                .filter(|(w, d)| w.status == "inconsistent" && d.status != "inconsistent")
+                .filter(|(w, d)| *w == "inconsistent" && d.status != "inconsistent")
                 .count()
                 .to_string()
         } else {

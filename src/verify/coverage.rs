@@ -93,8 +93,14 @@ pub fn labels(equation: &str) -> Vec<String> {
 /// Where the paper's text is: in `papers` (`--papers DIR`), beside the claims file, or among the
 /// seeds (`../shared/seeds/` beside the repository).
 pub fn text_path(p: &PaperClaims, papers: Option<&Path>) -> Option<PathBuf> {
+    looked_in(p, papers).into_iter().find(|c| c.is_file())
+}
+
+/// The places [`text_path`] looks for the paper's text, in order (none when the claims name no
+/// file).
+pub fn looked_in(p: &PaperClaims, papers: Option<&Path>) -> Vec<PathBuf> {
     if p.file.is_empty() {
-        return None;
+        return Vec::new();
     }
     let dir = p.source.parent().unwrap_or(Path::new("."));
     let mut candidates: Vec<PathBuf> = papers.map(|d| d.join(&p.file)).into_iter().collect();
@@ -107,7 +113,44 @@ pub fn text_path(p: &PaperClaims, papers: Option<&Path>) -> Option<PathBuf> {
             .join("../shared/seeds")
             .join(&p.file),
     );
-    candidates.into_iter().find(|c| c.is_file())
+    candidates
+}
+
+/// Said once when papers' texts are missing (`None` when every named text was found): which
+/// papers, the folders looked in, and what is not checked without them.
+pub fn missing_texts(papers: &[PaperClaims], dir: Option<&Path>) -> Option<String> {
+    let missing: Vec<&PaperClaims> = papers
+        .iter()
+        // a `file` that names a source in words (the classics' textbooks) is no file to find
+        .filter(|p| {
+            let f = p.file.trim();
+            !f.is_empty()
+                && !f.contains(char::is_whitespace)
+                && Path::new(f).extension().is_some()
+                && text_path(p, dir).is_none()
+        })
+        .collect();
+    let first = missing.first()?;
+    let mut folders: Vec<String> = Vec::new();
+    for p in &missing {
+        for c in looked_in(p, dir) {
+            let folder = c.parent().map_or_else(|| c.clone(), Path::to_path_buf);
+            // `..` resolved where the folder exists, shown as given where it does not
+            let shown = folder.canonicalize().unwrap_or(folder).display().to_string();
+            if !folders.contains(&shown) {
+                folders.push(shown);
+            }
+        }
+    }
+    Some(format!(
+        "the text of {} paper(s) was not found ({}{}; looked in {}; --papers DIR names another folder): \
+         their `equations` lists and quotes are not checked against it, and their audits from \
+         the paper's words are kept from the last run that had it",
+        missing.len(),
+        first.file,
+        if missing.len() > 1 { ", ..." } else { "" },
+        folders.join(", ")
+    ))
 }
 
 /// Checks the claims file's `equations` against the `\tag{...}` labels of the paper's text, when

@@ -491,6 +491,18 @@ pub fn run_measured(
     kinds: &[kinds::KindEntry],
     power: &dyn Fn(&str) -> bool,
 ) -> Result<Vec<Outcome>, VerifyError> {
+    run_with_progress(papers, root, kinds, power, &|_, _| {})
+}
+
+/// [`run_measured`], calling `tick(id, measured)` as each claim's verdict is in
+/// (`measured = false`) and as each measured claim's power is (`true`): the progress of `verify`.
+pub fn run_with_progress(
+    papers: &[PaperClaims],
+    root: &Path,
+    kinds: &[kinds::KindEntry],
+    power: &dyn Fn(&str) -> bool,
+    tick: &dyn Fn(&str, bool),
+) -> Result<Vec<Outcome>, VerifyError> {
     let checked: Vec<kinds::Checked> = papers
         .iter()
         .map(|p| kinds::Checked::validate_with(p, kinds))
@@ -505,13 +517,13 @@ pub fn run_measured(
     let mut session = new_session();
     let mut per_file = Vec::new();
     for file in &checked {
-        per_file.push(file.check_all(&mut session)?);
+        per_file.push(file.check_all_ticking(&mut session, &|id| tick(id, false))?);
     }
     // every verdict first, then the power: the misprints' formulas must not reach the checks
     // (a symbol's first appearance orders the terms that details print)
     let mut out = Vec::new();
     for (file, mut outcomes) in checked.iter().zip(per_file) {
-        file.measure_power(&mut outcomes, power, &new_session);
+        file.measure_power(&mut outcomes, power, &new_session, &|id| tick(id, true));
         out.extend(outcomes);
     }
     out.sort_by(|a, b| crate::report::natural_cmp(&a.id, &b.id));

@@ -361,6 +361,16 @@ impl<'a> Checked<'a> {
 
     /// Runs every claim of the file, in its order.
     pub fn check_all(&self, run: &mut Session) -> Result<Vec<Outcome>, VerifyError> {
+        self.check_all_ticking(run, &|_| {})
+    }
+
+    /// [`Checked::check_all`], calling `tick` with each claim's id once its verdict is in (a
+    /// progress bar).
+    pub fn check_all_ticking(
+        &self,
+        run: &mut Session,
+        tick: &dyn Fn(&str),
+    ) -> Result<Vec<Outcome>, VerifyError> {
         self.file
             .claim
             .iter()
@@ -385,6 +395,7 @@ impl<'a> Checked<'a> {
                 if let Some(x) = &c.head.extends {
                     o.detail = format!("extends the paper ({x}): {}", o.detail);
                 }
+                tick(&c.id);
                 Ok(super::with_assumption(o, &c.head))
             })
             .collect()
@@ -412,10 +423,12 @@ impl<'a> Checked<'a> {
         outcomes: &mut [Outcome],
         pick: &dyn Fn(&str) -> bool,
         new_session: &(dyn Fn() -> Session<'s> + Sync),
+        tick: &dyn Fn(&str),
     ) {
         for ((c, entry), o) in self.file.claim.iter().zip(&self.entries).zip(outcomes) {
             if pick(&c.id) {
                 o.power = Some(super::power::measure(self, entry, c, o, new_session));
+                tick(&c.id);
             }
         }
     }
