@@ -365,12 +365,19 @@ pub fn merge(paths: &[std::path::PathBuf], format: Format) -> Result<String, Run
                     None => Err(r["error"].as_str().unwrap_or_default().to_string()),
                 })
                 .collect();
-            let cols = csv_columns(&results);
+            let mut cols = csv_columns(&results);
+            // as `sweep`: the swept field once, each warning's wording in full once
+            cols.retain(|c| *c != param);
             let mut text = csv_header(&param, &cols);
+            let mut said = crate::scene::warnings::Said::default();
             for (r, res) in runs.iter().zip(&results) {
                 let v = r["value"].as_f64().unwrap_or(f64::NAN);
                 let i = r["index"].as_u64().unwrap_or(0) as usize;
-                text.push_str(&csv_row(v, i, res, &cols));
+                let (head, warnings, tail) = csv_row_parts(v, i, res, &cols);
+                text.push_str(&head);
+                text.push(',');
+                text.push_str(&csv_quote(&said.cell(i, &warnings)));
+                text.push_str(&tail);
             }
             text
         }
@@ -452,7 +459,7 @@ pub fn sweep(
         let b = indicatif::ProgressBar::new(total as u64);
         b.set_style(
             indicatif::ProgressStyle::with_template(&format!(
-                "sweep {param} [{{bar:40}}] {{pos}}/{{len}} ({{per_sec}}, {{eta}} left)"
+                "sweep {param} [{{bar:40}}] {{human_pos}}/{{human_len}} ({{msg}}, {{eta}} left)"
             ))
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
         );
@@ -471,12 +478,18 @@ pub fn sweep(
                 .and_then(|scene| scene.run_node())
                 .map_err(|e| e.to_string())
         });
-        csv_columns(first.as_slice())
+        // an outcome that echoes the swept field (balls-wall's `wall_stiffness_ratio`) is not
+        // written twice: the first column holds it
+        let mut cols = csv_columns(first.as_slice());
+        cols.retain(|c| c != param);
+        cols
     } else {
         Vec::new()
     };
-    // one point, formatted where it ran (in parallel); `None` marks a failed point
-    let row = |v: f64, i: usize| -> (String, bool) {
+    // one point, formatted where it ran (in parallel): the row's text, and for CSV its warnings
+    // and the rest of its line apart (said once per wording, in index order); `true` marks a
+    // failed point
+    let row = |v: f64, i: usize| -> (String, Vec<String>, String, bool) {
         let text = match format {
             Format::Json => {
                 // one run per line (compact): a sweep of 10^7 runs stays greppable and small;
@@ -503,7 +516,9 @@ pub fn sweep(
                 let r = scene_at(v)
                     .and_then(|scene| scene.run_node())
                     .map_err(|e| e.to_string());
-                (csv_row(v, i, &r, &columns), r.is_err())
+                let (head, warnings, tail) = csv_row_parts(v, i, &r, &columns);
+                bar.inc(1);
+                return (head, warnings, tail, r.is_err());
             }
             _ => match scene_at(v).and_then(|scene| run_validated(&scene)) {
                 Ok((res, _)) => (
@@ -517,9 +532,12 @@ pub fn sweep(
                 Err(e) => (format!("{param} = {}\nerror: {e}\n", json!(v)), true),
             },
         };
+        let (text, bad) = text;
         bar.inc(1);
-        text
+        (text, Vec::new(), String::new(), bad)
     };
+    let mut said = crate::scene::warnings::Said::default();
+    let started = std::time::Instant::now();
     let mut failed = 0;
     let mut first = true;
     if format == Format::Json {
@@ -540,20 +558,25 @@ pub fn sweep(
         .chunks(SWEEP_BLOCK)
         .zip(sv.indices.chunks(SWEEP_BLOCK))
     {
-        let rows: Vec<(String, bool)> = block_v
+        let rows: Vec<(String, Vec<String>, String, bool)> = block_v
             .par_iter()
             .zip(block_i.par_iter())
             .map(|(&v, &i)| row(v, i))
             .collect();
         let mut text = String::with_capacity(rows.iter().map(|r| r.0.len() + 8).sum());
-        for (body, bad) in &rows {
+        for ((body, warnings, tail, bad), &i) in rows.iter().zip(block_i) {
             failed += usize::from(*bad);
             match format {
                 Format::Json => {
                     text.push_str(if first { "\n    " } else { ",\n    " });
                     text.push_str(body);
                 }
-                Format::Csv => text.push_str(body),
+                Format::Csv => {
+                    text.push_str(body);
+                    text.push(',');
+                    text.push_str(&csv_quote(&said.cell(i, warnings)));
+                    text.push_str(tail);
+                }
                 _ => {
                     if !first {
                         text.push('\n');
@@ -564,12 +587,21 @@ pub fn sweep(
             first = false;
         }
         out.write_all(text.as_bytes()).map_err(io)?;
+        // the rate as a reader says it: whole points per second (indicatif's `per_sec` prints
+        // "83,589.898/s")
+        let secs = started.elapsed().as_secs_f64();
+        if secs > 0.0 {
+            bar.set_message(format!("{:.0} points/s", bar.position() as f64 / secs));
+        }
     }
     if format == Format::Json {
         out.write_all(b"\n  ]\n}\n").map_err(io)?;
     }
     out.flush().map_err(io)?;
     bar.finish_and_clear();
+    for line in said.summary() {
+        eprintln!("sweep: {line}");
+    }
     if failed > 0 {
         eprintln!("sweep: {failed} of {total} points failed (their rows carry the error)");
     }
@@ -680,7 +712,21 @@ fn csv_cells<'v>(
     }
 }
 
+#[cfg(test)]
 fn csv_row(v: f64, index: usize, r: &Result<Node, String>, cols: &[String]) -> String {
+    let (head, warnings, tail) = csv_row_parts(v, index, r, cols);
+    format!("{head},{}{tail}", csv_quote(&warnings.join("; ")))
+}
+
+/// A CSV row in three parts: the value and the outcome's cells; the run's warnings (the cell
+/// between, which a sweep writes once per wording, `scene::warnings`); the error, the index and
+/// the line's end.
+fn csv_row_parts(
+    v: f64,
+    index: usize,
+    r: &Result<Node, String>,
+    cols: &[String],
+) -> (String, Vec<String>, String) {
     // the row as bytes: numbers written by serde_json's own formatter, no `fmt` machinery
     let mut out = Vec::with_capacity(24 * (cols.len() + 3));
     let _ = serde_json::to_writer(&mut out, &v);
@@ -700,23 +746,20 @@ fn csv_row(v: f64, index: usize, r: &Result<Node, String>, cols: &[String]) -> S
             c.cell(&mut out);
         }
     }
-    // what the run says beside its numbers: its warnings (joined by "; ") and its error
+    // what the run says beside its numbers: its warnings and its error
     let warnings = match r.as_ref().ok().and_then(|res| res.get("warnings")) {
         Some(Node::Arr(w)) => w
             .iter()
             .filter_map(|x| match x {
-                Node::Str(s) => Some(s.as_str()),
+                Node::Str(s) => Some(s.to_string()),
                 _ => None,
             })
-            .collect::<Vec<_>>()
-            .join("; "),
-        _ => String::new(),
+            .collect(),
+        _ => Vec::new(),
     };
     let err = r.as_ref().err().map(String::as_str).unwrap_or("");
-    let mut out = String::from_utf8(out).unwrap_or_default();
-    use std::fmt::Write as _;
-    let _ = writeln!(out, ",{},{},{index}", csv_quote(&warnings), csv_quote(err));
-    out
+    let head = String::from_utf8(out).unwrap_or_default();
+    (head, warnings, format!(",{},{index}\n", csv_quote(err)))
 }
 
 #[cfg(test)]

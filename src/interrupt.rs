@@ -15,6 +15,8 @@ static PENDING: AtomicI32 = AtomicI32::new(0);
 static MSG: AtomicPtr<u8> = AtomicPtr::new(std::ptr::null_mut());
 static MSG_LEN: AtomicUsize = AtomicUsize::new(0);
 static TEMP: AtomicPtr<libc::c_char> = AtomicPtr::new(std::ptr::null_mut());
+static OUT_MSG: AtomicPtr<u8> = AtomicPtr::new(std::ptr::null_mut());
+static OUT_LEN: AtomicUsize = AtomicUsize::new(0);
 
 #[cfg(unix)]
 extern "C" fn on_signal(sig: libc::c_int) {
@@ -25,11 +27,17 @@ extern "C" fn on_signal(sig: libc::c_int) {
     let msg = MSG.load(Ordering::SeqCst);
     let len = MSG_LEN.load(Ordering::SeqCst);
     let temp = TEMP.load(Ordering::SeqCst);
-    // SAFETY: write(2), unlink(2) and _exit(2) are async-signal-safe; `msg` points to `len` bytes
-    // and `temp` to a NUL-terminated path, both leaked by `install` and never freed.
+    let out = OUT_MSG.load(Ordering::SeqCst);
+    let out_len = OUT_LEN.load(Ordering::SeqCst);
+    // SAFETY: write(2), unlink(2) and _exit(2) are async-signal-safe; `msg` points to `len` bytes,
+    // `out` to `out_len` and `temp` to a NUL-terminated path, all leaked by `install` (and
+    // `end_stdout_with`) and never freed.
     unsafe {
         if !temp.is_null() {
             libc::unlink(temp);
+        }
+        if !out.is_null() {
+            libc::write(1, out.cast(), out_len);
         }
         if !msg.is_null() {
             libc::write(2, msg.cast(), len);
@@ -57,6 +65,16 @@ pub fn install(message: &str, temp: Option<&std::path::Path>) {
         libc::signal(libc::SIGINT, h);
         libc::signal(libc::SIGTERM, h);
     }
+}
+
+/// Output streamed to stdout cannot be taken back: an interrupt then also writes `line` to
+/// stdout (after a newline, as the signal may cut a row), so that a script reading the stream
+/// sees it ended early. Call after [`install`].
+pub fn end_stdout_with(line: &str) {
+    let text = format!("\n{}\n", line.trim_end());
+    let bytes: &'static mut [u8] = Box::leak(text.into_bytes().into_boxed_slice());
+    OUT_LEN.store(bytes.len(), Ordering::SeqCst);
+    OUT_MSG.store(bytes.as_mut_ptr(), Ordering::SeqCst);
 }
 
 /// Runs the final writes with signals held back; a signal that arrived meanwhile then ends the

@@ -86,9 +86,19 @@ impl Unit {
         let spaced = text.split_whitespace().collect::<Vec<_>>().join("*");
         let e = super::expr::parse(&spaced).map_err(|e| format!("unit `{text}`: {e}"))?;
         dimension(&e, &|s| Unit::named(s)).map_err(|e| match e {
-            DimError::Unknown(s) => format!(
-                "unit `{text}`: unknown unit `{s}`; allowed: kg m s A K mol cd N Pa J W Hz rad C V ohm 1, with * / ^"
-            ),
+            DimError::Unknown(s) => {
+                let near = KNOWN
+                    .iter()
+                    .map(|k| (edit_distance(&s.to_lowercase(), &k.to_lowercase()), *k))
+                    .min()
+                    .filter(|(d, k)| *d <= 2 && *d < k.len().max(2))
+                    .map(|(_, k)| format!(" (nearest known: `{k}`)"))
+                    .unwrap_or_default();
+                format!(
+                    "unit `{text}`: unknown unit `{s}`{near}; known: {}, 1 (no unit), with * / ^",
+                    KNOWN.join(" ")
+                )
+            }
             other => format!("unit `{text}`: {other}"),
         })
     }
@@ -409,4 +419,25 @@ mod tests {
         let err = dimension(&parse("exp(t)").unwrap(), &units).unwrap_err();
         assert!(err.to_string().contains("argument of exp"), "{err}");
     }
+}
+
+/// The unit names [`Unit::parse`] knows ([`Unit::named`]).
+const KNOWN: [&str; 16] = [
+    "kg", "m", "s", "A", "K", "mol", "cd", "N", "Pa", "J", "W", "Hz", "rad", "C", "V", "ohm",
+];
+
+/// Levenshtein distance, for near-miss suggestions (an unknown unit here, an unknown scene key
+/// in `models::params`).
+pub fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut cur = vec![i + 1];
+        for (j, cb) in b.iter().enumerate() {
+            let sub = prev[j] + usize::from(ca != *cb);
+            cur.push(sub.min(prev[j + 1] + 1).min(cur[j] + 1));
+        }
+        prev = cur;
+    }
+    prev[b.len()]
 }

@@ -16,16 +16,19 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
     version,
     about = "Derive a paper's terms exactly, or run one scene",
     long_about = "impact: the per-computation front end of impactcheck.\n\n\
-        `impact series` builds the Adomian terms a0..aN of the cone equation of \
-        000_92d54b11128ea1ec.txt (18)-(20) exactly; `impact galerkin` derives the plate \
-        coefficients A1..A7 of (16) for a mode (m, n) and sets each beside the printed one."
+        `impact run` runs one scene (a model, its parameters in SI units, how to solve; \
+        `impact describe MODEL` lists its keys), `impact sweep` runs it over a range of one \
+        field. `impact series` builds the Adomian terms a0..aN of the cone equation (18)-(20) \
+        of paper 000 (cone impact on a viscoelastic plate) exactly; `impact galerkin` derives \
+        the plate coefficients A1..A7 of its (16) for a mode (m, n) and sets each beside the \
+        printed one."
 )]
 struct Args {
     #[command(subcommand)]
     command: Command,
 }
 
-#[derive(Clone, Copy, ValueEnum)]
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq, Debug)]
 enum Fmt {
     Text,
     Latex,
@@ -55,7 +58,7 @@ enum Command {
     Run {
         /// The scene file.
         scene: std::path::PathBuf,
-        /// Output format.
+        /// Output format: text or json.
         #[arg(long, value_enum, default_value = "text")]
         format: Fmt,
         /// Also draw the solution against time into this SVG file.
@@ -121,7 +124,7 @@ enum Command {
         #[arg(long, value_enum, default_value = "json")]
         format: Fmt,
     },
-    /// Measure for reports/performance.md (benches/peers/peers.py calls these): `hertz`, `cone`,
+    /// Measure what the benchmark page reports (the peers' script calls these): `hertz`, `cone`,
     /// `pendulum` (work-precision of each method on the peer problems), `algebra` (series a0..a3
     /// symbolic, Galerkin (3,5)), `sweeps` (impacts per second on 1 and all threads), `effects`
     /// (the cost of effects that are off), `scaling` (modes up to (9,9), sweep points),
@@ -156,7 +159,7 @@ enum Command {
         /// Times (s) at which to evaluate a0+...+aN stably in f64 (all symbols must be given).
         #[arg(long, default_value = "")]
         eval_t: String,
-        /// Output format.
+        /// Output format: text, latex or json.
         #[arg(long, value_enum, default_value = "text")]
         format: Fmt,
     },
@@ -171,10 +174,23 @@ enum Command {
         /// Values for numbers beside the exact forms, e.g. `E=2e9,eta=1e6,nu=0.3,a=0.2,b=0.3,h=0.01,rho=1200,Kw=1e6,KG=1e3,CT=10,p1=0,p2=0,tan_theta=1`.
         #[arg(long, default_value = "")]
         at: String,
-        /// Output format.
+        /// Output format: text or json.
         #[arg(long, value_enum, default_value = "text")]
         format: Fmt,
     },
+}
+
+/// The format `f` when the command writes it; else an error naming the formats it writes.
+fn fmt_of(command: &str, f: Fmt, allowed: &[Fmt]) -> Result<Format, String> {
+    if allowed.contains(&f) {
+        return Ok(fmt(f));
+    }
+    let name = |f: &Fmt| format!("{f:?}").to_lowercase();
+    Err(format!(
+        "--format {}: `impact {command}` writes {}",
+        name(&f),
+        allowed.iter().map(name).collect::<Vec<_>>().join(" or ")
+    ))
 }
 
 fn fmt(f: Fmt) -> Format {
@@ -219,12 +235,18 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
                 DocFmt::Markdown => impactcheck::models::doc::markdown(&docs),
             })
         }
-        Command::Merge { files, format } => Ok(cli::merge(&files, fmt(format))?),
+        Command::Merge { files, format } => {
+            let format = fmt_of("merge", format, &[Fmt::Json, Fmt::Csv])?;
+            Ok(cli::merge(&files, format)?)
+        }
         Command::Run {
             scene,
             format,
             plot,
-        } => Ok(cli::run_scene(&scene, fmt(format), plot.as_deref())?),
+        } => {
+            let format = fmt_of("run", format, &[Fmt::Text, Fmt::Json])?;
+            Ok(cli::run_scene(&scene, format, plot.as_deref())?)
+        }
         Command::Sweep {
             scene,
             vary,
@@ -237,6 +259,7 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
             shard,
             out,
         } => {
+            let format = fmt_of("sweep", format, &[Fmt::Text, Fmt::Json, Fmt::Csv])?;
             let sv = match (vary, param, values) {
                 (Some(v), _, _) => cli::parse_vary(&v, log)?,
                 (None, Some(p), Some(v)) => cli::parse_values(&p, &v)?,
@@ -262,9 +285,21 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
             }
             let progress = !quiet && std::io::IsTerminal::is_terminal(&std::io::stderr());
             let Some(path) = out else {
+                // rows already written cannot be taken back: an interrupt ends the stream with
+                // a line that says so (a comment line in CSV, not JSON in a JSON stream)
+                #[cfg(unix)]
+                {
+                    impactcheck::interrupt::install(
+                        "impact: sweep interrupted by a signal; the rows written to stdout are incomplete\n",
+                        None,
+                    );
+                    impactcheck::interrupt::end_stdout_with(
+                        "# impact: sweep interrupted by a signal; the rows above are incomplete",
+                    );
+                }
                 let stdout = std::io::stdout();
                 let mut out = std::io::BufWriter::with_capacity(1 << 16, stdout.lock());
-                cli::sweep(&scene, &sv, fmt(format), progress, &mut out)?;
+                cli::sweep(&scene, &sv, format, progress, &mut out)?;
                 return Ok(String::new());
             };
             // through a temporary beside the output, renamed at the end
@@ -284,7 +319,7 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
             let file = std::fs::File::create(&tmp)
                 .map_err(|e| format!("--out {}: cannot write there: {e}", path.display()))?;
             let mut w = std::io::BufWriter::with_capacity(1 << 16, file);
-            let run = cli::sweep(&scene, &sv, fmt(format), progress, &mut w).and_then(|()| {
+            let run = cli::sweep(&scene, &sv, format, progress, &mut w).and_then(|()| {
                 w.into_inner()
                     .map_err(|e| e.into_error())
                     .and_then(|f| f.sync_all())
@@ -321,11 +356,13 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
             };
             let at = cli::parse_assignments("--at", &at)?;
             let times = cli::parse_times(&eval_t)?;
-            Ok(cli::series(order, visc, &at, &times, fmt(format))?)
+            let format = fmt_of("series", format, &[Fmt::Text, Fmt::Latex, Fmt::Json])?;
+            Ok(cli::series(order, visc, &at, &times, format)?)
         }
         Command::Galerkin { m, n, at, format } => {
+            let format = fmt_of("galerkin", format, &[Fmt::Text, Fmt::Json])?;
             let at = cli::parse_assignments("--at", &at)?;
-            Ok(cli::galerkin(m, n, &at, fmt(format))?)
+            Ok(cli::galerkin(m, n, &at, format)?)
         }
     }
 }

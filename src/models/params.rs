@@ -41,6 +41,19 @@ pub enum SceneError {
         /// Allowed range.
         allowed: String,
     },
+    /// A field whose value is not of its kind: not a number, an unknown unit, a name that
+    /// names nothing.
+    #[error("{path}: {field} = {value}: {problem}")]
+    Invalid {
+        /// File.
+        path: String,
+        /// Dotted field name.
+        field: String,
+        /// Value given.
+        value: String,
+        /// What is wrong, and what is allowed.
+        problem: String,
+    },
     /// A required field is missing.
     #[error("{path}: missing field {field} ({allowed})")]
     Missing {
@@ -122,20 +135,7 @@ pub fn keys_of<T: DeserializeOwned>() -> &'static [&'static str] {
     fields
 }
 
-/// Levenshtein distance, for near-miss suggestions.
-pub(crate) fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut cur = vec![i + 1];
-        for (j, cb) in b.iter().enumerate() {
-            let sub = prev[j] + usize::from(ca != *cb);
-            cur.push(sub.min(prev[j + 1] + 1).min(cur[j] + 1));
-        }
-        prev = cur;
-    }
-    prev[b.len()]
-}
+pub(crate) use crate::algebra::units::edit_distance;
 
 /// Reads the fields of one scene file; `path` names it in every message.
 pub struct Fields<'a> {
@@ -153,6 +153,16 @@ impl Fields<'_> {
             field: field.into(),
             value,
             allowed: allowed.into(),
+        }
+    }
+
+    /// An error for `field` whose value is not of its kind (`problem` says how).
+    pub fn invalid(&self, field: &str, value: String, problem: &str) -> SceneError {
+        SceneError::Invalid {
+            path: self.path.into(),
+            field: field.into(),
+            value,
+            problem: problem.into(),
         }
     }
 
@@ -244,10 +254,12 @@ impl Fields<'_> {
             Some(Value::Float(f)) => *f,
             Some(Value::Integer(i)) => *i as f64,
             Some(other) => {
-                return Err(self.out_of_range(
+                return Err(self.invalid(
                     field,
                     other.to_string(),
-                    &format!("a number, {allowed}"),
+                    &format!(
+                        "not a number; allowed: a number, {allowed} (SI units are implied: no unit is written)"
+                    ),
                 ));
             }
         };

@@ -8,6 +8,7 @@
 
 pub mod row;
 pub mod sweep;
+pub mod warnings;
 
 use crate::models::balls_wall::BallsWallScene;
 use crate::models::cone_plate::ConePlateScene;
@@ -149,13 +150,36 @@ impl std::fmt::Debug for Scene {
     }
 }
 
+/// A TOML error as a reader wants it: the line and column, the parser's message, then the line
+/// of the file and a caret under the place, each on a line of its own.
+pub fn toml_message(e: &toml::de::Error, text: &str) -> String {
+    let message = e.message().trim();
+    let Some(span) = e.span() else {
+        return message.to_string();
+    };
+    let at = span.start.min(text.len());
+    let line_start = text[..at].rfind('\n').map_or(0, |i| i + 1);
+    let line_end = text[at..].find('\n').map_or(text.len(), |i| at + i);
+    let line_no = text[..at].matches('\n').count() + 1;
+    let column = text[line_start..at].chars().count() + 1;
+    let source = text[line_start..line_end].trim_end_matches('\r');
+    let width = line_no.to_string().len();
+    let caret_len = text[at..span.end.clamp(at, line_end)].chars().count().max(1);
+    format!(
+        "line {line_no}, column {column}: {message}\n  {line_no} | {source}\n  {:width$} | {}{}",
+        "",
+        " ".repeat(column - 1),
+        "^".repeat(caret_len)
+    )
+}
+
 /// Parses and validates scene text; `path` names the file in messages.
 pub fn parse(text: &str, path: &str) -> Result<Scene, SceneError> {
     let root: toml::Table = text
         .parse()
         .map_err(|e: toml::de::Error| SceneError::Parse {
             path: path.into(),
-            message: e.to_string().trim().replace('\n', " "),
+            message: toml_message(&e, text),
         })?;
     parse_table(&root, path)
 }
@@ -224,7 +248,7 @@ pub fn read_table(path: &Path) -> Result<toml::Table, SceneError> {
     text.parse()
         .map_err(|e: toml::de::Error| SceneError::Parse {
             path: label,
-            message: e.to_string().trim().replace('\n', " "),
+            message: toml_message(&e, &text),
         })
 }
 
@@ -300,8 +324,8 @@ pub fn set_value(
     Ok(())
 }
 
-/// The number at a dotted field of a scene table (numeric parts index arrays), if it is one.
-pub fn field_value(root: &toml::Table, field: &str) -> Option<f64> {
+/// The value at a dotted field of a scene table (numeric parts index arrays), if it is there.
+pub fn field_raw<'t>(root: &'t toml::Table, field: &str) -> Option<&'t toml::Value> {
     let mut parts = field.split('.');
     let mut cur = root.get(parts.next()?)?;
     for p in parts {
@@ -311,7 +335,12 @@ pub fn field_value(root: &toml::Table, field: &str) -> Option<f64> {
             _ => return None,
         };
     }
-    match cur {
+    Some(cur)
+}
+
+/// The number at a dotted field of a scene table (numeric parts index arrays), if it is one.
+pub fn field_value(root: &toml::Table, field: &str) -> Option<f64> {
+    match field_raw(root, field)? {
         toml::Value::Float(x) => Some(*x),
         toml::Value::Integer(i) => Some(*i as f64),
         _ => None,

@@ -211,13 +211,14 @@ pub fn paper_infos(papers: &[PaperClaims]) -> Vec<crate::report::PaperInfo> {
 /// Why verification could not run.
 #[derive(Debug, thiserror::Error)]
 pub enum VerifyError {
-    /// A claim file could not be read.
-    #[error("{path}: {source}")]
+    /// A claim file could not be read (the OS error is in the message, not a `source`, so that
+    /// a chain of causes prints it once).
+    #[error("{path}: cannot read: {error}")]
     Io {
         /// The file.
         path: PathBuf,
         /// The error.
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// A claim file is malformed.
     #[error("{path}: {message}")]
@@ -336,9 +337,9 @@ pub fn load_claims_with(
     path: &Path,
     papers: Option<&Path>,
 ) -> Result<Vec<PaperClaims>, VerifyError> {
-    let io = |path: &Path, source| VerifyError::Io {
+    let io = |path: &Path, error| VerifyError::Io {
         path: path.to_path_buf(),
-        source,
+        error,
     };
     let mut files: Vec<PathBuf> = if path.is_file() {
         vec![path.to_path_buf()]
@@ -357,7 +358,7 @@ pub fn load_claims_with(
             let mut claims =
                 toml::from_str::<PaperClaims>(&text).map_err(|e| VerifyError::BadClaims {
                     path: p.clone(),
-                    message: e.to_string().trim().replace('\n', " "),
+                    message: crate::scene::toml_message(&e, &text),
                 })?;
             claims.source = p.clone();
             claims.papers_dir = papers.map(Path::to_path_buf);

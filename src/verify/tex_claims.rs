@@ -301,6 +301,8 @@ fn from_paper(
     }
     let mut lefts = Vec::new();
     let mut found_tag = false;
+    // the first relation of the tagged rows the reader could not read, with where it stands
+    let mut unread: Option<String> = None;
     // a left side equal to `lhs` first; then one that is `lhs` times a factor (`m_2 B_A`)
     for exact in [true, false] {
         for (block_after, tex) in &chosen {
@@ -332,6 +334,9 @@ fn from_paper(
                 } else {
                     row.tex.trim().to_string()
                 };
+                if let Some(Err(e)) = row.relations.iter().find(|r| r.is_err()) {
+                    unread.get_or_insert_with(|| format!("`{shown}`: {e}"));
+                }
                 for rel in row.relations.iter().flatten() {
                     let left = rel.sides[0].to_string();
                     match &lhs {
@@ -364,7 +369,10 @@ fn from_paper(
     } else {
         format!("({tag})")
     };
-    Err(err(if found_tag {
+    Err(err(if let (true, Some(why)) = (lefts.is_empty(), &unread) {
+        let at = unread_at(&path, why);
+        format!("{at}{place} is not read: {why}")
+    } else if found_tag {
         format!(
             "no relation of {place} has the left side {}; its left sides: {}",
             lhs.unwrap_or_default(),
@@ -525,8 +533,10 @@ fn formula_from_paper(
     let (latex, lhs) = from_paper(file, id, field, spec, syms, false)?;
     let difference = difference_form(file, id, field, spec)?;
     let nth = nth_relation(file, id, field, spec)?;
-    let mut e = read_side(&latex, lhs.as_deref(), nth, syms, difference)
-        .map_err(|e| bad(file, id, field, format!("`{latex}`: {e}")))?;
+    let mut e = read_side(&latex, lhs.as_deref(), nth, syms, difference).map_err(|e| {
+        let at = where_in_paper(file, &latex);
+        bad(file, id, field, format!("{at}`{latex}`: {e}"))
+    })?;
     // `at = { k = "k1" }`: the formula at other arguments (f1(k) of (2.3) read as f1(k1))
     if let Some(at) = spec.get("at") {
         let at = at
@@ -575,6 +585,38 @@ fn no_opaque(file: &PaperClaims, id: &str, field: &str, e: &Expr) -> Result<(), 
         )),
         None => Ok(()),
     }
+}
+
+/// `line L of PATH: ` for the row quoted first in `why` (between backticks), found in the file
+/// at `path`; empty when it is not found as written.
+fn unread_at(path: &std::path::Path, why: &str) -> String {
+    let row = why.split('`').nth(1).unwrap_or_default();
+    let Ok(text) = std::fs::read_to_string(path) else {
+        return String::new();
+    };
+    line_of(&text, row)
+        .map(|l| format!("line {l} of {}: ", path.display()))
+        .unwrap_or_default()
+}
+
+/// The line (from 1) of `text` where the first non-blank line of `latex` stands.
+fn line_of(text: &str, latex: &str) -> Option<usize> {
+    let first = latex.lines().map(str::trim).find(|l| !l.is_empty())?;
+    text.lines().position(|l| l.contains(first)).map(|i| i + 1)
+}
+
+/// Where the display `latex` stands in the file it was read from (`line L of PATH: `), for a
+/// message about it; empty when it is not found as written (a display split over rows).
+fn where_in_paper(file: &PaperClaims, latex: &str) -> String {
+    let Ok((_, _, path)) = paper_displays(file) else {
+        return String::new();
+    };
+    let Ok(text) = std::fs::read_to_string(&path) else {
+        return String::new();
+    };
+    line_of(&text, latex)
+        .map(|l| format!("line {l} of {}: ", path.display()))
+        .unwrap_or_default()
 }
 
 /// The side an equation's LaTeX gives: the right side of the relation whose left side is `lhs`
@@ -818,8 +860,14 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
                 ("printed_from", latex, lhs, difference, nth)
             }
         };
-        let e = read_side(&latex, lhs.as_deref(), nth, &syms, difference)
-            .map_err(|e| bad(&snapshot, &c.head.id, field, format!("`{latex}`: {e}")))?;
+        let e = read_side(&latex, lhs.as_deref(), nth, &syms, difference).map_err(|e| {
+            let at = if field == "printed_from" {
+                where_in_paper(&snapshot, &latex)
+            } else {
+                String::new()
+            };
+            bad(&snapshot, &c.head.id, field, format!("{at}`{latex}`: {e}"))
+        })?;
         // with `printed` beside `printed_from` and its `lhs`, the side read stands for the
         // left side's symbol in `printed` (A2 of (16) in `A2*Lop*fd`, a term of (15))
         let e = match (c.keys.get("printed"), &lhs) {

@@ -54,14 +54,16 @@ pub(super) fn read_units(
         let field = format!("units.{k}");
         let text = v
             .as_str()
-            .ok_or_else(|| f.out_of_range(&field, v.to_string(), "a unit, e.g. \"m/s\""))?;
-        let u = Unit::parse(text).map_err(|m| f.out_of_range(&field, format!("\"{text}\""), &m))?;
+            .ok_or_else(|| f.invalid(&field, v.to_string(), "not a unit; allowed: a unit as text, e.g. \"m/s\""))?;
+        let u = Unit::parse(text).map_err(|m| f.invalid(&field, format!("\"{text}\""), &m))?;
         if !slots.contains(k) {
-            return Err(f.out_of_range(
+            return Err(f.invalid(
                 &field,
-                k.clone(),
+                format!("\"{text}\""),
                 &format!(
-                    "units of t, the states and the parameters: {}",
+                    "`{k}` is not t, a state or a parameter: a parameter missing from [parameters] \
+                     (or a state from [state])? [units] gives the units of t, the states and the \
+                     parameters: {}",
                     slots.join(", ")
                 ),
             ));

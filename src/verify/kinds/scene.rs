@@ -200,11 +200,21 @@ impl Scene {
         }
         for (sym, field) in &self.bind {
             if self.field(&table, field).is_none() {
+                let why = match crate::scene::field_raw(&table, field) {
+                    Some(v) => format!("is {v}, not a number"),
+                    // a model's default is not in the scene: the claim binds what it states
+                    None if !self.runs.iter().any(|(r, _)| field.starts_with(&format!("{r}."))) => {
+                        "is missing (a field a claim binds is written in the scene, not left to \
+                         the model's default)"
+                            .to_string()
+                    }
+                    None => "is missing or not a number".to_string(),
+                };
                 return Err(claim_err(
                     cx.file,
                     c,
                     &format!("bind.{sym}"),
-                    format!("scene field `{field}` is not a number in {}", self.label),
+                    format!("scene field `{field}` {why} in {}", self.label),
                 ));
             }
         }
