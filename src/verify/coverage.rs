@@ -134,7 +134,11 @@ pub fn missing_texts(papers: &[PaperClaims], dir: Option<&Path>) -> Option<Strin
     let mut folders: Vec<String> = Vec::new();
     for p in &missing {
         for c in looked_in(p, dir) {
-            let folder = c.parent().map_or_else(|| c.clone(), Path::to_path_buf);
+            let folder = match c.parent() {
+                Some(f) if f.as_os_str().is_empty() => PathBuf::from("."),
+                Some(f) => f.to_path_buf(),
+                None => c.clone(),
+            };
             // `..` resolved where the folder exists, shown as given where it does not
             let shown = folder.canonicalize().unwrap_or(folder).display().to_string();
             if !folders.contains(&shown) {
