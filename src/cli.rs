@@ -293,13 +293,20 @@ pub fn run_scene(
             });
         }
         let svg = crate::report::svg::plot_curves(
-            &format!("{}", path.display()),
+            &format!("The run of {}: its curves against time", path.display()),
             "t (s)",
-            "m",
+            "displacement (m)",
             crate::report::svg::Scale::Linear,
             crate::report::svg::Scale::Linear,
             &curves,
         );
+        // the folder the user named for the figure is made if it is not there
+        if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).map_err(|e| RunError::BadArgument {
+                arg: "--plot".into(),
+                message: format!("{}: {e}", dir.display()),
+            })?;
+        }
         std::fs::write(out, svg).map_err(|e| RunError::BadArgument {
             arg: "--plot".into(),
             message: format!("{}: {e}", out.display()),

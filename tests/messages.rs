@@ -49,7 +49,10 @@ fn an_unknown_unit_is_unknown_with_the_nearest_known_one() {
     let e = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{e}");
     assert!(e.contains("units.w = \"Hzz\""), "{e}");
-    assert!(e.contains("unknown unit `Hzz` (nearest known: `Hz`)"), "{e}");
+    assert!(
+        e.contains("unknown unit `Hzz` (nearest known: `Hz`)"),
+        "{e}"
+    );
     assert!(!e.contains("out of range"), "{e}");
 }
 
@@ -103,16 +106,27 @@ fn a_toml_error_gives_its_line_and_a_caret_on_lines_of_their_own() {
         .iter()
         .position(|l| l.contains("bad.toml: line 2, column 9:"))
         .unwrap_or_else(|| panic!("the line and column: {e}"));
-    assert_eq!(lines.get(at + 1).map(|l| l.trim()), Some("2 | title = 3 3"), "{e}");
+    assert_eq!(
+        lines.get(at + 1).map(|l| l.trim()),
+        Some("2 | title = 3 3"),
+        "{e}"
+    );
     let caret = lines.get(at + 2).copied().unwrap_or_default();
-    assert_eq!(caret.trim_start().trim_start_matches('|').trim(), "^^^", "{e}");
+    assert_eq!(
+        caret.trim_start().trim_start_matches('|').trim(),
+        "^^^",
+        "{e}"
+    );
     // the caret stands under the `3 3`, as the source line above it is indented
     assert_eq!(caret.find('^'), lines[at + 1].find("3 3"), "{e}");
 
     // an empty claims file: what is missing, at line 1
     std::fs::write(d.join("empty.toml"), "").expect("written");
     let e = stderr(&verify(&d, &["--claims", "empty.toml"]));
-    assert!(e.contains("empty.toml: line 1, column 1: missing field `paper`\n"), "{e}");
+    assert!(
+        e.contains("empty.toml: line 1, column 1: missing field `paper`\n"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -187,12 +201,25 @@ fn the_help_names_no_internal_file_and_no_old_promise() {
 #[test]
 fn a_format_a_command_does_not_write_is_refused() {
     for (args, says) in [
-        (vec!["run", "scenes/hertz.toml", "--format", "latex"], "`impact run` writes text or json"),
         (
-            vec!["sweep", "scenes/hertz.toml", "--vary", "impactor.v0=1:2:2", "--format", "latex"],
+            vec!["run", "scenes/hertz.toml", "--format", "latex"],
+            "`impact run` writes text or json",
+        ),
+        (
+            vec![
+                "sweep",
+                "scenes/hertz.toml",
+                "--vary",
+                "impactor.v0=1:2:2",
+                "--format",
+                "latex",
+            ],
             "`impact sweep` writes text or json or csv",
         ),
-        (vec!["series", "--format", "csv"], "`impact series` writes text or latex or json"),
+        (
+            vec!["series", "--format", "csv"],
+            "`impact series` writes text or latex or json",
+        ),
     ] {
         let o = Command::new(env!("CARGO_BIN_EXE_impact"))
             .current_dir(env!("CARGO_MANIFEST_DIR"))
@@ -241,7 +268,10 @@ fn a_sweep_csv_has_each_column_once_and_a_common_warning_in_full_once() {
     assert_eq!(out.matches("like row 0: 1e-9 ").count(), 4, "{out}");
     // the last row keeps its own numbers: the atol asked, the atol used, its scale 1e-4 m
     let last = out.lines().last().unwrap_or_default();
-    assert!(last.contains(",like row 0: 1e-9 1.0000000000000002e-13 1e-4,,4"), "{last}");
+    assert!(
+        last.contains(",like row 0: 1e-9 1.0000000000000002e-13 1e-4,,4"),
+        "{last}"
+    );
     let e = stderr(&o);
     assert!(e.contains("5 rows warn `atol tightened from # to #"), "{e}");
 }
@@ -278,7 +308,11 @@ fn a_sweep_to_stdout_ended_by_a_signal_ends_with_a_line_saying_so() {
     let mut rest = Vec::new();
     stdout.read_to_end(&mut rest).expect("the rest");
     let code = child.wait().expect("ends").code();
-    assert_eq!(code, Some(128 + 15), "ended by SIGTERM, with a non-zero exit");
+    assert_eq!(
+        code,
+        Some(128 + 15),
+        "ended by SIGTERM, with a non-zero exit"
+    );
     let all = String::from_utf8_lossy(&[&first[..], &rest[..]].concat()).to_string();
     assert_eq!(
         all.lines().last(),

@@ -331,6 +331,27 @@ pub fn dimension(e: &Expr, unit: &dyn Fn(&str) -> Option<Unit>) -> Result<Unit, 
     }
 }
 
+/// The unit names [`Unit::parse`] knows ([`Unit::named`]).
+const KNOWN: [&str; 16] = [
+    "kg", "m", "s", "A", "K", "mol", "cd", "N", "Pa", "J", "W", "Hz", "rad", "C", "V", "ohm",
+];
+
+/// Levenshtein distance, for near-miss suggestions (an unknown unit here, an unknown scene key
+/// in `models::params`).
+pub fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut cur = vec![i + 1];
+        for (j, cb) in b.iter().enumerate() {
+            let sub = prev[j] + usize::from(ca != *cb);
+            cur.push(sub.min(prev[j + 1] + 1).min(cur[j] + 1));
+        }
+        prev = cur;
+    }
+    prev[b.len()]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -419,25 +440,4 @@ mod tests {
         let err = dimension(&parse("exp(t)").unwrap(), &units).unwrap_err();
         assert!(err.to_string().contains("argument of exp"), "{err}");
     }
-}
-
-/// The unit names [`Unit::parse`] knows ([`Unit::named`]).
-const KNOWN: [&str; 16] = [
-    "kg", "m", "s", "A", "K", "mol", "cd", "N", "Pa", "J", "W", "Hz", "rad", "C", "V", "ohm",
-];
-
-/// Levenshtein distance, for near-miss suggestions (an unknown unit here, an unknown scene key
-/// in `models::params`).
-pub fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut cur = vec![i + 1];
-        for (j, cb) in b.iter().enumerate() {
-            let sub = prev[j] + usize::from(ca != *cb);
-            cur.push(sub.min(prev[j + 1] + 1).min(cur[j] + 1));
-        }
-        prev = cur;
-    }
-    prev[b.len()]
 }

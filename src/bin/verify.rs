@@ -322,7 +322,10 @@ fn check_claims(
     let tick = |id: &str, power: bool| {
         let c = if power { &powered } else { &checked };
         c.fetch_add(1, Ordering::Relaxed);
-        let (c, p) = (checked.load(Ordering::Relaxed), powered.load(Ordering::Relaxed));
+        let (c, p) = (
+            checked.load(Ordering::Relaxed),
+            powered.load(Ordering::Relaxed),
+        );
         bar.set_position(c + p);
         bar.set_message(progress_message((c, claims), (p, powers), id));
         let tenth = powers.div_ceil(10).max(1);
@@ -333,8 +336,13 @@ fn check_claims(
             );
         }
     };
-    let mut outcomes =
-        verify::run_with_progress(papers, root, verify::kinds::BUILTIN, &|id| measured.contains(id), &tick)?;
+    let mut outcomes = verify::run_with_progress(
+        papers,
+        root,
+        verify::kinds::BUILTIN,
+        &|id| measured.contains(id),
+        &tick,
+    )?;
     bar.finish_and_clear();
     outcomes.sort_by(|a, b| report::natural_cmp(&a.id, &b.id));
     Ok(outcomes)

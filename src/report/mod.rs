@@ -6,6 +6,7 @@
 
 pub mod formulas;
 mod outcome;
+pub mod plot;
 pub mod svg;
 
 pub use outcome::{Outcome, PaperInfo, Power, Verdict};
@@ -198,8 +199,9 @@ pub fn render(papers: &[PaperInfo], outcomes: &[Outcome]) -> Vec<(String, String
     readme.push_str(
         "Also: [what accuracy costs in time](timing/accuracy_cost.md) (work-precision of every model and method) and \
          [performance against SciPy](performance.md).\n\n\
-         Running `verify` twice gives byte-identical reports except the measured times, which are kept together in \
-         `timing/` (and `performance*`, written by `benches/peers/run.sh`, not by `verify`).\n\n",
+         Running `verify` twice gives byte-identical reports: the measured times are kept apart, in `timing/` (written \
+         only by `verify --timing`) and `performance*` (written by `benches/peers/run.sh`), so that the main job \
+         leaves a clean checkout clean.\n\n",
     );
     // the papers' claims, and apart from them the solver robustness cases (hard.*)
     let count = |hard: bool| {

@@ -3,6 +3,8 @@
 //! Written by hand: plotters would add a dependency tree and compile time for what is a few
 //! polylines with axes and a legend.
 
+use super::plot::escape;
+
 /// One curve.
 #[derive(Clone)]
 pub struct Series<'a> {
@@ -21,67 +23,9 @@ pub enum Scale {
     Log,
 }
 
-/// The Okabe-Ito palette (safe for the common colour-vision deficiencies), yellow last.
-const COLORS: [&str; 8] = [
-    "#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000", "#F0E442",
-];
-
-fn tf(v: f64, s: Scale) -> Option<f64> {
-    match s {
-        Scale::Linear => v.is_finite().then_some(v),
-        Scale::Log => (v > 0.0 && v.is_finite()).then(|| v.log10()),
-    }
-}
-
-/// Ticks over `[lo, hi]` (in the axis' own coordinate: log10 for a log axis) and the range they
-/// span: 1-2-5 steps on a linear axis, whole decades on a log axis; each with its label.
-fn ticks(lo: f64, hi: f64, scale: Scale) -> (f64, f64, Vec<(f64, String)>) {
-    match scale {
-        Scale::Log => {
-            let (a, b) = (lo.floor(), hi.ceil().max(lo.floor() + 1.0));
-            let n = (b - a) as i64;
-            let every = (n / 6 + 1).max(1);
-            let list = (0..=n)
-                .filter(|k| k % every == 0)
-                .map(|k| {
-                    let e = a as i64 + k;
-                    (e as f64, short_number(10f64.powi(e as i32)))
-                })
-                .collect();
-            (a, b, list)
-        }
-        Scale::Linear => {
-            let span = (hi - lo).max(f64::MIN_POSITIVE);
-            let raw = span / 5.0;
-            let mag = 10f64.powf(raw.log10().floor());
-            let step = [1.0, 2.0, 5.0, 10.0]
-                .iter()
-                .map(|m| m * mag)
-                .find(|s| *s >= raw)
-                .unwrap_or(10.0 * mag);
-            let (a, b) = ((lo / step).floor() * step, (hi / step).ceil() * step);
-            let decimals = (-step.log10().floor()).max(0.0) as usize;
-            let n = ((b - a) / step).round() as i64;
-            let list = (0..=n)
-                .map(|k| {
-                    let v = a + k as f64 * step;
-                    let v = if v.abs() < step * 1e-9 { 0.0 } else { v };
-                    let label = if v != 0.0 && (v.abs() >= 1e5 || v.abs() < 1e-3) {
-                        short_number(v)
-                    } else {
-                        format!("{v:.decimals$}")
-                    };
-                    (v, label)
-                })
-                .collect();
-            (a, b, list)
-        }
-    }
-}
-
-/// Renders a plot with one or more series sharing axes: 1-2-5 ticks (decades on a log axis)
-/// with the shortest labels, axis titles clear of the tick labels, and the legend in a column to
-/// the right of the plot area, outside the data.
+/// Renders a plot with one or more series sharing axes, laid out by [`super::plot::figure`]:
+/// 1-2-5 ticks (decades on a log axis) in one format per axis, axis titles clear of the tick
+/// labels, the legend in a column to the right of the plot area, outside the data.
 pub fn plot(
     title: &str,
     xlabel: &str,
@@ -90,107 +34,17 @@ pub fn plot(
     ys: Scale,
     series: &[Series],
 ) -> String {
-    let (w, h) = (800.0, 460.0);
-    let (left, right, top, bottom) = (84.0, 230.0, 44.0, 64.0);
-    let (pw, ph) = (w - left - right, h - top - bottom);
-    let pts: Vec<(f64, f64)> = series
-        .iter()
-        .flat_map(|s| {
-            s.points
-                .iter()
-                .filter_map(|(x, y)| Some((tf(*x, xs)?, tf(*y, ys)?)))
-        })
-        .collect();
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for (x, y) in &pts {
-        x0 = x0.min(*x);
-        x1 = x1.max(*x);
-        y0 = y0.min(*y);
-        y1 = y1.max(*y);
-    }
-    if pts.is_empty() {
-        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
-    }
-    if x1 - x0 <= 1e-12 * x0.abs().max(1e-300) {
-        let d = if x0 == 0.0 { 1.0 } else { 0.1 * x0.abs() };
-        (x0, x1) = (x0 - d, x1 + d);
-    }
-    if y1 - y0 <= 1e-12 * y0.abs().max(1e-300) {
-        let d = if y0 == 0.0 { 1.0 } else { 0.1 * y0.abs() };
-        (y0, y1) = (y0 - d, y1 + d);
-    }
-    let (x0, x1, xt) = ticks(x0, x1, xs);
-    let (y0, y1, yt) = ticks(y0, y1, ys);
-    let sx = |x: f64| left + (x - x0) / (x1 - x0) * pw;
-    let sy = |y: f64| top + ph - (y - y0) / (y1 - y0) * ph;
-    let mut out = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{w}\" height=\"{h}\" fill=\"white\"/>\n<text x=\"{:.1}\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">{}</text>\n",
-        left + pw / 2.0,
-        escape(title)
-    );
-    out.push_str(&format!(
-        "<rect x=\"{left}\" y=\"{top}\" width=\"{pw}\" height=\"{ph}\" fill=\"none\" stroke=\"black\"/>\n"
-    ));
-    for (v, label) in &xt {
-        let x = sx(*v);
-        out.push_str(&format!(
-            "<line x1=\"{x:.1}\" y1=\"{:.1}\" x2=\"{x:.1}\" y2=\"{:.1}\" stroke=\"black\"/>\n<text x=\"{x:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>\n",
-            top + ph,
-            top + ph + 5.0,
-            top + ph + 18.0,
-            escape(label)
-        ));
-    }
-    for (v, label) in &yt {
-        let y = sy(*v);
-        out.push_str(&format!(
-            "<line x1=\"{:.1}\" y1=\"{y:.1}\" x2=\"{left}\" y2=\"{y:.1}\" stroke=\"black\"/>\n<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}</text>\n",
-            left - 5.0,
-            left - 8.0,
-            y + 4.0,
-            escape(label)
-        ));
-    }
-    out.push_str(&format!(
-        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>\n<text x=\"16\" y=\"{:.1}\" transform=\"rotate(-90 16 {:.1})\" text-anchor=\"middle\">{}</text>\n",
-        left + pw / 2.0,
-        h - 18.0,
-        escape(xlabel),
-        top + ph / 2.0,
-        top + ph / 2.0,
-        escape(ylabel)
-    ));
-    for (i, s) in series.iter().enumerate() {
-        let c = COLORS[i % COLORS.len()];
-        let d: Vec<String> = s
-            .points
-            .iter()
-            .filter_map(|(x, y)| Some(format!("{:.1},{:.1}", sx(tf(*x, xs)?), sy(tf(*y, ys)?))))
-            .collect();
-        let ly = top + 8.0 + 20.0 * i as f64;
-        out.push_str(&format!(
-            "<polyline points=\"{}\" fill=\"none\" stroke=\"{c}\" stroke-width=\"2\"/>\n<line x1=\"{:.1}\" y1=\"{ly:.1}\" x2=\"{:.1}\" y2=\"{ly:.1}\" stroke=\"{c}\" stroke-width=\"3\"/>\n<text x=\"{:.1}\" y=\"{:.1}\">{}</text>\n",
-            d.join(" "),
-            left + pw + 14.0,
-            left + pw + 34.0,
-            left + pw + 40.0,
-            ly + 4.0,
-            escape(s.name)
-        ));
-    }
-    out.push_str("</svg>\n");
-    out
-}
-
-fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
+    super::plot::figure(&super::plot::Figure {
+        title,
+        xlabel,
+        xs,
+        panels: vec![super::plot::Panel {
+            ylabel,
+            ys,
+            series: series.to_vec(),
+        }],
+        caption: Vec::new(),
+    })
 }
 
 /// A scatter plot: one marker per point, one colour per series (for classification maps).
@@ -305,15 +159,15 @@ pub struct MapAxis<'a> {
 pub fn region_map(title: &str, x: &MapAxis, y: &MapAxis, cells: &[Option<bool>]) -> String {
     let (xlabel, xs, x_log) = (x.label, x.values, x.log);
     let (ylabel, ys, y_log) = (y.label, y.values, y.log);
-    let (w, h, left, right, top, bottom) = (760.0, 460.0, 80.0, 190.0, 40.0, 70.0);
+    use super::plot::{uniform_labels, wrap};
+    let (w, left, right, bottom) = (760.0, 80.0, 190.0, 70.0);
+    let title_lines = wrap(title, 14.0, w - 20.0);
+    let top = 22.0 + 18.0 * title_lines.len() as f64;
+    let h = top + 350.0 + bottom;
     let (pw, ph) = (w - left - right, h - top - bottom);
     let (nx, ny) = (xs.len().max(1), ys.len().max(1));
     let (cw, ch) = (pw / nx as f64, ph / ny as f64);
-    let mut out = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{w}\" height=\"{h}\" fill=\"white\"/>\n<text x=\"{}\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">{}</text>\n",
-        left + pw / 2.0,
-        escape(title)
-    );
+    let mut out = super::plot::opening(w, h, &title_lines);
     for j in 0..ny {
         for i in 0..nx {
             let fill = match cells.get(j * nx + i).copied().flatten() {
@@ -338,23 +192,27 @@ pub fn region_map(title: &str, x: &MapAxis, y: &MapAxis, cells: &[Option<bool>])
             (0..5).map(|k| k * (n - 1) / 4).collect()
         }
     };
-    for i in picks(xs.len()) {
+    let xi = picks(xs.len());
+    let xl = uniform_labels(&xi.iter().map(|&i| xs[i]).collect::<Vec<_>>());
+    for (i, label) in xi.iter().zip(&xl) {
         out.push_str(&format!(
             "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>\n",
-            left + (i as f64 + 0.5) * cw,
+            left + (*i as f64 + 0.5) * cw,
             top + ph + 16.0,
-            short_number(xs[i])
+            label
         ));
     }
-    for j in picks(ys.len()) {
+    let yi = picks(ys.len());
+    let yl = uniform_labels(&yi.iter().map(|&j| ys[j]).collect::<Vec<_>>());
+    for (j, label) in yi.iter().zip(&yl) {
         out.push_str(&format!(
             "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\">{}</text>\n",
             left - 6.0,
             top + (ny - 1 - j) as f64 * ch + ch / 2.0 + 4.0,
-            short_number(ys[j])
+            label
         ));
     }
-    let scale = |log: bool| if log { " (log grid)" } else { "" };
+    let scale = |log: bool| if log { " (log scale)" } else { "" };
     out.push_str(&format!(
         "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}{}</text>\n<text x=\"18\" y=\"{:.1}\" transform=\"rotate(-90 18 {:.1})\" text-anchor=\"middle\">{}{}</text>\n",
         left + pw / 2.0,

@@ -164,7 +164,10 @@ pub fn toml_message(e: &toml::de::Error, text: &str) -> String {
     let column = text[line_start..at].chars().count() + 1;
     let source = text[line_start..line_end].trim_end_matches('\r');
     let width = line_no.to_string().len();
-    let caret_len = text[at..span.end.clamp(at, line_end)].chars().count().max(1);
+    let caret_len = text[at..span.end.clamp(at, line_end)]
+        .chars()
+        .count()
+        .max(1);
     format!(
         "line {line_no}, column {column}: {message}\n  {line_no} | {source}\n  {:width$} | {}{}",
         "",

@@ -73,13 +73,16 @@ fn diagram(p: &Problem, x_is_time: bool) -> String {
         })
         .collect();
     plot(
-        &format!("work-precision: {}", p.name),
+        &format!(
+            "What accuracy costs: {}, each method at rtol = atol = 1e-3 to 1e-13",
+            p.name
+        ),
         if x_is_time {
             "time per solve (s)"
         } else {
             "right-hand-side evaluations"
         },
-        "achieved error",
+        "achieved error, relative to max(1, |y|) (max norm at the end)",
         Scale::Log,
         Scale::Log,
         &series,
@@ -141,7 +144,7 @@ pub fn render(repeats: usize) -> Result<Vec<(String, String)>, crate::integrate:
     }
     let mut files = Vec::new();
     let mut md = String::from(
-        "# What accuracy costs in time\n\nWritten by `verify`. For each model: the achieved error (max-norm at the end \
+        "# What accuracy costs in time\n\nWritten by `verify --timing`. For each model: the achieved error (max-norm at the end \
          point, relative for components above 1) against the time per solve and against the right-hand-side \
          evaluations, for each method at rtol = atol = 1e-3 ... 1e-13 (median of repeated solves on this machine; \
          timings are not part of `summary.json`). Lower-left is better: at a given accuracy, pick the method whose \

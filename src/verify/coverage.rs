@@ -140,7 +140,11 @@ pub fn missing_texts(papers: &[PaperClaims], dir: Option<&Path>) -> Option<Strin
                 None => c.clone(),
             };
             // `..` resolved where the folder exists, shown as given where it does not
-            let shown = folder.canonicalize().unwrap_or(folder).display().to_string();
+            let shown = folder
+                .canonicalize()
+                .unwrap_or(folder)
+                .display()
+                .to_string();
             if !folders.contains(&shown) {
                 folders.push(shown);
             }

@@ -502,14 +502,44 @@ pub fn passivity(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Out
         ));
     }
     let svg_name = "000_energy.svg".to_string();
-    let svg = crate::report::svg::plot_curves(
-        "cone on the viscoelastic half-space: energy against time",
-        "t (s)",
-        "energy / impact energy",
-        Scale::Linear,
-        Scale::Linear,
-        &curves,
-    );
+    // one panel per law: the laws' energies differ by orders of magnitude (a law that is not
+    // passive feeds the motion), and one axis would flatten the passive one
+    let mut laws: Vec<&str> = Vec::new();
+    for (n, _) in &curves {
+        let law = n.split(':').next().unwrap_or_default();
+        if !laws.contains(&law) {
+            laws.push(law);
+        }
+    }
+    let ylabels: Vec<String> = laws
+        .iter()
+        .map(|l| format!("{l}: energy / E0 (dimensionless)"))
+        .collect();
+    let svg = crate::report::plot::figure(&crate::report::plot::Figure {
+        title: "Cone on the viscoelastic half-space: the energies against time, one panel per law",
+        xlabel: "t (s)",
+        xs: Scale::Linear,
+        panels: laws
+            .iter()
+            .zip(&ylabels)
+            .map(|(law, ylabel)| crate::report::plot::Panel {
+                ylabel,
+                ys: Scale::Linear,
+                series: curves
+                    .iter()
+                    .filter(|(n, _)| n.split(':').next() == Some(*law))
+                    .map(|(n, p)| crate::report::svg::Series {
+                        name: n,
+                        points: p.clone(),
+                    })
+                    .collect(),
+            })
+            .collect(),
+        caption: vec![format!(
+            "Claim {}: a passive law never has the work done on the material turn negative; E0 is the impact energy.",
+            c.id
+        )],
+    });
     Ok(Outcome {
         id: c.id.clone(),
         paper: paper.paper.clone(),

@@ -364,18 +364,37 @@ fn from_paper(
             }
         }
     }
+    Err(err(not_found(
+        &tag,
+        after,
+        found_tag,
+        (lhs.unwrap_or_default(), &lefts),
+        unread.as_deref(),
+        &path,
+    )))
+}
+
+/// Why `from_paper` found no relation: the tagged row unread (where it stands in the paper and
+/// the reader's error), no relation with the left side asked for, or no display at all.
+fn not_found(
+    tag: &str,
+    after: bool,
+    found_tag: bool,
+    (lhs, lefts): (String, &[String]),
+    unread: Option<&str>,
+    path: &std::path::Path,
+) -> String {
     let place = if after {
         format!("the untagged displays after ({tag})")
     } else {
         format!("({tag})")
     };
-    Err(err(if let (true, Some(why)) = (lefts.is_empty(), &unread) {
-        let at = unread_at(&path, why);
+    if let (true, Some(why)) = (lefts.is_empty(), unread) {
+        let at = unread_at(path, why);
         format!("{at}{place} is not read: {why}")
     } else if found_tag {
         format!(
-            "no relation of {place} has the left side {}; its left sides: {}",
-            lhs.unwrap_or_default(),
+            "no relation of {place} has the left side {lhs}; its left sides: {}",
             lefts.join(", ")
         )
     } else if after {
@@ -385,7 +404,7 @@ fn from_paper(
         )
     } else {
         format!("no display is tagged ({tag}) in {}", path.display())
-    }))
+    }
 }
 
 /// `display = K`: the LaTeX of the paper's K-th display, numbered or not, as the audit counts

@@ -52,9 +52,13 @@ pub(super) fn read_units(
     let mut units = BTreeMap::new();
     for (k, v) in table {
         let field = format!("units.{k}");
-        let text = v
-            .as_str()
-            .ok_or_else(|| f.invalid(&field, v.to_string(), "not a unit; allowed: a unit as text, e.g. \"m/s\""))?;
+        let text = v.as_str().ok_or_else(|| {
+            f.invalid(
+                &field,
+                v.to_string(),
+                "not a unit; allowed: a unit as text, e.g. \"m/s\"",
+            )
+        })?;
         let u = Unit::parse(text).map_err(|m| f.invalid(&field, format!("\"{text}\""), &m))?;
         if !slots.contains(k) {
             return Err(f.invalid(

@@ -213,8 +213,8 @@ impl Map {
                 rtol,
                 ..
             } => format!(
-                "{printed_text} is within {} of the model's {quantity}",
-                g4(*rtol)
+                "{printed_text} is within {} % (relative) of the model's {quantity}",
+                crate::report::svg::short_number(rtol * 100.0)
             ),
         }
     }
@@ -235,19 +235,25 @@ impl Map {
         let what = self.what();
         let (nx, ny) = (axes[0].values.len(), axes[1].values.len());
         let name = format!("{}.svg", c.id.replace('.', "_"));
-        fn axis(a: &Axis) -> crate::report::svg::MapAxis<'_> {
-            crate::report::svg::MapAxis {
-                label: &a.field,
-                values: a.values.as_slice(),
-                log: a.log,
-            }
-        }
-        let svg = crate::report::svg::region_map(
-            &format!("{}: where {}", c.id, what.replace('`', "")),
-            &axis(&axes[0]),
-            &axis(&axes[1]),
-            cells,
-        );
+        let labels = [
+            self.scene.field_label(&axes[0].field),
+            self.scene.field_label(&axes[1].field),
+        ];
+        let axis = |k: usize| crate::report::svg::MapAxis {
+            label: &labels[k],
+            values: axes[k].values.as_slice(),
+            log: axes[k].log,
+        };
+        let title = match &c.reading {
+            Some(r) if !r.trim().is_empty() => format!(
+                "{}: {}. Blue where {}",
+                c.equation,
+                r.trim(),
+                what.replace('`', "")
+            ),
+            _ => format!("{}: where {}", c.equation, what.replace('`', "")),
+        };
+        let svg = crate::report::svg::region_map(&title, &axis(0), &axis(1), cells);
         o.extra_md = Some(format!(
             "\n\n![{}: the region where {} (blue), over {} and {}]({name})\n\n*Figure: claim {}, where the claim holds (blue) and fails (orange) on the grid (data: {}.csv).*",
             c.id,

@@ -137,11 +137,16 @@ impl Kind for Model {
         }
         let mut o = outcome(cx.file, c, verdict, detail);
         if self.axes.len() == 1 && rows.iter().filter(|r| r.is_ok()).count() > 1 {
+            let labels = (
+                self.scene.field_label(&self.axes[0].field),
+                self.scene.quantity_label(&self.quantity),
+            );
             curve_figure(
                 c,
                 &mut o,
                 &self.axes[0],
                 &rows,
+                (&labels.0, &labels.1),
                 &self.quantity,
                 &self.printed.to_string(),
             );
@@ -162,12 +167,14 @@ impl Kind for Model {
 }
 
 /// The model's and the printed curve against a grid's one axis `a`, with their data, in the
-/// claim's outcome: `quantity` names the model's value, `printed` the formula.
+/// claim's outcome: `quantity` names the model's value, `printed` the formula; `labels` are
+/// the axes' titles (field and quantity with their units).
 pub(super) fn curve_figure(
     c: &Head,
     o: &mut Outcome,
     a: &Axis,
     rows: &[Result<(f64, f64), String>],
+    labels: (&str, &str),
     quantity: &str,
     printed: &str,
 ) {
@@ -185,17 +192,44 @@ pub(super) fn curve_figure(
         crate::report::svg::Scale::Linear
     };
     let name = format!("{}.svg", c.id.replace('.', "_"));
-    let svg = crate::report::svg::plot_curves(
-        &format!("{}: {quantity} (model) and the printed formula", c.id),
-        &a.field,
-        quantity,
-        scale,
-        crate::report::svg::Scale::Linear,
-        &[
-            ("model".to_string(), model_curve.clone()),
-            ("printed".to_string(), printed_curve.clone()),
-        ],
-    );
+    let title = match &c.reading {
+        Some(r) if !r.trim().is_empty() => format!("{}: {}", c.equation, r.trim()),
+        _ => format!(
+            "{}: the model's {quantity} and the printed formula",
+            c.equation
+        ),
+    };
+    let printed_name = format!("printed: {printed}");
+    let printed_name = if printed_name.chars().count() > 60 {
+        "printed formula".to_string()
+    } else {
+        printed_name
+    };
+    let svg = crate::report::plot::figure(&crate::report::plot::Figure {
+        title: &title,
+        xlabel: labels.0,
+        xs: scale,
+        panels: vec![crate::report::plot::Panel {
+            ylabel: labels.1,
+            ys: crate::report::svg::Scale::Linear,
+            series: vec![
+                crate::report::svg::Series {
+                    name: "model (integrated)",
+                    points: model_curve.clone(),
+                },
+                crate::report::svg::Series {
+                    name: &printed_name,
+                    points: printed_curve.clone(),
+                },
+            ],
+        }],
+        caption: vec![format!(
+            "Claim {} ({}): the model's {quantity} against the printed `{printed}`, over {}.",
+            c.id,
+            o.verdict.as_str(),
+            a.field
+        )],
+    });
     let csv_name = format!("{}.csv", c.id.replace('.', "_"));
     let mut csv = format!("{},model {quantity},printed\n", a.field);
     for ((x, m), (_, p)) in model_curve.iter().zip(&printed_curve) {

@@ -203,7 +203,11 @@ impl Scene {
                 let why = match crate::scene::field_raw(&table, field) {
                     Some(v) => format!("is {v}, not a number"),
                     // a model's default is not in the scene: the claim binds what it states
-                    None if !self.runs.iter().any(|(r, _)| field.starts_with(&format!("{r}."))) => {
+                    None if !self
+                        .runs
+                        .iter()
+                        .any(|(r, _)| field.starts_with(&format!("{r}."))) =>
+                    {
                         "is missing (a field a claim binds is written in the scene, not left to \
                          the model's default)"
                             .to_string()
@@ -245,6 +249,61 @@ impl Scene {
             cx.units_of_in(c, field, e, &[], &self.model_units(&outcome))?;
         }
         Ok(outcome)
+    }
+
+    /// An axis title for a scene field: the field and its unit as the model documents it (a
+    /// text model's parameter: its `[units]`), e.g. `impactor.v0 (m s^-1)`.
+    pub fn field_label(&self, field: &str) -> String {
+        let unit = self.field_unit(field);
+        match unit.as_deref() {
+            Some("1") => format!("{field} (dimensionless)"),
+            Some(u) => format!("{field} ({u})"),
+            None => field.to_string(),
+        }
+    }
+
+    fn field_unit(&self, field: &str) -> Option<String> {
+        let (table, field) = match field.split_once('.') {
+            Some((run, rest)) if self.runs.iter().any(|(r, _)| r == run) => (None, rest),
+            _ => (Some(&self.base), field),
+        };
+        let base = table.unwrap_or(&self.base);
+        if let Some(name) = field.strip_prefix("parameters.")
+            && let Some(u) = base
+                .get("units")
+                .and_then(|u| u.get(name))
+                .and_then(|u| u.as_str())
+        {
+            return Unit::parse(u).ok().map(|u| u.to_string());
+        }
+        let doc = base
+            .get("model")
+            .and_then(|m| m.as_str())
+            .and_then(|m| crate::scene::describe(m).ok())?;
+        let key = doc
+            .keys
+            .iter()
+            .flat_map(|g| g.iter())
+            .find(|k| k.key == field)?;
+        (key.unit != "-").then(|| {
+            Unit::parse(key.unit)
+                .map(|u| u.to_string())
+                .unwrap_or_else(|_| key.unit.to_string())
+        })
+    }
+
+    /// An axis title for a number the model produces: its path and unit (from one run of the
+    /// base scene), e.g. `contact.max_indentation (m)`.
+    pub fn quantity_label(&self, quantity: &str) -> String {
+        let unit = self
+            .run_point(&[])
+            .ok()
+            .and_then(|(_, out)| self.model_units(&out).get(quantity).map(|u| u.to_string()));
+        match unit.as_deref() {
+            Some("1") => format!("{quantity} (dimensionless)"),
+            Some(u) => format!("{quantity} ({u})"),
+            None => quantity.to_string(),
+        }
     }
 
     /// The unit of each number the model produced in `outcome` (a run's JSON, or with `runs`

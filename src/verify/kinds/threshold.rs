@@ -188,12 +188,18 @@ impl Kind for Threshold {
         }
         let mut o = outcome(cx.file, c, verdict, detail);
         if self.axes.len() == 1 && rows.iter().filter(|r| r.is_ok()).count() > 1 {
+            let quantity = format!("threshold of {}", self.field);
+            let labels = (
+                self.scene.field_label(&self.axes[0].field),
+                self.scene.field_label(&self.field),
+            );
             super::model::curve_figure(
                 c,
                 &mut o,
                 &self.axes[0],
                 &rows,
-                &format!("threshold of {}", self.field),
+                (&labels.0, &format!("threshold of {}", labels.1)),
+                &quantity,
                 &self.printed.to_string(),
             );
         }
