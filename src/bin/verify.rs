@@ -480,6 +480,17 @@ fn write_reports(
                     .is_file()
                     .then(|| "timing/accuracy_cost.md".to_string()),
             )
+            .chain(
+                // the audits from the papers' words an earlier run wrote, kept where the
+                // papers' texts are missing (verify::audit_reports::words_section)
+                std::fs::read_dir(out_dir.join("audit"))
+                    .into_iter()
+                    .flatten()
+                    .flatten()
+                    .map(|e| e.file_name().to_string_lossy().to_string())
+                    .filter(|n| n.ends_with("-words.md"))
+                    .map(|n| format!("audit/{n}")),
+            )
             .collect()
     };
     report::keep_written_links(&mut files, &kept);
