@@ -194,7 +194,7 @@ pub(super) fn billiard_314(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcom
         let svg = crate::report::svg::plot_curves(
             "Coriolis problem: integral curves of (3.13), r against phi",
             "phi (degrees)",
-            "r / r0",
+            "r / r0 (dimensionless)",
             Scale::Linear,
             Scale::Linear,
             &series,
@@ -212,7 +212,7 @@ pub(super) fn billiard_314(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcom
             "integral curves of (3.13)",
             svg_name,
             svg,
-            crate::report::svg::csv_curves("phi (degrees)", "r / r0", &series),
+            crate::report::svg::csv_curves("phi (degrees)", "r / r0 (dimensionless)", &series),
         )
     })
 }

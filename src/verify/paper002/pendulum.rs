@@ -367,8 +367,8 @@ fn pendulum_wall_figure(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, 
         let svg_name = "002_fig2_energy_loss.svg".to_string();
         let svg = crate::report::svg::plot_curves(
             "Fig. 2: relative energy loss of the pendulum against the stiffness ratio",
-            "sigma = c1/c2",
-            "-dT/T0",
+            "stiffness ratio sigma = c1/c2 (dimensionless)",
+            "relative energy loss -dT/T0 (dimensionless)",
             Scale::Linear,
             Scale::Linear,
             &curves,
@@ -412,7 +412,7 @@ fn pendulum_wall_figure(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome, 
             "Fig. 2 recomputed",
             svg_name,
             svg,
-            crate::report::svg::csv_curves("sigma = c1/c2", "-dT/T0", &curves),
+            crate::report::svg::csv_curves("stiffness ratio sigma = c1/c2 (dimensionless)", "relative energy loss -dT/T0 (dimensionless)", &curves),
         );
         o.extra_md = Some(format!("{table}\n\n{}", o.extra_md.unwrap_or_default()));
         o

@@ -352,7 +352,7 @@ pub(super) fn rolling_ball(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcom
             let svg_name = "002_rolling_ball_curves.svg".to_string();
             let svg = crate::report::svg::plot_curves(
                 "rolling ball on a rough table, mu = mu* = 0.5: slip angle phi at C against the normal impulse",
-                "normal impulse I_n (m = 1)",
+                "normal impulse I_n (kg m/s, with m = 1 kg)",
                 "phi (degrees)",
                 Scale::Linear,
                 Scale::Linear,
@@ -371,7 +371,7 @@ pub(super) fn rolling_ball(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcom
                 "integral curves of (4.6)",
                 svg_name,
                 svg,
-                crate::report::svg::csv_curves("normal impulse I_n (m = 1)", "phi (degrees)", &curves),
+                crate::report::svg::csv_curves("normal impulse I_n (kg m/s, with m = 1 kg)", "phi (degrees)", &curves),
             )
         }
         "integrated" => rolling_integrated(paper, c)?,

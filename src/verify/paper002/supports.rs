@@ -674,8 +674,8 @@ pub(super) fn plane_support(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
                 .collect();
             let svg = crate::report::svg::scatter(
                 "plane example of section 4 (b2 > 0): solutions of (3.6) with (3.2)/(3.3)",
-                "mu* (friction at the support)",
-                "a3 (G2A, horizontal)",
+                "mu*, friction at the support (dimensionless)",
+                "a3, horizontal part of G2A (m)",
                 &series,
             );
             outcome(
@@ -691,7 +691,7 @@ pub(super) fn plane_support(paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
                 "classification map",
                 svg_name,
                 svg,
-                crate::report::svg::csv("mu* (friction at the support)", "a3 (G2A, horizontal)", &series),
+                crate::report::svg::csv("mu*, friction at the support (dimensionless)", "a3, horizontal part of G2A (m)", &series),
             )
         }
         _ => return Err(bad("part must be beta, btilde or classification".into())),
