@@ -520,6 +520,8 @@ def main():
               "packages it links: OpenBLAS, LAPACKE, MUMPS, SuiteSparse), runs everything, rewrites this file). For sweeps "
               "larger than one machine see the README (shards and `impact merge`).", ""]
     lines += kept_block(os.path.join(a.out, "performance.md"), "mainjob", [])
+    # written by benches/python_overhead.py (the Python package's own venv)
+    lines += kept_block(os.path.join(a.out, "performance.md"), "python", [])
     open(os.path.join(a.out, "performance.md"), "w").write("\n".join(lines) + "\n")
     print("\n".join(lines))
 

@@ -1,0 +1,135 @@
+"""impactcheck from Python (issue 55): the tool's jobs as functions.
+
+Each function calls the same library code as its command-line twin (``impact run``, ``impact
+sweep``, ``impact describe``, ``verify --format json``) and returns what that command prints, as
+Python objects: dicts for outcomes and verdicts, a ``pandas.DataFrame`` for a sweep (one row per
+point, the outcome's numbers as columns). Bad input raises ``ImpactcheckError`` with the command
+line's message (the file, the line, the key).
+
+A scene is a path, a TOML text or a dict of the same tables (SI units, as in ``scenes/``).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from pathlib import Path
+from typing import Any, Mapping, Optional, Sequence, Union
+
+from ._impactcheck import (
+    ImpactcheckError,
+    describe_json,
+    run_json,
+    sweep_text,
+    toml_of_json,
+    verify_json,
+)
+
+__all__ = ["ImpactcheckError", "describe", "run", "sweep", "sweep_rows", "verify"]
+
+Scene = Union[str, os.PathLike, Mapping[str, Any]]
+
+
+class _ScenePath:
+    """The scene as a file: the path given, or a temporary file holding a TOML text or a dict."""
+
+    def __init__(self, scene: Scene):
+        self._tmp: Optional[tempfile.TemporaryDirectory] = None
+        if isinstance(scene, Mapping):
+            text = toml_of_json(json.dumps(scene))
+            self.path = self._write(text)
+        elif isinstance(scene, os.PathLike) or (
+            isinstance(scene, str) and "\n" not in scene and "=" not in scene
+        ):
+            self.path = str(scene)
+        elif isinstance(scene, str):
+            self.path = self._write(scene)
+        else:
+            raise ImpactcheckError(
+                f"a scene is a path, a TOML text or a dict, not {type(scene).__name__}"
+            )
+
+    def _write(self, text: str) -> str:
+        self._tmp = tempfile.TemporaryDirectory(prefix="impactcheck-")
+        p = Path(self._tmp.name) / "scene.toml"
+        p.write_text(text, encoding="utf-8")
+        return str(p)
+
+    def __enter__(self) -> str:
+        return self.path
+
+    def __exit__(self, *exc) -> None:
+        if self._tmp is not None:
+            self._tmp.cleanup()
+
+
+def describe(model: Optional[str] = None) -> Any:
+    """Every scene key and outcome of ``model`` (unit, range, meaning): ``impact describe``."""
+    return json.loads(describe_json(model))
+
+
+def run(scene: Scene) -> dict:
+    """One run of ``scene``: its outcome as ``impact run --format json`` prints it."""
+    with _ScenePath(scene) as path:
+        return json.loads(run_json(path))
+
+
+def _vary_spec(vary: Union[str, Mapping[str, Sequence[float]]]) -> str:
+    if isinstance(vary, str):
+        return vary
+    if not isinstance(vary, Mapping) or len(vary) != 1:
+        raise ImpactcheckError(
+            "vary is one field and its range: {'impactor.v0': (start, stop, count)} "
+            "or 'impactor.v0=start:stop:count'"
+        )
+    ((key, spec),) = vary.items()
+    if isinstance(spec, str):
+        return f"{key}={spec}"
+    try:
+        start, stop, count = spec
+    except (TypeError, ValueError):
+        raise ImpactcheckError(
+            f"vary[{key!r}] is (start, stop, count), not {spec!r}"
+        ) from None
+    return f"{key}={start!r}:{stop!r}:{int(count)}"
+
+
+def sweep_rows(
+    scene: Scene,
+    vary: Union[str, Mapping[str, Sequence[float]]],
+    log: bool = False,
+    shard: Optional[str] = None,
+) -> list:
+    """The runs of ``impact sweep --format json``, in index order: dicts with ``index``,
+    ``value`` and ``result`` (or ``error``)."""
+    with _ScenePath(scene) as path:
+        return json.loads(sweep_text(path, _vary_spec(vary), "json", log, shard))["runs"]
+
+
+def sweep(
+    scene: Scene,
+    vary: Union[str, Mapping[str, Sequence[float]]],
+    log: bool = False,
+    shard: Optional[str] = None,
+):
+    """A sweep as a ``pandas.DataFrame``: one row per point, in index order; the columns of
+    ``impact sweep --format csv`` (the swept field, the outcome's numbers with nested keys dotted,
+    the warnings and the error of each point), indexed by the point's index."""
+    import io
+
+    import pandas as pd
+
+    with _ScenePath(scene) as path:
+        text = sweep_text(path, _vary_spec(vary), "csv", log, shard)
+    return pd.read_csv(io.StringIO(text), index_col="index")
+
+
+def verify(
+    claims: Optional[Union[str, os.PathLike]] = None,
+    only: Optional[str] = None,
+    power: bool = False,
+) -> dict:
+    """The verdicts of a claims file or folder (default: the repository's ``verify/``), as
+    ``verify --claims PATH --format json`` prints them; nothing is written."""
+    return json.loads(verify_json(None if claims is None else str(claims), only, power))
