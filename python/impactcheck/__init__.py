@@ -18,15 +18,29 @@ from pathlib import Path
 from typing import Any, Mapping, Optional, Sequence, Union
 
 from ._impactcheck import (
+    audit_json,
+    init_text,
     ImpactcheckError,
     describe_json,
     run_json,
+    series_json,
     sweep_text,
     toml_of_json,
     verify_json,
 )
 
-__all__ = ["ImpactcheckError", "describe", "run", "sweep", "sweep_rows", "verify"]
+__all__ = [
+    "Audit",
+    "ImpactcheckError",
+    "audit",
+    "describe",
+    "init",
+    "run",
+    "series",
+    "sweep",
+    "sweep_rows",
+    "verify",
+]
 
 Scene = Union[str, os.PathLike, Mapping[str, Any]]
 
@@ -64,6 +78,44 @@ class _ScenePath:
             self._tmp.cleanup()
 
 
+class Audit(dict):
+    """A paper's audit as ``verify audit --format json`` prints it (``relations``, ``symbols``),
+    with each list as a ``pandas.DataFrame`` at hand."""
+
+    def to_frame(self, what: str = "relations"):
+        """``relations`` (one row per relation: number, status, why, ...) or ``symbols``."""
+        import pandas as pd
+
+        return pd.DataFrame(self[what])
+
+
+def _paths(files) -> list:
+    if files is None:
+        return []
+    if isinstance(files, (str, os.PathLike)):
+        return [str(files)]
+    return [str(f) for f in files]
+
+
+def audit(paper, units=None, preamble=None, vocabulary=None) -> Audit:
+    """The units of every relation of ``paper`` (its LaTeX, or a text with display math):
+    ``verify audit PAPER --format json``. ``units`` is a TOML file of symbols and units (a claims
+    file serves); without it the units come from the paper's words."""
+    return Audit(
+        json.loads(
+            audit_json(str(paper), None if units is None else str(units), _paths(preamble), _paths(vocabulary))
+        )
+    )
+
+
+def init(paper, id: str, units=None, preamble=None, vocabulary=None) -> str:
+    """The claims file to start from for ``paper``, its claims' ids starting ``id``:
+    ``verify init PAPER --paper ID``, as text (save it beside the paper)."""
+    return init_text(
+        str(paper), id, None if units is None else str(units), _paths(preamble), _paths(vocabulary)
+    )
+
+
 def describe(model: Optional[str] = None) -> Any:
     """Every scene key and outcome of ``model`` (unit, range, meaning): ``impact describe``."""
     return json.loads(describe_json(model))
@@ -73,6 +125,21 @@ def run(scene: Scene) -> dict:
     """One run of ``scene``: its outcome as ``impact run --format json`` prints it."""
     with _ScenePath(scene) as path:
         return json.loads(run_json(path))
+
+
+def series(
+    order: int,
+    viscous: str = "2zz",
+    at: Union[str, Mapping[str, Any], None] = None,
+    eval_t: Sequence[float] = (),
+) -> dict:
+    """The Adomian terms a0..a``order`` of the cone equation (18)-(20) of paper 000, exactly, as
+    ``impact series --format json`` prints them; ``at`` gives exact values (``{"alpha": "-3",
+    "gamma": "5/2"}`` or ``"alpha=-3,gamma=5/2"``), ``eval_t`` times to evaluate the sum at."""
+    if isinstance(at, Mapping):
+        at = ",".join(f"{k}={v}" for k, v in at.items())
+    times = ",".join(repr(float(t)) for t in eval_t)
+    return json.loads(series_json(int(order), viscous, at or "", times))
 
 
 def _vary_spec(vary: Union[str, Mapping[str, Sequence[float]]]) -> str:

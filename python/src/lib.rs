@@ -119,6 +119,85 @@ fn verify_json(
     .map_err(ImpactcheckError::new_err)
 }
 
+/// `impact series --order N [--viscous zz|2zz] [--at A] [--eval-t T] --format json`: the
+/// Adomian terms of 000 (18)-(20), exactly.
+#[pyfunction]
+#[pyo3(signature = (order, viscous="2zz", at="", eval_t=""))]
+fn series_json(
+    py: Python<'_>,
+    order: usize,
+    viscous: &str,
+    at: &str,
+    eval_t: &str,
+) -> PyResult<String> {
+    let viscous = match viscous {
+        "2zz" => impactcheck::algebra::series::Viscous::TwoZZ,
+        "zz" => impactcheck::algebra::series::Viscous::ZZ,
+        other => return Err(err(format!("viscous {other:?}: \"2zz\" or \"zz\""))),
+    };
+    py.detach(|| {
+        let at = cli::parse_assignments("--at", at)?;
+        let times = cli::parse_times(eval_t)?;
+        cli::series(order, viscous, &at, &times, Format::Json)
+    })
+    .map_err(err)
+}
+
+/// The paper read and audited as `verify audit` (or, `init`, `verify init`) does; what the
+/// command prints on stderr goes to stderr.
+fn read_paper(
+    paper: &Path,
+    units: Option<&Path>,
+    preamble: &[PathBuf],
+    vocabulary: &[PathBuf],
+    init: bool,
+) -> anyhow::Result<impactcheck::verify::audit_paper::PaperAudit> {
+    impactcheck::verify::audit_paper::audit_paper(
+        paper,
+        units,
+        preamble,
+        vocabulary,
+        init,
+        &mut |line| eprintln!("verify: {line}"),
+    )
+}
+
+/// `verify audit PAPER [--units FILE] [--preamble F]... [--vocabulary F]... --format json`; what
+/// the command prints on stderr goes to stderr.
+#[pyfunction]
+#[pyo3(signature = (paper, units=None, preamble=vec![], vocabulary=vec![]))]
+fn audit_json(
+    py: Python<'_>,
+    paper: PathBuf,
+    units: Option<PathBuf>,
+    preamble: Vec<PathBuf>,
+    vocabulary: Vec<PathBuf>,
+) -> PyResult<String> {
+    py.detach(|| {
+        let p = read_paper(&paper, units.as_deref(), &preamble, &vocabulary, false)?;
+        Ok::<_, anyhow::Error>(serde_json::to_string_pretty(&p.audit)?)
+    })
+    .map_err(|e| err(format!("{e:#}")))
+}
+
+/// `verify init PAPER --paper ID [--units FILE] ...`: the claims file to start from, as text.
+#[pyfunction]
+#[pyo3(signature = (paper, id, units=None, preamble=vec![], vocabulary=vec![]))]
+fn init_text(
+    py: Python<'_>,
+    paper: PathBuf,
+    id: &str,
+    units: Option<PathBuf>,
+    preamble: Vec<PathBuf>,
+    vocabulary: Vec<PathBuf>,
+) -> PyResult<String> {
+    py.detach(|| {
+        let p = read_paper(&paper, units.as_deref(), &preamble, &vocabulary, true)?;
+        Ok::<_, anyhow::Error>(impactcheck::verify::audit_paper::init_claims(&p, id))
+    })
+    .map_err(|e| err(format!("{e:#}")))
+}
+
 /// A scene given as a dict (its JSON) as TOML text, for the scene reader.
 #[pyfunction]
 fn toml_of_json(text: &str) -> PyResult<String> {
@@ -139,5 +218,8 @@ fn _impactcheck(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep_text, m)?)?;
     m.add_function(wrap_pyfunction!(verify_json, m)?)?;
     m.add_function(wrap_pyfunction!(toml_of_json, m)?)?;
+    m.add_function(wrap_pyfunction!(series_json, m)?)?;
+    m.add_function(wrap_pyfunction!(audit_json, m)?)?;
+    m.add_function(wrap_pyfunction!(init_text, m)?)?;
     Ok(())
 }

@@ -61,6 +61,37 @@ def test_a_sweep_of_20000_hertz_impacts_is_the_command_lines_to_the_bit():
     assert csv.splitlines()[0].split(",") == [*frame.columns, "index"]
 
 
+def test_series_is_the_command_lines_exact_terms():
+    want = json.loads(
+        cli("impact", "series", "--order", "2", "--at", "alpha=-3,gamma=5/2,v0=1,a8=7,a9=1/3", "--format", "json")
+    )
+    assert ic.series(2, at={"alpha": "-3", "gamma": "5/2", "v0": 1, "a8": 7, "a9": "1/3"}) == want
+    assert ic.series(1, viscous="zz") == json.loads(
+        cli("impact", "series", "--order", "1", "--viscous", "zz", "--format", "json")
+    )
+    with pytest.raises(ic.ImpactcheckError, match="too large"):
+        ic.series(9)
+
+
+def test_audit_and_init_of_the_test_paper_are_the_command_lines():
+    paper = "tests/papers/spring_dashpot/paper.tex"
+    units = "tests/papers/spring_dashpot/claims.toml"
+    want = json.loads(cli("verify", "audit", paper, "--units", units, "--format", "json"))
+    got = ic.audit(ROOT / paper, units=ROOT / units)
+    assert dict(got) == want
+    frame = got.to_frame()
+    assert len(frame) == len(want["relations"]) > 0
+    assert list(frame["status"]) == [r["status"] for r in want["relations"]]
+    # from its words alone
+    words = "tests/papers/words/paper.tex"
+    assert dict(ic.audit(ROOT / words)) == json.loads(cli("verify", "audit", words, "--format", "json"))
+    assert ic.init(ROOT / paper, "sd", units=ROOT / units) == cli(
+        "verify", "init", str(ROOT / paper), "--units", str(ROOT / units), "--paper", "sd"
+    )
+    with pytest.raises(ic.ImpactcheckError, match="reading the paper"):
+        ic.audit(ROOT / "no" / "paper.tex")
+
+
 def test_verify_gives_the_command_lines_verdicts():
     want = json.loads(cli("verify", "--only", "classics", "--format", "json"))
     got = ic.verify(only="classics")

@@ -539,91 +539,22 @@ fn run_paper(command: &Command) -> Result<bool> {
             ..
         } => (paper, units, preamble, vocabulary),
     };
-    let mut vocab = verify::words::vocabulary::Vocabulary::builtin().map_err(|message| {
-        verify::VerifyError::BadClaims {
-            path: "src/verify/words/vocabulary.toml".into(),
-            message,
-        }
-    })?;
-    for v in vocabulary {
-        let text = std::fs::read_to_string(v).map_err(|e| verify::VerifyError::BadClaims {
-            path: v.clone(),
-            message: format!("cannot read the vocabulary: {e}"),
-        })?;
-        let more = verify::words::vocabulary::Vocabulary::parse(&text, "the vocabulary").map_err(
-            |message| verify::VerifyError::BadClaims {
-                path: v.clone(),
-                message,
-            },
-        )?;
-        vocab = vocab.extended(more);
-    }
-    let text = std::fs::read_to_string(paper)
-        .with_context(|| format!("reading the paper {}", paper.display()))?;
-    let units = match units {
-        Some(u) => verify::audit::read_units(u)?,
-        None => Default::default(),
-    };
-    let mut macros = String::new();
-    for p in preamble {
-        macros.push_str(
-            &std::fs::read_to_string(p)
-                .with_context(|| format!("reading the preamble {}", p.display()))?,
-        );
-        macros.push('\n');
-    }
-    let (blocks, doc) = verify::tex_claims::blocks_at(&text, paper.parent(), &macros);
-    for problem in doc.iter().flat_map(|d| &d.problems) {
-        if problem.contains(verify::tex_claims::OUTSIDE) {
-            bail!("{}: {problem}", paper.display());
-        }
-        eprintln!("verify: {}: {problem}", paper.display());
-    }
-    if blocks.is_empty() {
-        let none = format!(
-            "{}: no display math found ($$ ... $$, \\[ ... \\], equation, align, gather, multline, eqnarray)",
-            paper.display()
-        );
-        // an audit of a text without displays is empty (a thesis whose chapters are missing,
-        // a note in words); a scaffold of nothing is no scaffold
-        if matches!(command, Command::Init { .. }) {
-            bail!("{none}");
-        }
-        eprintln!("verify: {none}: the audit is empty");
-    }
-    // the units the paper's words give its symbols (a displays extract has no words)
-    let units = if doc.is_some() {
-        let expanded = impactcheck::algebra::tex::macros::expand_with(&text, &macros)
-            .map_or_else(|_| text.clone(), |e| e.0);
-        let words = verify::audit::paper_words(&expanded, &blocks, &units, &vocab);
-        for note in &words.notes {
-            eprintln!("verify: {}: {note}", paper.display());
-        }
-        units.with_words(words)
-    } else {
-        units
-    };
-    let a = verify::audit::audit(&blocks, doc.as_ref(), &units);
-    let name = paper
-        .file_name()
-        .map_or_else(String::new, |n| n.to_string_lossy().to_string());
+    let p = verify::audit_paper::audit_paper(
+        paper,
+        units.as_deref(),
+        preamble,
+        vocabulary,
+        matches!(command, Command::Init { .. }),
+        &mut |line| eprintln!("verify: {line}"),
+    )?;
+    let (a, name) = (&p.audit, &p.name);
     match command {
         Command::Audit { format, .. } => match format {
-            AuditFmt::Text => print!("{}", verify::audit::to_text(&a)),
-            AuditFmt::Json => println!("{}", serde_json::to_string_pretty(&a)?),
-            AuditFmt::Markdown => print!("{}", verify::audit::to_markdown(&a, &name)),
+            AuditFmt::Text => print!("{}", verify::audit::to_text(a)),
+            AuditFmt::Json => println!("{}", serde_json::to_string_pretty(a)?),
+            AuditFmt::Markdown => print!("{}", verify::audit::to_markdown(a, name)),
         },
-        Command::Init { id, .. } => {
-            let numbers = verify::coverage::numbers(&name, &text);
-            let title = doc
-                .as_ref()
-                .and_then(|_| verify::audit::title_of(&text))
-                .unwrap_or_else(|| name.clone());
-            print!(
-                "{}",
-                verify::audit::init_claims(&a, &numbers, id, &name, &title, &units)
-            );
-        }
+        Command::Init { id, .. } => print!("{}", verify::audit_paper::init_claims(&p, id)),
     }
     Ok(true)
 }

@@ -8,6 +8,7 @@
 pub mod accuracy;
 pub mod audit;
 mod audit_init;
+pub mod audit_paper;
 pub mod audit_reports;
 pub mod coverage;
 /// FNV-1a with a 128-bit state: a stable hash for change detection (the keys of

@@ -1,0 +1,122 @@
+//! `verify audit` and `verify init` as a library call (issue 55: the Python package's `audit`
+//! and `init` run this same code): the paper read as LaTeX (its macros, with the preambles
+//! given), the units of its symbols from a units file and from its own words (with the
+//! vocabularies given), every relation audited; the claims file to start from.
+
+use super::audit::{Audit, Units};
+use std::path::{Path, PathBuf};
+
+/// A paper read and audited.
+pub struct PaperAudit {
+    /// Every relation and symbol, as `verify audit --format json` prints it.
+    pub audit: Audit,
+    /// The paper's file name.
+    pub name: String,
+    /// The paper's text.
+    pub text: String,
+    /// Whether the text is a LaTeX document (not a displays extract).
+    pub document: bool,
+    /// The units used: the units file's, then the words'.
+    pub units: Units,
+}
+
+/// Reads `paper` and audits it as `verify audit` does; `say` hears what the command line prints
+/// on stderr (a reader's problem, the words' notes) as it happens. `init` refuses a paper with no
+/// display (a scaffold of nothing is no scaffold), where an audit is only empty.
+pub fn audit_paper(
+    paper: &Path,
+    units: Option<&Path>,
+    preamble: &[PathBuf],
+    vocabulary: &[PathBuf],
+    init: bool,
+    say: &mut dyn FnMut(String),
+) -> anyhow::Result<PaperAudit> {
+    use anyhow::Context;
+    let mut vocab = super::words::vocabulary::Vocabulary::builtin().map_err(|message| {
+        super::VerifyError::BadClaims {
+            path: "src/verify/words/vocabulary.toml".into(),
+            message,
+        }
+    })?;
+    for v in vocabulary {
+        let text = std::fs::read_to_string(v).map_err(|e| super::VerifyError::BadClaims {
+            path: v.clone(),
+            message: format!("cannot read the vocabulary: {e}"),
+        })?;
+        let more = super::words::vocabulary::Vocabulary::parse(&text, "the vocabulary").map_err(
+            |message| super::VerifyError::BadClaims {
+                path: v.clone(),
+                message,
+            },
+        )?;
+        vocab = vocab.extended(more);
+    }
+    let text = std::fs::read_to_string(paper)
+        .with_context(|| format!("reading the paper {}", paper.display()))?;
+    let units = match units {
+        Some(u) => super::audit::read_units(u)?,
+        None => Default::default(),
+    };
+    let mut macros = String::new();
+    for p in preamble {
+        macros.push_str(
+            &std::fs::read_to_string(p)
+                .with_context(|| format!("reading the preamble {}", p.display()))?,
+        );
+        macros.push('\n');
+    }
+    let (blocks, doc) = super::tex_claims::blocks_at(&text, paper.parent(), &macros);
+    for problem in doc.iter().flat_map(|d| &d.problems) {
+        if problem.contains(super::tex_claims::OUTSIDE) {
+            anyhow::bail!("{}: {problem}", paper.display());
+        }
+        say(format!("{}: {problem}", paper.display()));
+    }
+    if blocks.is_empty() {
+        let none = format!(
+            "{}: no display math found ($$ ... $$, \\[ ... \\], equation, align, gather, multline, eqnarray)",
+            paper.display()
+        );
+        // an audit of a text without displays is empty (a thesis whose chapters are missing,
+        // a note in words); a scaffold of nothing is no scaffold
+        if init {
+            anyhow::bail!("{none}");
+        }
+        say(format!("{none}: the audit is empty"));
+    }
+    // the units the paper's words give its symbols (a displays extract has no words)
+    let units = if doc.is_some() {
+        let expanded = crate::algebra::tex::macros::expand_with(&text, &macros)
+            .map_or_else(|_| text.clone(), |e| e.0);
+        let words = super::audit::paper_words(&expanded, &blocks, &units, &vocab);
+        for note in &words.notes {
+            say(format!("{}: {note}", paper.display()));
+        }
+        units.with_words(words)
+    } else {
+        units
+    };
+    let audit = super::audit::audit(&blocks, doc.as_ref(), &units);
+    let name = paper
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().to_string());
+    Ok(PaperAudit {
+        audit,
+        name,
+        text,
+        document: doc.is_some(),
+        units,
+    })
+}
+
+/// The claims file `verify init` prints for an audited paper, its claims' ids starting `id`.
+pub fn init_claims(p: &PaperAudit, id: &str) -> String {
+    let numbers = super::coverage::numbers(&p.name, &p.text);
+    let title = if p.document {
+        super::audit::title_of(&p.text)
+    } else {
+        None
+    }
+    .unwrap_or_else(|| p.name.clone());
+    super::audit::init_claims(&p.audit, &numbers, id, &p.name, &title, &p.units)
+}
