@@ -3,7 +3,7 @@
 //!
 //! The snapshots were written by `impact run` at commit "000's printed formulas as text", before
 //! the models owned their parameters and outcomes (the JSON trees were then assembled by hand in
-//! `src/cli.rs`); they pin the keys, their nesting and the numbers of the contract across that and
+//! `src/cli/`); they pin the keys, their nesting and the numbers of the contract across that and
 //! later refactors. A scene added to `scenes/` needs its snapshot (the test says so). Numbers in
 //! the JSON compare to 1e-12 relative, the rest exactly.
 

@@ -22,7 +22,7 @@ from ._impactcheck import (
     init_text,
     ImpactcheckError,
     describe_json,
-    run_json,
+    run_traced_json,
     series_json,
     sweep_text,
     toml_of_json,
@@ -32,6 +32,7 @@ from ._impactcheck import (
 __all__ = [
     "Audit",
     "ImpactcheckError",
+    "Run",
     "audit",
     "describe",
     "init",
@@ -121,10 +122,72 @@ def describe(model: Optional[str] = None) -> Any:
     return json.loads(describe_json(model))
 
 
-def run(scene: Scene) -> dict:
-    """One run of ``scene``: its outcome as ``impact run --format json`` prints it."""
+def _heading(name: str, unit: str) -> str:
+    """``z (m)``; a pure number (unit ``1``) by its name alone, as the command line heads it."""
+    return name if unit in ("", "1") else f"{name} ({unit})"
+
+
+def _array(values) -> "numpy.ndarray":
+    import numpy as np
+
+    # JSON writes a NaN as null
+    return np.array([np.nan if v is None else v for v in values], dtype=np.float64)
+
+
+class Run(dict):
+    """One run: the outcome as ``impact run --format json`` prints it (this dict), and the path
+    ``impact run --trace FILE.json`` writes, as NumPy arrays whose names carry the SI units:
+
+    - ``time``: the independent variable at every accepted step (``variable`` names it, ``t (s)``);
+    - ``states``: ``{"z (m)": array, "dz/dt (m/s)": array, ...}``, each as long as ``time``;
+    - ``events``: ``{"event": names, "t (s)": where each fired, "z (m)": ..., ...}``, in the
+      order they fired;
+    - ``units``: the unit of each quantity by name (``{"t": "s", "z": "m", ...}``).
+
+    A model that integrates no path in time (``traced`` is false) has empty arrays.
+    ``to_frame()`` gives the steps as a ``pandas.DataFrame``, ``to_frame("events")`` the events.
+    """
+
+    def __init__(self, outcome: dict, trace: Optional[dict]):
+        import numpy as np
+
+        super().__init__(outcome)
+        self.traced = trace is not None
+        if trace is None:
+            trace = {"variable": {"name": "t", "unit": "s", "values": []}, "states": [], "events": []}
+        var = trace["variable"]
+        self.variable = _heading(var["name"], var["unit"])
+        self.time = _array(var["values"])
+        self.units = {var["name"]: var["unit"]}
+        self.states = {}
+        for c in trace["states"]:
+            self.units[c["name"]] = c["unit"]
+            self.states[_heading(c["name"], c["unit"])] = _array(c["values"])
+        events = trace["events"]
+        self.events = {
+            "event": np.array([e["name"] for e in events], dtype=object),
+            self.variable: _array([e["at"] for e in events]),
+        }
+        for i, h in enumerate(self.states):
+            self.events[h] = _array([e["state"][i] for e in events])
+
+    def to_frame(self, what: str = "steps"):
+        """``steps`` (the variable and the states, one row per accepted step) or ``events``."""
+        import pandas as pd
+
+        if what == "events":
+            return pd.DataFrame(self.events)
+        if what != "steps":
+            raise ImpactcheckError(f"to_frame({what!r}): 'steps' or 'events'")
+        return pd.DataFrame({self.variable: self.time, **self.states})
+
+
+def run(scene: Scene) -> Run:
+    """One run of ``scene`` (``impact run SCENE --format json --trace FILE.json``): the outcome
+    as a dict, with the path as NumPy arrays (``time``, ``states``, ``events``; see ``Run``)."""
     with _ScenePath(scene) as path:
-        return json.loads(run_json(path))
+        outcome, trace = run_traced_json(path)
+    return Run(json.loads(outcome), None if trace is None else json.loads(trace))
 
 
 def series(

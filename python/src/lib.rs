@@ -1,8 +1,8 @@
 //! The native half of the Python package `impactcheck` (issue 55): each function calls the same
 //! library code as its command-line twin and hands back that command's JSON as text, which the
 //! Python half (`impactcheck/__init__.py`) turns into dicts, arrays and frames. Errors become
-//! `impactcheck.ImpactcheckError` with the command line's message (file, line, key); a panic
-//! becomes pyo3's `PanicException` and never unwinds into the interpreter.
+//! `impactcheck.ImpactcheckError` with the command line's message (file, line, key); so does a
+//! panic ([`guarded`]), which never unwinds into the interpreter.
 
 use impactcheck::cli::{self, Format};
 use pyo3::create_exception;
@@ -21,22 +21,59 @@ fn err(e: impl std::fmt::Display) -> PyErr {
     ImpactcheckError::new_err(e.to_string())
 }
 
+/// Runs a job with the interpreter released. Its error becomes `ImpactcheckError` with the
+/// command line's message (a chain of causes written out, as `{:#}` writes them); a panic, which
+/// would be a bug, is caught here and becomes `ImpactcheckError` too, so that no panic unwinds
+/// into the interpreter and `except Exception` sees it (pyo3's own `PanicException` derives
+/// from `BaseException`).
+fn guarded<T, E>(py: Python<'_>, job: impl FnOnce() -> Result<T, E> + Send) -> PyResult<T>
+where
+    T: Send,
+    E: std::fmt::Display + Send,
+{
+    py.detach(|| std::panic::catch_unwind(std::panic::AssertUnwindSafe(job)))
+        .map_err(|payload| {
+            let what = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "no message".into());
+            err(format!(
+                "internal error (a bug in impactcheck; please report it with the input): {what}"
+            ))
+        })?
+        .map_err(|e| err(format!("{e:#}")))
+}
+
+/// Panics inside [`guarded`], with `message`: how the tests show that a panic reaches Python as
+/// `ImpactcheckError` and leaves the interpreter alive. Not part of the package's interface.
+#[pyfunction]
+fn _panic_for_test(py: Python<'_>, message: String) -> PyResult<()> {
+    guarded(py, || -> Result<(), String> { panic!("{message}") })
+}
+
 /// `impact describe [MODEL] --format json`.
 #[pyfunction]
 #[pyo3(signature = (model=None))]
-fn describe_json(model: Option<&str>) -> PyResult<String> {
-    let text = match model {
-        Some(m) => serde_json::to_string(impactcheck::scene::describe(m).map_err(err)?),
-        None => serde_json::to_string(&impactcheck::scene::DOCS.to_vec()),
-    };
-    text.map_err(err)
+fn describe_json(py: Python<'_>, model: Option<&str>) -> PyResult<String> {
+    guarded(py, || match model {
+        Some(m) => impactcheck::scene::describe(m)
+            .and_then(|d| serde_json::to_string(d).map_err(|e| e.to_string())),
+        None => {
+            serde_json::to_string(&impactcheck::scene::DOCS.to_vec()).map_err(|e| e.to_string())
+        }
+    })
 }
 
-/// `impact run SCENE --format json`.
+/// `impact run SCENE --format json --trace FILE.json`: the outcome's JSON (what the command
+/// prints) and the path's (what it writes), or no path (`None`) for a model that integrates none.
 #[pyfunction]
-fn run_json(py: Python<'_>, scene: PathBuf) -> PyResult<String> {
-    py.detach(|| cli::run_scene(&scene, Format::Json, None))
-        .map_err(err)
+fn run_traced_json(py: Python<'_>, scene: PathBuf) -> PyResult<(String, Option<String>)> {
+    guarded(py, || {
+        let (outcome, trace) = cli::run_scene_traced(&scene, Format::Json)?;
+        let trace = trace.map(|t| serde_json::to_string(&t).unwrap_or_default());
+        Ok::<_, cli::RunError>((outcome, trace))
+    })
 }
 
 /// `impact sweep SCENE --vary VARY [--log] [--shard K/N] --format FORMAT`: the runs in index
@@ -56,7 +93,7 @@ fn sweep_text(
         "csv" => Format::Csv,
         other => return Err(err(format!("format {other:?}: a sweep is json or csv"))),
     };
-    py.detach(|| {
+    guarded(py, || {
         let sv = cli::parse_vary(vary, log)?;
         let sv = match shard {
             Some(s) => sv.shard(s)?,
@@ -66,7 +103,6 @@ fn sweep_text(
         cli::sweep(&scene, &sv, format, false, &mut out)?;
         Ok::<_, cli::RunError>(String::from_utf8_lossy(&out).into_owned())
     })
-    .map_err(err)
 }
 
 /// The folder `check` claims name scenes from, as `verify` takes it: the one above the claims
@@ -95,7 +131,7 @@ fn verify_json(
 ) -> PyResult<String> {
     // the repository's own claims when none are named: the one this package was built from
     let claims = claims.unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../verify"));
-    py.detach(|| -> Result<String, String> {
+    guarded(py, || -> Result<String, String> {
         let all = impactcheck::verify::load_claims_with(&claims, None)
             .map_err(|e| format!("reading claims from {}: {e}", claims.display()))?;
         let papers = impactcheck::verify::select(&all, only);
@@ -116,7 +152,6 @@ fn verify_json(
         outcomes.sort_by(|a, b| impactcheck::report::natural_cmp(&a.id, &b.id));
         serde_json::to_string(&impactcheck::report::summary(&outcomes)).map_err(|e| e.to_string())
     })
-    .map_err(ImpactcheckError::new_err)
 }
 
 /// `impact series --order N [--viscous zz|2zz] [--at A] [--eval-t T] --format json`: the
@@ -135,12 +170,11 @@ fn series_json(
         "zz" => impactcheck::algebra::series::Viscous::ZZ,
         other => return Err(err(format!("viscous {other:?}: \"2zz\" or \"zz\""))),
     };
-    py.detach(|| {
+    guarded(py, || {
         let at = cli::parse_assignments("--at", at)?;
         let times = cli::parse_times(eval_t)?;
         cli::series(order, viscous, &at, &times, Format::Json)
     })
-    .map_err(err)
 }
 
 /// The paper read and audited as `verify audit` (or, `init`, `verify init`) does; what the
@@ -173,11 +207,10 @@ fn audit_json(
     preamble: Vec<PathBuf>,
     vocabulary: Vec<PathBuf>,
 ) -> PyResult<String> {
-    py.detach(|| {
+    guarded(py, || {
         let p = read_paper(&paper, units.as_deref(), &preamble, &vocabulary, false)?;
         Ok::<_, anyhow::Error>(serde_json::to_string_pretty(&p.audit)?)
     })
-    .map_err(|e| err(format!("{e:#}")))
 }
 
 /// `verify init PAPER --paper ID [--units FILE] ...`: the claims file to start from, as text.
@@ -191,35 +224,36 @@ fn init_text(
     preamble: Vec<PathBuf>,
     vocabulary: Vec<PathBuf>,
 ) -> PyResult<String> {
-    py.detach(|| {
+    guarded(py, || {
         let p = read_paper(&paper, units.as_deref(), &preamble, &vocabulary, true)?;
         Ok::<_, anyhow::Error>(impactcheck::verify::audit_paper::init_claims(&p, id))
     })
-    .map_err(|e| err(format!("{e:#}")))
 }
 
 /// A scene given as a dict (its JSON) as TOML text, for the scene reader.
 #[pyfunction]
-fn toml_of_json(text: &str) -> PyResult<String> {
-    let v: serde_json::Value = serde_json::from_str(text).map_err(err)?;
-    let t: toml::Value =
-        serde_json::from_value(v).map_err(|e| err(format!("a scene dict: {e}")))?;
-    match t {
-        toml::Value::Table(t) => toml::to_string(&t).map_err(|e| err(format!("a scene dict: {e}"))),
-        other => Err(err(format!("a scene is a table, not {}", other.type_str()))),
-    }
+fn toml_of_json(py: Python<'_>, text: &str) -> PyResult<String> {
+    guarded(py, || {
+        let v: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
+        let t: toml::Value = serde_json::from_value(v).map_err(|e| format!("a scene dict: {e}"))?;
+        match t {
+            toml::Value::Table(t) => toml::to_string(&t).map_err(|e| format!("a scene dict: {e}")),
+            other => Err(format!("a scene is a table, not {}", other.type_str())),
+        }
+    })
 }
 
 #[pymodule]
 fn _impactcheck(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ImpactcheckError", m.py().get_type::<ImpactcheckError>())?;
     m.add_function(wrap_pyfunction!(describe_json, m)?)?;
-    m.add_function(wrap_pyfunction!(run_json, m)?)?;
+    m.add_function(wrap_pyfunction!(run_traced_json, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_text, m)?)?;
     m.add_function(wrap_pyfunction!(verify_json, m)?)?;
     m.add_function(wrap_pyfunction!(toml_of_json, m)?)?;
     m.add_function(wrap_pyfunction!(series_json, m)?)?;
     m.add_function(wrap_pyfunction!(audit_json, m)?)?;
     m.add_function(wrap_pyfunction!(init_text, m)?)?;
+    m.add_function(wrap_pyfunction!(_panic_for_test, m)?)?;
     Ok(())
 }

@@ -1,6 +1,7 @@
 """The Python functions against their command-line twins on the same inputs (issue 55): the same
 numbers to the bit (the JSON both print, parsed), and bad input raising ImpactcheckError with the
-interpreter alive. The binaries are the ones `cargo test --release` built (target/release)."""
+interpreter alive. The binaries are the ones the cargo test that runs these built (tests/python.rs
+names their folder in IMPACTCHECK_BIN), else target/release."""
 
 import json
 import math
@@ -13,7 +14,7 @@ import pytest
 import impactcheck as ic
 
 ROOT = Path(__file__).resolve().parents[2]
-BIN = ROOT / "target" / "release"
+BIN = Path(os.environ.get("IMPACTCHECK_BIN", ROOT / "target" / "release"))
 
 
 def cli(name, *args):
@@ -121,3 +122,81 @@ def test_bad_input_raises_naming_it_and_the_interpreter_lives_on(call, says):
     assert says in str(e.value)
     # the interpreter goes on: a good call after the bad one
     assert ic.describe("hertz")["name"] == "hertz"
+
+
+def _bits(a):
+    import numpy as np
+
+    return np.asarray(a, dtype=np.float64).view(np.uint64).tolist()
+
+
+@pytest.mark.parametrize(
+    "scene", ["hertz.toml", "oscillator_wall.toml", "cone_plate.toml", "hertz_ode.toml"]
+)
+def test_run_arrays_are_the_command_lines_trace_to_the_bit(scene, tmp_path):
+    """`run` against `impact run --format json --trace FILE`: the outcome equal, every step and
+    event equal to the bit, in the JSON trace and in the CSV one (read back round-trip)."""
+    import pandas as pd
+
+    path = str(ROOT / "scenes" / scene)
+    r = ic.run(path)
+    assert dict(r) == json.loads(cli("impact", "run", path, "--format", "json"))
+    traced = json.loads(
+        cli("impact", "run", path, "--format", "json", "--trace", str(tmp_path / "t.json"))
+    )
+    assert dict(r) == traced  # the traced run's outcome is the untraced one's
+    tr = json.loads((tmp_path / "t.json").read_text())
+    assert r.traced and r.variable == "t (s)" and len(r.time) > 10
+    assert _bits(r.time) == _bits(tr["variable"]["values"])
+    for col in tr["states"]:
+        heading = col["name"] if col["unit"] == "1" else f"{col['name']} ({col['unit']})"
+        assert _bits(r.states[heading]) == _bits(col["values"])
+    assert list(r.events["event"]) == [e["name"] for e in tr["events"]]
+    assert _bits(r.events["t (s)"]) == _bits([e["at"] for e in tr["events"]])
+    cli("impact", "run", path, "--trace", str(tmp_path / "t.csv"))
+    csv = pd.read_csv(tmp_path / "t.csv", keep_default_na=False)
+    steps = csv[csv["event"] == ""]
+    assert _bits(steps["t (s)"]) == _bits(r.time)
+    frame = r.to_frame()
+    for h in r.states:
+        assert _bits(steps[h]) == _bits(frame[h])
+    assert list(csv[csv["event"] != ""]["event"]) == list(r.events["event"])
+
+
+def test_a_hertz_trace_conserves_energy_and_peaks_where_hertz_says():
+    """Independent of the command line: the undamped Hertz impact (m = k = v0 = 1) keeps
+    m v^2/2 + (2/5) k z^(5/2) = m v0^2/2 along every recorded step, and its "max indentation"
+    event sits at Hertz's closed form z_max = (5 m v0^2 / (4 k))^(2/5) with v = 0."""
+    r = ic.run(ROOT / "scenes" / "hertz.toml")
+    assert r.units == {"t": "s", "z": "m", "dz/dt": "m/s"}
+    z, v = r.states["z (m)"], r.states["dz/dt (m/s)"]
+    energy = 0.5 * v**2 + 0.4 * abs(z) ** 2.5 * (z > 0)
+    assert abs(energy - 0.5).max() < 1e-7
+    (i,) = [k for k, name in enumerate(r.events["event"]) if name == "max indentation"]
+    assert math.isclose(r.events["z (m)"][i], 1.25**0.4, rel_tol=1e-8)
+    assert abs(r.events["dz/dt (m/s)"][i]) < 1e-8
+    assert r.events["event"][-1] == "contact end"
+    assert math.isclose(r.events["t (s)"][-1], r["contact"]["duration"], rel_tol=0, abs_tol=0)
+
+
+def test_a_model_without_a_path_has_empty_arrays_and_the_cli_says_why(tmp_path):
+    path = str(ROOT / "scenes" / "disk_friction.toml")
+    r = ic.run(path)
+    assert not r.traced and len(r.time) == 0 and r.states == {}
+    assert dict(r) == json.loads(cli("impact", "run", path, "--format", "json"))
+    out = subprocess.run(
+        [str(BIN / "impact"), "run", path, "--trace", str(tmp_path / "t.json")],
+        cwd=ROOT, capture_output=True, text=True,
+    )
+    assert out.returncode == 2 and "integrates no path" in out.stderr
+    assert not (tmp_path / "t.json").exists()
+
+
+def test_a_panic_becomes_impactcheck_error_and_the_interpreter_lives():
+    from impactcheck import _impactcheck
+
+    with pytest.raises(ic.ImpactcheckError, match="internal error.*boom"):
+        _impactcheck._panic_for_test("boom")
+    # Exception, not BaseException: a notebook's `except Exception` catches it
+    assert issubclass(ic.ImpactcheckError, Exception)
+    assert ic.run(ROOT / "scenes" / "hertz.toml")["model"] == "hertz"

@@ -64,6 +64,12 @@ enum Command {
         /// Also draw the solution against time into this SVG file.
         #[arg(long)]
         plot: Option<std::path::PathBuf>,
+        /// Also write the run's path into this file: the time of every accepted step, the
+        /// states there (each named with its SI unit, `z (m)`) and the events located, as JSON
+        /// (FILE.json) or CSV (FILE.csv, one row per step and per event). Models: hertz,
+        /// cone-plate, ode.
+        #[arg(long, value_name = "FILE")]
+        trace: Option<std::path::PathBuf>,
     },
     /// Run a scene over a range of one field, in parallel on all cores, e.g.
     /// `impact sweep scenes/pendulum_on_wall.toml --vary sigma=0.1:5:50 --format csv`. Every
@@ -243,9 +249,15 @@ fn run(args: Args) -> Result<String, Box<dyn std::error::Error>> {
             scene,
             format,
             plot,
+            trace,
         } => {
             let format = fmt_of("run", format, &[Fmt::Text, Fmt::Json])?;
-            Ok(cli::run_scene(&scene, format, plot.as_deref())?)
+            Ok(cli::run_scene(
+                &scene,
+                format,
+                plot.as_deref(),
+                trace.as_deref(),
+            )?)
         }
         Command::Sweep {
             scene,

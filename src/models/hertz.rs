@@ -14,6 +14,7 @@
 use crate::models::doc as d;
 
 use super::params::{Fields, SceneError, SolveSpec};
+use super::trace::Trace;
 use super::{Curves, Model, RunError};
 use crate::integrate::{
     Direction, Event, IntegrateError, Method, OdeSystem, Options, Stats, Stop, solve,
@@ -159,6 +160,18 @@ pub fn run(
     method: Method,
     t_window: Option<f64>,
 ) -> Result<HertzResult, IntegrateError> {
+    run_recorded(model, v0, (rtol, atol, method), t_window, false).map(|(r, _)| r)
+}
+
+/// [`run`], with its path ([`Trace`]: `z`, `dz/dt` at every accepted step, the three events)
+/// when `record` is set; the result is the same to the bit either way.
+pub fn run_recorded(
+    model: &Hertz,
+    v0: f64,
+    (rtol, atol, method): (f64, f64, Method),
+    t_window: Option<f64>,
+    record: bool,
+) -> Result<(HertzResult, Option<Trace>), IntegrateError> {
     let ends = t_window.is_none();
     let t_end = t_window.unwrap_or(100.0 * model.undamped_duration(v0));
     let gap = |_t: f64, y: &[f64]| y[0];
@@ -174,9 +187,18 @@ pub fn run(
         atol,
         method,
         events,
+        trajectory: record,
         ..Options::default()
     };
     let sol = solve(model, 0.0, &[0.0, v0], t_end, &opts)?;
+    let trace = record.then(|| {
+        let mut tr = Trace::new(("t", "s"), &[("z", "m"), ("dz/dt", "m/s")]);
+        tr.extend(&sol.trajectory);
+        for e in &sol.events {
+            tr.event(&opts.events[e.index].name, e.t, &e.y);
+        }
+        tr
+    });
     let mut max_z = sol.y[0].max(0.0);
     let mut peak = model.force(sol.y[0], sol.y[1]);
     for e in &sol.events {
@@ -188,7 +210,7 @@ pub fn run(
     }
     let ended = matches!(sol.stop, Stop::Event { index: 0, .. });
     let v_out = sol.y[1];
-    Ok(HertzResult {
+    let result = HertzResult {
         ended,
         duration: sol.t,
         peak_force: peak,
@@ -196,7 +218,8 @@ pub fn run(
         v_out,
         energy_lost: 0.5 * model.mass * (v0 * v0 - v_out * v_out),
         stats: sol.stats,
-    })
+    };
+    Ok((result, trace))
 }
 
 /// The `hertz` scene: an impactor on a rigid-backed half-space.
@@ -349,6 +372,17 @@ impl Model for HertzScene {
     }
 
     fn run(&self) -> Result<(HertzOutcome, Curves), RunError> {
+        Ok((self.go(false)?.0, vec![]))
+    }
+
+    fn run_traced(&self) -> Result<(HertzOutcome, Option<Trace>), RunError> {
+        self.go(true)
+    }
+}
+
+impl HertzScene {
+    /// The run, its path recorded when `record` is set.
+    fn go(&self, record: bool) -> Result<(HertzOutcome, Option<Trace>), RunError> {
         let s = self;
         let model = Hertz {
             mass: s.mass,
@@ -369,13 +403,12 @@ impl Model for HertzScene {
                 s.solve.atol
             ));
         }
-        let r = run(
+        let (r, trace) = run_recorded(
             &model,
             s.v0,
-            s.solve.rtol,
-            atol,
-            s.solve.method,
+            (s.solve.rtol, atol, s.solve.method),
             s.solve.t_end,
+            record,
         )?;
         let out = HertzOutcome {
             model: Self::NAME,
@@ -395,7 +428,7 @@ impl Model for HertzScene {
             energy_lost: r.energy_lost,
             stats: r.stats,
         };
-        Ok((out, vec![]))
+        Ok((out, trace))
     }
 }
 

@@ -17,6 +17,7 @@ use crate::models::disk_friction::DiskFrictionScene;
 use crate::models::hertz::HertzScene;
 use crate::models::ode::OdeScene;
 use crate::models::pendulum_wall::PendulumWallScene;
+use crate::models::trace::Trace;
 use crate::models::{Curves, Model, RunError};
 use std::any::Any;
 use std::path::Path;
@@ -75,8 +76,17 @@ trait AnyModel: Send + Sync {
     fn name(&self) -> &'static str;
     fn run_value(&self) -> Result<(serde_json::Value, Curves), RunError>;
     fn run_node(&self) -> Result<row::Node, RunError>;
+    fn run_traced(&self) -> Result<(serde_json::Value, Option<Trace>), RunError>;
     fn as_any(&self) -> &dyn Any;
     fn with_number(&self, field: &str, v: f64, path: &str) -> Option<Result<Scene, SceneError>>;
+}
+
+/// A model's outcome as its JSON (the `impact run` contract).
+fn value_of<M: Model>(out: M::Outcome) -> Result<serde_json::Value, RunError> {
+    serde_json::to_value(out).map_err(|e| RunError::BadArgument {
+        arg: M::NAME.into(),
+        message: format!("the outcome does not serialize: {e}"),
+    })
 }
 
 impl<M: Model> AnyModel for M {
@@ -85,11 +95,11 @@ impl<M: Model> AnyModel for M {
     }
     fn run_value(&self) -> Result<(serde_json::Value, Curves), RunError> {
         let (out, curves) = self.run()?;
-        let v = serde_json::to_value(out).map_err(|e| RunError::BadArgument {
-            arg: M::NAME.into(),
-            message: format!("the outcome does not serialize: {e}"),
-        })?;
-        Ok((v, curves))
+        Ok((value_of::<M>(out)?, curves))
+    }
+    fn run_traced(&self) -> Result<(serde_json::Value, Option<Trace>), RunError> {
+        let (out, trace) = Model::run_traced(self)?;
+        Ok((value_of::<M>(out)?, trace))
     }
     fn run_node(&self) -> Result<row::Node, RunError> {
         let (out, _) = self.run()?;
@@ -119,6 +129,12 @@ impl Scene {
     /// Runs it: the outcome as JSON (the `impact run` contract) and the curves for `--plot`.
     pub fn run(&self) -> Result<(serde_json::Value, Curves), RunError> {
         self.0.run_value()
+    }
+
+    /// Runs it and records its path: the outcome as [`Scene::run`] gives it and the trace
+    /// (`None`: the model integrates no path), for `impact run --trace` and Python's `run`.
+    pub fn run_traced(&self) -> Result<(serde_json::Value, Option<Trace>), RunError> {
+        self.0.run_traced()
     }
 
     /// Runs it: the outcome as a light tree written as its JSON would be (the rows of

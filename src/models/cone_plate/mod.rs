@@ -750,13 +750,22 @@ pub struct Run {
     pub injected: f64,
     /// Energy balance error (relative).
     pub balance_error: f64,
-    /// The trajectory (every accepted step), for plots.
+    /// The trajectory (every accepted step), for plots and the trace.
     pub trajectory: Vec<(f64, Vec<f64>)>,
+    /// The events located, in the order they fired: name, time (s), state.
+    pub events: Vec<(&'static str, f64, Vec<f64>)>,
     /// Work done.
     pub stats: Stats,
     /// What the report must say.
     pub warnings: Vec<String>,
 }
+
+/// The events of [`run`], by index.
+const EVENT_NAMES: [&str; 3] = [
+    "indentation returns to zero",
+    "contact force returns to zero",
+    "max indentation",
+];
 
 /// Integrates one impact until contact ends or `t_end` (s).
 pub fn run(
@@ -778,19 +787,9 @@ pub fn run(
     };
     let rate = |_t: f64, y: &[f64]| sys.indentation(y).1;
     let events = vec![
-        Event::new(
-            "indentation returns to zero",
-            &gap,
-            Direction::Falling,
-            true,
-        ),
-        Event::new(
-            "contact force returns to zero",
-            &force,
-            Direction::Falling,
-            true,
-        ),
-        Event::new("max indentation", &rate, Direction::Falling, false),
+        Event::new(EVENT_NAMES[0], &gap, Direction::Falling, true),
+        Event::new(EVENT_NAMES[1], &force, Direction::Falling, true),
+        Event::new(EVENT_NAMES[2], &rate, Direction::Falling, false),
     ];
     let mut times: Vec<f64> = samples
         .iter()
@@ -905,6 +904,11 @@ pub fn run(
         injected: inj,
         balance_error: sys.balance_error(y),
         trajectory: sol.trajectory,
+        events: sol
+            .events
+            .into_iter()
+            .map(|e| (EVENT_NAMES[e.index], e.t, e.y))
+            .collect(),
         stats: sol.stats,
         warnings,
     })

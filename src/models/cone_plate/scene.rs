@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::models::doc as d;
+use crate::models::trace::Trace;
 
 /// The effects a cone-plate scene may name.
 pub const EFFECTS: &[&str] = &[
@@ -406,6 +407,50 @@ impl crate::models::Model for ConePlateScene {
     }
 
     fn run(&self) -> Result<(ConePlateOutcome, crate::models::Curves), crate::models::RunError> {
+        self.go(false).map(|(out, curves, _)| (out, curves))
+    }
+
+    fn run_traced(&self) -> Result<(ConePlateOutcome, Option<Trace>), crate::models::RunError> {
+        self.go(true).map(|(out, _, trace)| (out, trace))
+    }
+}
+
+/// The path of a run in the quantities a reader knows: the cone's depth and speed, the contact
+/// force, the plate's deflection under the cone (with the plate); every accepted step is
+/// recorded by the run anyway (its peak and tension checks read them).
+fn trace_of(sys: &ConePlate, r: &super::Run) -> Trace {
+    let mut names = vec![("z", "m"), ("dz/dt", "m/s"), ("P", "N")];
+    if sys.centre_deflection(&sys.initial_state()).is_some() {
+        names.push(("w(a/2, b/2)", "m"));
+    }
+    let row = |y: &[f64]| {
+        // as the equations of motion take it: no force out of contact
+        let p = if sys.indentation(y).0 > 0.0 {
+            sys.contact_force(y)
+        } else {
+            0.0
+        };
+        let mut v = vec![y[0], y[1], p];
+        v.extend(sys.centre_deflection(y));
+        v
+    };
+    let mut tr = Trace::new(("t", "s"), &names);
+    for (t, y) in &r.trajectory {
+        tr.push(*t, &row(y));
+    }
+    for (name, t, y) in &r.events {
+        tr.event(name, *t, &row(y));
+    }
+    tr
+}
+
+impl ConePlateScene {
+    /// The run: its outcome, its `--plot` curves and, when `record` is set, its path.
+    fn go(
+        &self,
+        record: bool,
+    ) -> Result<(ConePlateOutcome, crate::models::Curves, Option<Trace>), crate::models::RunError>
+    {
         use crate::models::RunError;
         let s = self;
         let sys =
@@ -459,8 +504,9 @@ impl crate::models::Model for ConePlateScene {
                 .collect();
             curves.push(("w(a/2, b/2) (m)".to_string(), f));
         }
+        let trace = record.then(|| trace_of(&sys, &r));
         let out = ConePlateOutcome {
-            model: Self::NAME,
+            model: <Self as crate::models::Model>::NAME,
             variant: if s.variant == Variant::AsPrinted {
                 "as-printed"
             } else {
@@ -494,7 +540,7 @@ impl crate::models::Model for ConePlateScene {
             stats: r.stats,
             warnings: r.warnings,
         };
-        Ok((out, curves))
+        Ok((out, curves, trace))
     }
 }
 

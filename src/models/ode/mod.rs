@@ -87,6 +87,7 @@ mod units;
 pub use doc::DOC;
 
 use super::params::{SceneError, SolveSpec};
+use super::trace::Trace;
 use super::{Curves, Model, RunError};
 use crate::algebra::expr::Expr;
 use crate::integrate::{Direction, Event, OdeSystem, Options, Stats, Stop};
@@ -500,6 +501,18 @@ impl Model for OdeScene {
     }
 
     fn run(&self) -> Result<(OdeOutcome, Curves), RunError> {
+        Ok((self.go(false)?.0, vec![]))
+    }
+
+    fn run_traced(&self) -> Result<(OdeOutcome, Option<Trace>), RunError> {
+        self.go(true)
+    }
+}
+
+impl OdeScene {
+    /// The run, its path (every state at every accepted step, every event and switch) recorded
+    /// when `record` is set.
+    fn go(&self, record: bool) -> Result<(OdeOutcome, Option<Trace>), RunError> {
         let n = self.states.len();
         let mut y = self.initial_state()?;
         let user = self.events.len();
@@ -577,8 +590,22 @@ impl Model for OdeScene {
             atol: self.solve.atol,
             method: self.solve.method,
             events,
+            trajectory: record,
             ..Options::default()
         };
+        let mut trace = record.then(|| {
+            let names: Vec<(&str, &str)> = self
+                .states
+                .iter()
+                .map(|s| {
+                    (
+                        s.as_str(),
+                        self.state_units.get(s).map_or("1", String::as_str),
+                    )
+                })
+                .collect();
+            Trace::new(("t", "s"), &names)
+        });
         let mut sys = Held::new(self);
         sys.set_held(0.0, &y);
         let mut r = Runs {
@@ -605,6 +632,12 @@ impl Model for OdeScene {
                     return Err(err.into());
                 }
             };
+            if let Some(tr) = trace.as_mut() {
+                tr.extend(&sol.trajectory);
+                for h in &sol.events {
+                    tr.event(&opts.events[h.index].name, h.t, &h.y);
+                }
+            }
             r.stats = r.stats + sol.stats;
             r.t = sol.t;
             y = sol.y;
@@ -632,7 +665,12 @@ impl Model for OdeScene {
             halting.sort_unstable();
             halting.dedup();
             r.switches += halting.iter().filter(|i| **i >= user).count();
-            if self.fire(&mut r, &mut y, &halting)? {
+            let stop = self.fire(&mut r, &mut y, &halting)?;
+            // the state after the jumps, at the same time
+            if let Some(tr) = trace.as_mut() {
+                tr.extend(&[(r.t, y.clone())]);
+            }
+            if stop {
                 break;
             }
             // every switch on the side the motion goes into, after the jumps
@@ -655,7 +693,10 @@ impl Model for OdeScene {
                 });
             }
         }
-        Ok((self.outcome(r, y), vec![]))
+        if let (Some(tr), Some(acc)) = (trace.as_mut(), r.accumulation.as_ref()) {
+            tr.extend(&[(acc.t, acc.state.clone())]);
+        }
+        Ok((self.outcome(r, y), trace))
     }
 }
 

@@ -277,14 +277,32 @@ fn render_run(v: &Value, format: Format) -> String {
     out
 }
 
-/// `impact run SCENE.toml [--plot out.svg]`.
+/// `impact run SCENE.toml [--plot out.svg] [--trace out.json|out.csv]`.
 pub fn run_scene(
     path: &std::path::Path,
     format: Format,
     plot: Option<&std::path::Path>,
+    trace: Option<&std::path::Path>,
 ) -> Result<String, RunError> {
     let scene = crate::scene::load(path)?;
-    let (v, curves) = run_validated(&scene)?;
+    let (v, curves) = match trace {
+        Some(file) => {
+            // the traced run gives the same outcome to the bit; its curves are not drawn
+            let kind = trace_kind(file)?;
+            let (v, tr) = run_traced(&scene)?;
+            let text = match kind {
+                Format::Csv => trace_csv(&tr),
+                _ => serde_json::to_string(&tr).unwrap_or_default(),
+            };
+            write_made(file, "--trace", text)?;
+            if plot.is_some() {
+                (v, run_validated(&scene)?.1)
+            } else {
+                (v, Vec::new())
+            }
+        }
+        None => run_validated(&scene)?,
+    };
     if let Some(out) = plot {
         if curves.is_empty() {
             return Err(RunError::BadArgument {
@@ -300,20 +318,26 @@ pub fn run_scene(
             crate::report::svg::Scale::Linear,
             &curves,
         );
-        // the folder the user named for the figure is made if it is not there
-        if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).map_err(|e| RunError::BadArgument {
-                arg: "--plot".into(),
-                message: format!("{}: {e}", dir.display()),
-            })?;
-        }
-        std::fs::write(out, svg).map_err(|e| RunError::BadArgument {
-            arg: "--plot".into(),
-            message: format!("{}: {e}", out.display()),
-        })?;
+        write_made(out, "--plot", svg)?;
     }
     Ok(render_run(&v, format))
 }
+
+/// Writes a file the user named, making its folder if it is not there; errors name the option.
+fn write_made(out: &std::path::Path, arg: &str, text: String) -> Result<(), RunError> {
+    let bad = |p: &std::path::Path, e: std::io::Error| RunError::BadArgument {
+        arg: arg.into(),
+        message: format!("{}: {e}", p.display()),
+    };
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| bad(dir, e))?;
+    }
+    std::fs::write(out, text).map_err(|e| bad(out, e))
+}
+
+mod trace;
+use trace::trace_kind;
+pub use trace::{TRACED, Trace, run_scene_traced, run_traced, trace_csv};
 
 pub use crate::scene::sweep::{SweepValues, parse_values, parse_vary};
 

@@ -1,0 +1,266 @@
+//! The path of a run for `impact run --trace FILE` and Python's `run` (issue 55): which models
+//! record one, the traced run, and the path written as CSV (JSON is the [`Trace`]'s serde form).
+
+use super::{Format, RunError, Value, csv_quote, render_run};
+
+/// What `--trace FILE` writes, by the file's extension: `.json` or `.csv`.
+pub(super) fn trace_kind(file: &std::path::Path) -> Result<Format, RunError> {
+    match file.extension().and_then(|e| e.to_str()) {
+        Some("json") => Ok(Format::Json),
+        Some("csv") => Ok(Format::Csv),
+        _ => Err(RunError::BadArgument {
+            arg: "--trace".into(),
+            message: format!(
+                "{}: the trace is written as JSON (a file ending .json) or CSV (.csv)",
+                file.display()
+            ),
+        }),
+    }
+}
+
+pub use crate::models::trace::Trace;
+
+/// Runs a validated scene with its path recorded ([`Trace`]): the outcome (the same as
+/// [`run_validated`]'s, to the bit) and the path; an error for a model that integrates none.
+pub fn run_traced(scene: &crate::scene::Scene) -> Result<(Value, Trace), RunError> {
+    match scene.run_traced()? {
+        (v, Some(tr)) => Ok((v, tr)),
+        (_, None) => Err(RunError::BadArgument {
+            arg: "--trace".into(),
+            message: format!(
+                "the model {} integrates no path in time (its outcome is all a run gives); the models with a trace: {}",
+                scene.model(),
+                TRACED.join(", ")
+            ),
+        }),
+    }
+}
+
+/// `impact run SCENE` with its path recorded: the outcome as [`run_scene`] prints it (the same
+/// to the bit) and the path, `None` for a model that integrates none.
+pub fn run_scene_traced(
+    path: &std::path::Path,
+    format: Format,
+) -> Result<(String, Option<Trace>), RunError> {
+    let (v, tr) = crate::scene::load(path)?.run_traced()?;
+    Ok((render_run(&v, format), tr))
+}
+
+/// The models whose runs record a path.
+pub const TRACED: &[&str] = &["hertz", "cone-plate", "ode"];
+
+/// A path as CSV: a heading row (`t (s),z (m),...,event`), then one row per accepted step and
+/// one per event, in the order of the variable (an event after a step at the same time); the
+/// `event` column names the event, empty on a step. Numbers are written as JSON writes them
+/// (shortest round trip), so they read back to the bit.
+pub fn trace_csv(tr: &Trace) -> String {
+    let mut out = std::iter::once(tr.variable.heading())
+        .chain(tr.states.iter().map(crate::models::trace::Column::heading))
+        .chain(std::iter::once("event".to_string()))
+        .map(|h| csv_quote(&h))
+        .collect::<Vec<_>>()
+        .join(",");
+    out.push('\n');
+    let row = |out: &mut String, at: f64, state: &mut dyn Iterator<Item = f64>, name: &str| {
+        out.push_str(&Value::from(at).to_string());
+        for v in state {
+            out.push(',');
+            out.push_str(&Value::from(v).to_string());
+        }
+        out.push(',');
+        out.push_str(&csv_quote(name));
+        out.push('\n');
+    };
+    let mut events = tr.events.iter().peekable();
+    for (i, at) in tr.variable.values.iter().enumerate() {
+        while let Some(e) = events.next_if(|e| e.at < *at) {
+            row(&mut out, e.at, &mut e.state.iter().copied(), &e.name);
+        }
+        row(
+            &mut out,
+            *at,
+            &mut tr.states.iter().map(|c| c.values[i]),
+            "",
+        );
+    }
+    for e in events {
+        row(&mut out, e.at, &mut e.state.iter().copied(), &e.name);
+    }
+    out
+}
+
+#[cfg(test)]
+#[allow(clippy::float_cmp)] // equal to the bit is what these tests ask
+mod tests {
+    use super::*;
+
+    /// The expected text is written out by hand from the steps and events put in.
+    #[test]
+    fn csv_puts_events_among_steps_by_time_and_quotes_headings() {
+        let mut t = Trace::new(("t", "s"), &[("w(a/2, b/2)", "m"), ("phase", "1")]);
+        t.extend(&[
+            (0.0, vec![0.0, 1.0]),
+            (0.5, vec![0.25, 2.0]),
+            (1.0, vec![0.1, 3.0]),
+        ]);
+        t.event("max, z", 0.25, &[0.3, 1.5]);
+        t.event("end", 1.0, &[0.1, 3.0]);
+        t.event("after", 2.0, &[f64::NAN, 4.0]);
+        let expected = "t (s),\"w(a/2, b/2) (m)\",phase,event\n\
+                        0.0,0.0,1.0,\n\
+                        0.25,0.3,1.5,\"max, z\"\n\
+                        0.5,0.25,2.0,\n\
+                        1.0,0.1,3.0,\n\
+                        1.0,0.1,3.0,end\n\
+                        2.0,null,4.0,after\n";
+        assert_eq!(trace_csv(&t), expected);
+    }
+
+    /// Every example scene: a path for exactly the models [`TRACED`] names, and the traced
+    /// run's outcome equal to the plain run's (the recording changes nothing).
+    #[test]
+    fn the_traced_models_record_a_path_and_the_same_outcome() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+        let mut seen = std::collections::BTreeSet::new();
+        for entry in std::fs::read_dir(&dir).expect("scenes/") {
+            let path = entry.expect("entry").path();
+            let scene = crate::scene::load(&path).expect("an example scene loads");
+            let traced = run_traced(&scene);
+            let name = scene.model();
+            let plain = match scene.run() {
+                Ok((v, _)) => v,
+                Err(e) => {
+                    // a scene that shows a failure fails the same way traced
+                    let t = traced.expect_err("fails traced too").to_string();
+                    assert!(TRACED.contains(&name) && t == e.to_string(), "{t} vs {e}");
+                    continue;
+                }
+            };
+            seen.insert(name);
+            if TRACED.contains(&name) {
+                let (v, tr) = traced.expect("a traced model traces");
+                assert_eq!(v, plain, "{}", path.display());
+                assert!(tr.variable.values.len() > 2, "{}", path.display());
+                let n = tr.variable.values.len();
+                assert!(tr.states.iter().all(|c| c.values.len() == n));
+                assert!(tr.variable.values.windows(2).all(|w| w[0] <= w[1]));
+                assert_eq!(tr.variable.values[0], 0.0);
+                let (text, tr2) = run_scene_traced(&path, Format::Json).expect("runs");
+                assert_eq!(serde_json::from_str::<Value>(&text).expect("json"), plain);
+                assert_eq!(tr2.as_ref(), Some(&tr));
+            } else {
+                let e = traced.expect_err("no path");
+                assert!(e.to_string().contains("integrates no path"), "{e}");
+                assert_eq!(run_scene_traced(&path, Format::Json).expect("runs").1, None);
+            }
+        }
+        for m in TRACED {
+            assert!(seen.contains(m), "no example scene of {m}");
+        }
+    }
+
+    #[test]
+    fn the_trace_file_is_json_or_csv_by_its_ending() {
+        use std::path::Path;
+        assert_eq!(trace_kind(Path::new("a/b.json")).ok(), Some(Format::Json));
+        assert_eq!(trace_kind(Path::new("b.csv")).ok(), Some(Format::Csv));
+        let e = trace_kind(Path::new("b.txt")).expect_err("refused");
+        assert!(e.to_string().contains("b.txt") && e.to_string().contains(".csv"));
+    }
+
+    fn traced(scene: &str) -> (Value, Trace) {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("scenes")
+            .join(scene);
+        run_traced(&crate::scene::load(&path).expect("loads")).expect("traces")
+    }
+
+    /// Independent of the code: the undamped Hertz impact of scenes/hertz.toml (m = k = v0 = 1)
+    /// keeps m v^2/2 + (2/5) k z^(5/2) = 1/2 at every recorded step, and its "max indentation"
+    /// sits at Hertz's closed form z_max = (5 m v0^2 / (4 k))^(2/5) = 1.25^0.4 with v = 0.
+    #[test]
+    fn a_hertz_path_keeps_its_energy_and_peaks_at_the_closed_form() {
+        let (v, tr) = traced("hertz.toml");
+        let heads: Vec<String> = tr.states.iter().map(|c| c.heading()).collect();
+        assert_eq!(heads, ["z (m)", "dz/dt (m/s)"]);
+        let (z, u) = (&tr.states[0].values, &tr.states[1].values);
+        for (z, u) in z.iter().zip(u) {
+            let energy = 0.5 * u * u + 0.4 * z.max(0.0).powf(2.5);
+            assert!((energy - 0.5).abs() < 1e-7, "energy {energy}");
+        }
+        let names: Vec<&str> = tr.events.iter().map(|e| e.name.as_str()).collect();
+        assert_eq!(names, ["max indentation", "peak force", "contact end"]);
+        let peak = &tr.events[0];
+        assert!((peak.state[0] - 1.25f64.powf(0.4)).abs() < 1e-8 && peak.state[1].abs() < 1e-8);
+        assert_eq!(
+            tr.events[2].at,
+            v["contact"]["duration"].as_f64().expect("a number")
+        );
+        assert_eq!(tr.variable.values.last(), Some(&tr.events[2].at));
+    }
+
+    /// scenes/oscillator_wall.toml against its closed form: the k-th impact at
+    /// t1 + (k-1) pi/wd, wd t1 = pi - atan(wd/sigma), sigma = zeta w, wd = w sqrt(1 - zeta^2);
+    /// at each, the path holds the state before and, at the same time, after the jump v -> -e v.
+    #[test]
+    fn an_oscillator_on_a_wall_records_each_impact_before_and_after_its_jump() {
+        let (_, tr) = traced("oscillator_wall.toml");
+        let (w, zeta, e) = (20.0f64, 0.05f64, 0.8);
+        let (sigma, wd) = (zeta * w, w * (1.0 - zeta * zeta).sqrt());
+        let t1 = (std::f64::consts::PI - (wd / sigma).atan()) / wd;
+        let heads: Vec<String> = tr.states.iter().map(|c| c.heading()).collect();
+        let iv = heads.iter().position(|h| h.starts_with("v ")).expect("v");
+        let impacts: Vec<_> = tr.events.iter().filter(|e| e.name == "impact").collect();
+        assert!(impacts.len() >= 5, "{} impacts", impacts.len());
+        for (k, hit) in impacts.iter().enumerate() {
+            let want = t1 + k as f64 * std::f64::consts::PI / wd;
+            assert!(
+                (hit.at - want).abs() < 1e-9,
+                "impact {k}: {} vs {want}",
+                hit.at
+            );
+            let rows: Vec<usize> = (0..tr.variable.values.len())
+                .filter(|i| tr.variable.values[*i] == hit.at)
+                .collect();
+            assert_eq!(rows.len(), 2, "the step before the jump and the one after");
+            let (before, after) = (tr.states[iv].values[rows[0]], tr.states[iv].values[rows[1]]);
+            assert_eq!(before, hit.state[iv]);
+            assert!(before < 0.0 && (after + e * before).abs() <= 1e-15 * before.abs());
+        }
+    }
+
+    /// A Kelvin-Voigt half-space (scenes/cone_halfspace_kv.toml): no plate column; the force
+    /// column is the law's P = k z (z + 2 tau z') (zero at the start), never above the outcome's
+    /// peak; the path ends where contact ends, on the event that ended it.
+    #[test]
+    fn a_cone_path_carries_its_force_and_ends_with_the_contact() {
+        let (v, tr) = traced("cone_halfspace_kv.toml");
+        let heads: Vec<String> = tr.states.iter().map(|c| c.heading()).collect();
+        assert_eq!(heads, ["z (m)", "dz/dt (m/s)", "P (N)"]);
+        let p = &tr.states[2].values;
+        assert_eq!(p[0], 0.0);
+        let peak = v["contact"]["peak_force"].as_f64().expect("a number");
+        assert!(p.iter().all(|x| *x <= peak));
+        assert!(p.iter().fold(0.0f64, |a, b| a.max(*b)) > 0.9 * peak);
+        // the law's ratio P / (z (z + 2 tau z')) is one constant k along the contact
+        let ks: Vec<f64> = (1..p.len() - 1)
+            .map(|i| {
+                let (z, u) = (tr.states[0].values[i], tr.states[1].values[i]);
+                p[i] / (z * z + 2.0 * z * u * tau_of_scene())
+            })
+            .collect();
+        assert!(ks.iter().all(|k| (k / ks[0] - 1.0).abs() < 1e-9), "{ks:?}");
+        let last = tr.events.last().expect("an event");
+        assert!(last.name.contains("returns to zero"));
+        assert_eq!(Some(&last.at), tr.variable.values.last());
+        assert_eq!(
+            last.at,
+            v["contact"]["duration"].as_f64().expect("a number")
+        );
+    }
+
+    /// tau = eta / E of the Kelvin-Voigt material of scenes/cone_halfspace_kv.toml.
+    fn tau_of_scene() -> f64 {
+        1.0e6 / 2.0e9
+    }
+}
