@@ -131,7 +131,15 @@ def _bits(a):
 
 
 @pytest.mark.parametrize(
-    "scene", ["hertz.toml", "oscillator_wall.toml", "cone_plate.toml", "hertz_ode.toml"]
+    "scene",
+    [
+        "hertz.toml",
+        "oscillator_wall.toml",
+        "cone_plate.toml",
+        "hertz_ode.toml",
+        "pendulum_on_wall.toml",
+        "rigid_impact.toml",
+    ],
 )
 def test_run_arrays_are_the_command_lines_trace_to_the_bit(scene, tmp_path):
     """`run` against `impact run --format json --trace FILE`: the outcome equal, every step and
@@ -146,17 +154,18 @@ def test_run_arrays_are_the_command_lines_trace_to_the_bit(scene, tmp_path):
     )
     assert dict(r) == traced  # the traced run's outcome is the untraced one's
     tr = json.loads((tmp_path / "t.json").read_text())
-    assert r.traced and r.variable == "t (s)" and len(r.time) > 10
+    var = tr["variable"]
+    assert r.traced and r.variable == f"{var['name']} ({var['unit']})" and len(r.time) > 10
     assert _bits(r.time) == _bits(tr["variable"]["values"])
     for col in tr["states"]:
         heading = col["name"] if col["unit"] == "1" else f"{col['name']} ({col['unit']})"
         assert _bits(r.states[heading]) == _bits(col["values"])
     assert list(r.events["event"]) == [e["name"] for e in tr["events"]]
-    assert _bits(r.events["t (s)"]) == _bits([e["at"] for e in tr["events"]])
+    assert _bits(r.events[r.variable]) == _bits([e["at"] for e in tr["events"]])
     cli("impact", "run", path, "--trace", str(tmp_path / "t.csv"))
     csv = pd.read_csv(tmp_path / "t.csv", keep_default_na=False)
     steps = csv[csv["event"] == ""]
-    assert _bits(steps["t (s)"]) == _bits(r.time)
+    assert _bits(steps[r.variable]) == _bits(r.time)
     frame = r.to_frame()
     for h in r.states:
         assert _bits(steps[h]) == _bits(frame[h])

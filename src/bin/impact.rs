@@ -64,10 +64,10 @@ enum Command {
         /// Also draw the solution against time into this SVG file.
         #[arg(long)]
         plot: Option<std::path::PathBuf>,
-        /// Also write the run's path into this file: the time of every accepted step, the
-        /// states there (each named with its SI unit, `z (m)`) and the events located, as JSON
-        /// (FILE.json) or CSV (FILE.csv, one row per step and per event). Models: hertz,
-        /// cone-plate, ode.
+        /// Also write the run's path into this file: the time of every accepted step (the
+        /// normal impulse, for rigid-impact), the states there (each named with its SI unit,
+        /// `z (m)`) and the events located, as JSON (FILE.json) or CSV (FILE.csv, one row per
+        /// step and per event). Models: hertz, cone-plate, ode, pendulum-wall, rigid-impact.
         #[arg(long, value_name = "FILE")]
         trace: Option<std::path::PathBuf>,
     },

@@ -11,6 +11,7 @@
 use crate::models::doc as d;
 
 use super::params::{Fields, SceneError};
+use super::trace::Trace;
 use super::{Curves, Model, RunError};
 use crate::integrate::{Direction, Event, IntegrateError, Method, OdeSystem, Options, Stop, solve};
 use toml::Value;
@@ -69,6 +70,21 @@ pub struct PendulumImpact {
 
 /// Integrates (2.15) to the unloading of the contact element.
 pub fn impact(rho: f64, sigma: f64, rtol: f64) -> Result<PendulumImpact, IntegrateError> {
+    impact_recorded(rho, sigma, rtol, false).map(|(r, _)| r)
+}
+
+/// Accepted steps `(t, state)`, as the integrator records them.
+type Steps = Vec<(f64, Vec<f64>)>;
+
+/// [`impact`] with, when `record` is set, every accepted step `(t, [eps_On, eps_Cn, eps_On',
+/// eps_Cn'])` in the paper's scaled variables, the last at the unloading; the result is the
+/// same to the bit either way.
+pub fn impact_recorded(
+    rho: f64,
+    sigma: f64,
+    rtol: f64,
+    record: bool,
+) -> Result<(PendulumImpact, Steps), IntegrateError> {
     let sys = PendulumWall { rho, sigma };
     let g = |_t: f64, y: &[f64]| y[1];
     let o = Options {
@@ -76,6 +92,7 @@ pub fn impact(rho: f64, sigma: f64, rtol: f64) -> Result<PendulumImpact, Integra
         atol: rtol * 1e-3,
         method: Method::Auto,
         events: vec![Event::new("contact unloads", &g, Direction::Falling, true)],
+        trajectory: record,
         ..Options::default()
     };
     // the contact lasts at most a few periods of the slower mode
@@ -92,14 +109,15 @@ pub fn impact(rho: f64, sigma: f64, rtol: f64) -> Result<PendulumImpact, Integra
     let rho_o2 = rho * rho + 1.0;
     let d_t = -0.5 * v_on * v_on + 0.5 * v_on * v_on / rho_o2;
     let t0 = (1.0 + rho * rho) / 8.0;
-    Ok(PendulumImpact {
+    let result = PendulumImpact {
         duration: sol.t,
         v_on,
         v_cn,
         omega: (sol.y[2] - sol.y[3]) / -2.0,
         loss: -d_t / t0,
         steps: sol.stats.steps,
-    })
+    };
+    Ok((result, sol.trajectory))
 }
 
 /// (2.15) solved in closed form: it is linear, $\varepsilon'' = -K\varepsilon$ with
@@ -309,10 +327,46 @@ impl Model for PendulumWallScene {
     }
 
     fn run(&self) -> Result<(PendulumWallOutcome, Curves), RunError> {
+        Ok((self.go(false)?.0, vec![]))
+    }
+
+    fn run_traced(&self) -> Result<(PendulumWallOutcome, Option<Trace>), RunError> {
+        self.go(true)
+    }
+}
+
+impl PendulumWallScene {
+    /// The run, with its path in SI units when `record` is set: time in s, the elements'
+    /// deformations eps_On, eps_Cn in m and their rates in m/s (the equations are linear, so the
+    /// scaled deformations scale with v0 sqrt(m/c2)), the unloading as the event.
+    fn go(&self, record: bool) -> Result<(PendulumWallOutcome, Option<Trace>), RunError> {
         let s = self;
         // (2.15) is written with m = 1, |GO| = 1, c2 = 1, approach speed 1: lengths scale with
         // |GO|, velocities with v0, times with sqrt(m/c2)
-        let r = impact(s.rho / s.length, s.sigma, s.rtol)?;
+        let (r, steps) = impact_recorded(s.rho / s.length, s.sigma, s.rtol, record)?;
+        let time = (s.mass / s.stiffness_o).sqrt();
+        let trace = record.then(|| {
+            let mut tr = Trace::new(
+                ("t", "s"),
+                &[
+                    ("eps_On", "m"),
+                    ("eps_Cn", "m"),
+                    ("deps_On/dt", "m/s"),
+                    ("deps_Cn/dt", "m/s"),
+                ],
+            );
+            let si = |y: &[f64]| {
+                let d = s.v0 * time;
+                [y[0] * d, y[1] * d, y[2] * s.v0, y[3] * s.v0]
+            };
+            for (t, y) in &steps {
+                tr.push(t * time, &si(y));
+            }
+            if let Some((t, y)) = steps.last() {
+                tr.event("contact unloads", t * time, &si(y));
+            }
+            tr
+        });
         let mut warnings = Vec::new();
         if r.v_cn.abs() < s.rtol.sqrt() {
             // eps_Cn reaches zero with (nearly) zero slope: a multiple root, located in time
@@ -338,7 +392,7 @@ impl Model for PendulumWallScene {
             contact_time: r.duration * (s.mass / s.stiffness_o).sqrt(),
             suspension_reaction_free: ((s.rho / s.length) - 1.0).abs() < 1e-12,
         };
-        Ok((out, vec![]))
+        Ok((out, trace))
     }
 }
 

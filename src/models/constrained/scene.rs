@@ -5,6 +5,7 @@ use super::{Alternative, ImpactMethod, RigidImpactScene, solve_scene_all};
 use crate::models::doc as d;
 use crate::models::rigid_impact::{Body, Law};
 use crate::models::support::Classification;
+use crate::models::trace::Trace;
 use nalgebra::{Matrix3, Vector3};
 
 type Value = toml::Value;
@@ -421,6 +422,56 @@ impl crate::models::Model for RigidImpactScene {
     }
 
     fn run(&self) -> Result<(RigidImpactOutcome, crate::models::Curves), crate::models::RunError> {
+        Ok((self.go(false)?.0, vec![]))
+    }
+
+    fn run_traced(&self) -> Result<(RigidImpactOutcome, Option<Trace>), crate::models::RunError> {
+        self.go(true)
+    }
+}
+
+/// The path of an impact in the normal impulse: the relative velocity at C (the first body's
+/// less the second's, in the scene's axes) at every accepted step (a planar impact solved
+/// exactly: at each event of its closed form, between which the velocity is linear in the
+/// impulse), each phase's start and the end of compression as events; `None` without steps.
+fn trace_of(r: &crate::models::rigid_impact::ImpactResult) -> Option<Trace> {
+    if r.path.is_empty() {
+        return None;
+    }
+    let mut tr = Trace::new(
+        ("I_n", "N s"),
+        &[("V_x", "m/s"), ("V_y", "m/s"), ("V_z", "m/s")],
+    );
+    for (chi, v) in &r.path {
+        tr.push(*chi, v);
+    }
+    // the velocity where an event fired: stages end on their events, so a step sits there
+    let at = |chi: f64| {
+        r.path
+            .iter()
+            .rev()
+            .find(|(c, _)| *c <= chi)
+            .map_or([f64::NAN; 3], |(_, v)| *v)
+    };
+    let mut events: Vec<(String, f64)> = r
+        .phases
+        .iter()
+        .map(|p| (format!("{} starts", p.kind), p.normal_impulse))
+        .collect();
+    events.push(("compression ends".into(), r.compression_impulse));
+    events.sort_by(|a, b| a.1.total_cmp(&b.1));
+    for (name, chi) in events {
+        tr.event(&name, chi, &at(chi));
+    }
+    Some(tr)
+}
+
+impl RigidImpactScene {
+    /// The run, with its path ([`trace_of`]) when `record` is set.
+    fn go(
+        &self,
+        record: bool,
+    ) -> Result<(RigidImpactOutcome, Option<Trace>), crate::models::RunError> {
         let s = self;
         let mut alternatives = Vec::new();
         let (r, classification, mut warnings) =
@@ -431,7 +482,7 @@ impl crate::models::Model for RigidImpactScene {
                 }
             })?;
         let mut out = RigidImpactOutcome {
-            model: Self::NAME,
+            model: <Self as crate::models::Model>::NAME,
             law: s.law.name(),
             impulse: None,
             v_rel_after: None,
@@ -454,7 +505,11 @@ impl crate::models::Model for RigidImpactScene {
             method: None,
             warnings: vec![],
         };
+        let mut trace = None;
         if let Some(r) = r {
+            if record {
+                trace = trace_of(&r);
+            }
             let scale = 0.5 * s.v_rel.norm_squared() / r.lambda_min.max(1e-300);
             // only Newton's law is to blame for a gain: the energetic law dissipates always (a
             // gain is the solver's inconsistency, an error), Poisson's in planar motion (where
@@ -500,7 +555,7 @@ impl crate::models::Model for RigidImpactScene {
             out.method = Some(r.method);
         }
         out.warnings = warnings;
-        Ok((out, vec![]))
+        Ok((out, trace))
     }
 }
 
