@@ -51,8 +51,10 @@ class _ScenePath:
 
     def __init__(self, scene: Scene):
         self._tmp: Optional[tempfile.TemporaryDirectory] = None
+        self._what = "the scene text"
         if isinstance(scene, Mapping):
             text = toml_of_json(json.dumps(scene))
+            self._what = "the scene dict"
             self.path = self._write(text)
         elif isinstance(scene, os.PathLike) or (
             isinstance(scene, str) and "\n" not in scene and "=" not in scene
@@ -74,9 +76,12 @@ class _ScenePath:
     def __enter__(self) -> str:
         return self.path
 
-    def __exit__(self, *exc) -> None:
+    def __exit__(self, kind, exc, tb) -> None:
         if self._tmp is not None:
             self._tmp.cleanup()
+            # a message names the scene as the user gave it, not the temporary file
+            if isinstance(exc, ImpactcheckError) and self.path in str(exc):
+                raise ImpactcheckError(str(exc).replace(self.path, self._what)) from None
 
 
 class Audit(dict):

@@ -124,6 +124,38 @@ def test_bad_input_raises_naming_it_and_the_interpreter_lives_on(call, says):
     assert ic.describe("hertz")["name"] == "hertz"
 
 
+OSCILLATOR = (ROOT / "scenes" / "oscillator_wall.toml").read_text()
+
+
+@pytest.mark.parametrize(
+    "text, says",
+    [
+        # a bad unit: named, with the nearest known one
+        (OSCILLATOR.replace('w = "Hz"', 'w = "Hzz"'), ["units.w", "Hzz", "Hz"]),
+        # a TOML slip: its line and a caret, the scene named as given
+        (OSCILLATOR.replace("x0 = 0.01", "x0 = = 0.01"), ["the scene text", "line", "^"]),
+        # a key that is not the model's
+        (OSCILLATOR.replace("[solve]", "[solve]\nrtoll = 1e-9"), ["rtoll"]),
+    ],
+)
+def test_a_bad_scene_text_raises_the_command_lines_message(text, says, tmp_path):
+    with pytest.raises(ic.ImpactcheckError) as e:
+        ic.run(text)
+    message = str(e.value)
+    for word in says:
+        assert word in message, (word, message)
+    assert "impactcheck-" not in message  # not the temporary file's name
+    # the same message as `impact run` on the same text in a file, the file's name aside
+    scene = tmp_path / "scene.toml"
+    scene.write_text(text)
+    out = subprocess.run(
+        [str(BIN / "impact"), "run", str(scene)], cwd=ROOT, capture_output=True, text=True
+    )
+    assert out.returncode != 0
+    cli_message = out.stderr.strip().removeprefix("impact: error: ")
+    assert cli_message.replace(str(scene), "the scene text") == message
+
+
 def _bits(a):
     import numpy as np
 
