@@ -2,9 +2,11 @@
 
 Each function calls the same library code as its command-line twin (``impact run``, ``impact
 sweep``, ``impact describe``, ``verify --format json``) and returns what that command prints, as
-Python objects: dicts for outcomes and verdicts, a ``pandas.DataFrame`` for a sweep (one row per
-point, the outcome's numbers as columns). Bad input raises ``ImpactcheckError`` with the command
-line's message (the file, the line, the key).
+Python objects: dicts for outcomes and verdicts, NumPy arrays named with their units for a run's
+path (``Run``: the twin of ``impact run --trace``), a ``pandas.DataFrame`` for a sweep (one row per
+point, the outcome's numbers as columns), frames of an audit's relations and of a claims file's
+claims (``Audit``, ``Claims``). Bad input raises ``ImpactcheckError`` with the command line's
+message (the file, the line, the key); so does a panic of the library, which would be a bug.
 
 A scene is a path, a TOML text or a dict of the same tables (SI units, as in ``scenes/``).
 """
@@ -31,6 +33,7 @@ from ._impactcheck import (
 
 __all__ = [
     "Audit",
+    "Claims",
     "ImpactcheckError",
     "Run",
     "audit",
@@ -114,11 +117,43 @@ def audit(paper, units=None, preamble=None, vocabulary=None) -> Audit:
     )
 
 
-def init(paper, id: str, units=None, preamble=None, vocabulary=None) -> str:
+class Claims(str):
+    """A claims file as ``verify init`` prints it (this string: save it beside the paper), with
+    its contents at hand: ``claims`` (one dict per ``[[claim]]``: id, equation, reading, kind,
+    ...), ``symbols`` (one dict per symbol: ``symbol``, ``unit``), and ``to_frame()`` /
+    ``to_frame("symbols")`` as ``pandas.DataFrame``s."""
+
+    @property
+    def _parsed(self) -> dict:
+        import tomllib
+
+        return tomllib.loads(str(self))
+
+    @property
+    def claims(self) -> list:
+        return self._parsed.get("claim", [])
+
+    @property
+    def symbols(self) -> list:
+        return [{"symbol": k, "unit": v} for k, v in self._parsed.get("symbols", {}).items()]
+
+    def to_frame(self, what: str = "claims"):
+        """``claims`` (one row per claim) or ``symbols`` (one row per symbol and its unit)."""
+        import pandas as pd
+
+        if what not in ("claims", "symbols"):
+            raise ImpactcheckError(f"to_frame({what!r}): 'claims' or 'symbols'")
+        return pd.DataFrame(self.claims if what == "claims" else self.symbols)
+
+
+def init(paper, id: str, units=None, preamble=None, vocabulary=None) -> Claims:
     """The claims file to start from for ``paper``, its claims' ids starting ``id``:
-    ``verify init PAPER --paper ID``, as text (save it beside the paper)."""
-    return init_text(
-        str(paper), id, None if units is None else str(units), _paths(preamble), _paths(vocabulary)
+    ``verify init PAPER --paper ID``, as text (save it beside the paper) with its claims and
+    symbols as dicts and frames (``Claims``)."""
+    return Claims(
+        init_text(
+            str(paper), id, None if units is None else str(units), _paths(preamble), _paths(vocabulary)
+        )
     )
 
 

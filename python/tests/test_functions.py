@@ -86,9 +86,20 @@ def test_audit_and_init_of_the_test_paper_are_the_command_lines():
     # from its words alone
     words = "tests/papers/words/paper.tex"
     assert dict(ic.audit(ROOT / words)) == json.loads(cli("verify", "audit", words, "--format", "json"))
-    assert ic.init(ROOT / paper, "sd", units=ROOT / units) == cli(
-        "verify", "init", str(ROOT / paper), "--units", str(ROOT / units), "--paper", "sd"
-    )
+    text = cli("verify", "init", str(ROOT / paper), "--units", str(ROOT / units), "--paper", "sd")
+    claims = ic.init(ROOT / paper, "sd", units=ROOT / units)
+    assert claims == text
+    # its claims and symbols as frames: counted from the text's own tables and lines
+    frame = claims.to_frame()
+    assert len(frame) == text.count("[[claim]]") > 0
+    assert all(i.startswith("sd.") for i in frame["id"])
+    symbols = claims.to_frame("symbols")
+    assert set(symbols["symbol"]) == {
+        line.split(" = ")[0]
+        for line in text.split("[symbols]")[1].split("[[claim]]")[0].splitlines()
+        if " = " in line
+    }
+    assert dict(zip(symbols["symbol"], symbols["unit"]))["k"] == "N/m"
     with pytest.raises(ic.ImpactcheckError, match="reading the paper"):
         ic.audit(ROOT / "no" / "paper.tex")
 
