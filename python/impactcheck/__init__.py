@@ -184,15 +184,17 @@ class Run(dict):
       order they fired;
     - ``units``: the unit of each quantity by name (``{"t": "s", "z": "m", ...}``).
 
-    A model that integrates no path in time (``traced`` is false) has empty arrays.
+    A run without a path (``traced`` is false: the model integrates none, or this scene gives
+    it none) has empty arrays, and ``no_path`` says why (as ``impact run --trace`` does).
     ``to_frame()`` gives the steps as a ``pandas.DataFrame``, ``to_frame("events")`` the events.
     """
 
-    def __init__(self, outcome: dict, trace: Optional[dict]):
+    def __init__(self, outcome: dict, trace: Optional[dict], no_path: Optional[str] = None):
         import numpy as np
 
         super().__init__(outcome)
         self.traced = trace is not None
+        self.no_path = no_path
         if trace is None:
             trace = {"variable": {"name": "t", "unit": "s", "values": []}, "states": [], "events": []}
         var = trace["variable"]
@@ -226,8 +228,8 @@ def run(scene: Scene) -> Run:
     """One run of ``scene`` (``impact run SCENE --format json --trace FILE.json``): the outcome
     as a dict, with the path as NumPy arrays (``time``, ``states``, ``events``; see ``Run``)."""
     with _ScenePath(scene) as path:
-        outcome, trace = run_traced_json(path)
-    return Run(json.loads(outcome), None if trace is None else json.loads(trace))
+        outcome, trace, no_path = run_traced_json(path)
+    return Run(json.loads(outcome), None if trace is None else json.loads(trace), no_path)
 
 
 def series(

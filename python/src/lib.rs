@@ -66,13 +66,22 @@ fn describe_json(py: Python<'_>, model: Option<&str>) -> PyResult<String> {
 }
 
 /// `impact run SCENE --format json --trace FILE.json`: the outcome's JSON (what the command
-/// prints) and the path's (what it writes), or no path (`None`) for a model that integrates none.
+/// prints) and the path's (what it writes), or why there is no path (what `--trace` says).
 #[pyfunction]
-fn run_traced_json(py: Python<'_>, scene: PathBuf) -> PyResult<(String, Option<String>)> {
+fn run_traced_json(
+    py: Python<'_>,
+    scene: PathBuf,
+) -> PyResult<(String, Option<String>, Option<String>)> {
     guarded(py, || {
         let (outcome, trace) = cli::run_scene_traced(&scene, Format::Json)?;
-        let trace = trace.map(|t| serde_json::to_string(&t).unwrap_or_default());
-        Ok::<_, cli::RunError>((outcome, trace))
+        Ok::<_, cli::RunError>(match trace {
+            Ok(t) => (
+                outcome,
+                Some(serde_json::to_string(&t).unwrap_or_default()),
+                None,
+            ),
+            Err(why) => (outcome, None, Some(why)),
+        })
     })
 }
 

@@ -235,6 +235,7 @@ def test_a_model_without_a_path_has_empty_arrays_and_the_cli_says_why(tmp_path):
     path = str(ROOT / "scenes" / "disk_friction.toml")
     r = ic.run(path)
     assert not r.traced and len(r.time) == 0 and r.states == {}
+    assert "integrates no path" in r.no_path
     assert dict(r) == json.loads(cli("impact", "run", path, "--format", "json"))
     out = subprocess.run(
         [str(BIN / "impact"), "run", path, "--trace", str(tmp_path / "t.json")],

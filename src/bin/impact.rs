@@ -67,7 +67,8 @@ enum Command {
         /// Also write the run's path into this file: the time of every accepted step (the
         /// normal impulse, for rigid-impact), the states there (each named with its SI unit,
         /// `z (m)`) and the events located, as JSON (FILE.json) or CSV (FILE.csv, one row per
-        /// step and per event). Models: hertz, cone-plate, ode, pendulum-wall, rigid-impact.
+        /// step and per event). Models: hertz, cone-plate, ode, pendulum-wall, rigid-impact,
+        /// balls-wall (given its stiffness).
         #[arg(long, value_name = "FILE")]
         trace: Option<std::path::PathBuf>,
     },

@@ -23,32 +23,24 @@ pub use crate::models::trace::Trace;
 /// Runs a validated scene with its path recorded ([`Trace`]): the outcome (the same as
 /// [`run_validated`]'s, to the bit) and the path; an error for a model that integrates none.
 pub fn run_traced(scene: &crate::scene::Scene) -> Result<(Value, Trace), RunError> {
-    match scene.run_traced()? {
-        (v, Some(tr)) => Ok((v, tr)),
-        (_, None) => {
-            let why = if TRACED.contains(&scene.model()) {
-                "this run took no steps (no impact to follow)"
-            } else {
-                "the model integrates no path in time (its outcome is all a run gives)"
-            };
-            Err(RunError::BadArgument {
-                arg: "--trace".into(),
-                message: format!(
-                    "{} records no path for this scene: {why}; the models that record one: {}",
-                    scene.model(),
-                    TRACED.join(", ")
-                ),
-            })
-        }
-    }
+    let (v, tr) = scene.run_traced()?;
+    let tr = tr.map_err(|why| RunError::BadArgument {
+        arg: "--trace".into(),
+        message: format!(
+            "{} records no path for this scene: {why}; the models that record one: {}",
+            scene.model(),
+            TRACED.join(", ")
+        ),
+    })?;
+    Ok((v, tr))
 }
 
 /// `impact run SCENE` with its path recorded: the outcome as [`run_scene`] prints it (the same
-/// to the bit) and the path, `None` for a model that integrates none.
+/// to the bit) and the path, or why it has none.
 pub fn run_scene_traced(
     path: &std::path::Path,
     format: Format,
-) -> Result<(String, Option<Trace>), RunError> {
+) -> Result<(String, crate::models::trace::Traced), RunError> {
     let (v, tr) = crate::scene::load(path)?.run_traced()?;
     Ok((render_run(&v, format), tr))
 }
@@ -60,6 +52,7 @@ pub const TRACED: &[&str] = &[
     "ode",
     "pendulum-wall",
     "rigid-impact",
+    "balls-wall",
 ];
 
 /// A path as CSV: a heading row (`t (s),z (m),...,event`), then one row per accepted step and
@@ -149,32 +142,41 @@ mod tests {
                     continue;
                 }
             };
-            // a rigid impact solved in closed form (planar-exact) has no steps
-            // a rigid impact that does not happen (no impulse) has no path to follow
-            let closed_form = name == "rigid-impact" && plain["impulse"].is_null();
-            if TRACED.contains(&name) && !closed_form {
-                let (v, tr) = traced.expect("a traced model traces");
-                traced_seen.insert(name);
-                assert_eq!(v, plain, "{}", path.display());
-                assert!(tr.variable.values.len() >= 2, "{}", path.display());
-                let n = tr.variable.values.len();
-                assert!(tr.states.iter().all(|c| c.values.len() == n));
-                assert!(tr.variable.values.windows(2).all(|w| w[0] <= w[1]));
-                assert_eq!(tr.variable.values[0], 0.0);
-                let (text, tr2) = run_scene_traced(&path, Format::Json).expect("runs");
-                assert_eq!(serde_json::from_str::<Value>(&text).expect("json"), plain);
-                assert_eq!(tr2.as_ref(), Some(&tr));
-            } else {
-                let e = traced.expect_err("no path").to_string();
-                let why = if closed_form {
-                    "took no steps"
-                } else {
-                    "integrates no path"
-                };
-                assert!(e.contains(why) && e.contains("records no path"), "{e}");
-                assert_eq!(run_scene_traced(&path, Format::Json).expect("runs").1, None);
+            match traced {
+                Ok((v, tr)) => {
+                    assert!(TRACED.contains(&name), "{name} is not listed in TRACED");
+                    traced_seen.insert(name);
+                    assert_eq!(v, plain, "{}", path.display());
+                    assert!(tr.variable.values.len() >= 2, "{}", path.display());
+                    let n = tr.variable.values.len();
+                    assert!(tr.states.iter().all(|c| c.values.len() == n));
+                    assert!(tr.variable.values.windows(2).all(|w| w[0] <= w[1]));
+                    assert_eq!(tr.variable.values[0], 0.0);
+                    let (text, tr2) = run_scene_traced(&path, Format::Json).expect("runs");
+                    assert_eq!(serde_json::from_str::<Value>(&text).expect("json"), plain);
+                    assert_eq!(tr2.as_ref(), Ok(&tr));
+                }
+                Err(e) => {
+                    // why: the model records none, or (a rigid impact without an impulse, a
+                    // balls-wall scene without its stiffness) this scene gives it none
+                    let e = e.to_string();
+                    let why = run_scene_traced(&path, Format::Json)
+                        .expect("runs")
+                        .1
+                        .expect_err("no path");
+                    assert!(e.contains("records no path") && e.contains(&why), "{e}");
+                    let expected = match name {
+                        "rigid-impact" if plain["impulse"].is_null() => "took no steps",
+                        "balls-wall" if plain["time_unit_s"].is_null() => "stiffness",
+                        _ if !TRACED.contains(&name) => crate::models::trace::NO_PATH_IN_TIME,
+                        _ => "a path was expected",
+                    };
+                    assert!(why.contains(expected), "{}: {why}", path.display());
+                }
             }
         }
+        // balls-wall's example gives no stiffness: its path is the test below's
+        traced_seen.insert("balls-wall");
         for m in TRACED {
             assert!(
                 traced_seen.contains(m),
@@ -355,5 +357,50 @@ mod tests {
             .map(|x| x.as_f64().expect("a number"))
             .collect();
         assert_eq!(after, want);
+    }
+
+    /// scenes/balls_wall.toml with a ball-ball stiffness k = 1e9 N/m^1.5 (its time unit): the
+    /// path in SI keeps the energy of two Hertz contacts, m (v1^2 + v2^2)/2 + k/(p+1)
+    /// ((x1 - x2)_+^(p+1) + kappa (x2)_+^(p+1)) = m v0^2/2, at every step (the integrator does not
+    /// conserve it by construction), and ends at the outcome's velocities times v0; without the
+    /// stiffness the run says it has no path and why.
+    #[test]
+    fn a_balls_wall_path_keeps_the_energy_of_its_two_contacts() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+        let text = std::fs::read_to_string(dir.join("balls_wall.toml")).expect("the scene");
+        let table: toml::Table = format!("{text}\nstiffness = 1.0e9\n")
+            .parse()
+            .expect("TOML");
+        let scene = crate::scene::parse_table(&table, "balls").expect("loads");
+        let (v, tr) = run_traced(&scene).expect("a path with the stiffness");
+        let (m, v0, k, p, kappa) = (0.26, 1.0, 1.0e9, 1.5, 2.8284271247461903);
+        let col = |i: usize| &tr.states[i].values;
+        let e0 = 0.5 * m * v0 * v0;
+        for i in 0..tr.variable.values.len() {
+            let (x1, v1, x2, v2) = (col(0)[i], col(1)[i], col(2)[i], col(3)[i]);
+            let stored = k / (p + 1.0)
+                * ((x1 - x2).max(0.0).powf(p + 1.0) + kappa * x2.max(0.0).powf(p + 1.0));
+            let energy = 0.5 * m * (v1 * v1 + v2 * v2) + stored;
+            assert!(
+                (energy / e0 - 1.0).abs() < 1e-6,
+                "step {i}: {energy} vs {e0}"
+            );
+        }
+        let n = tr.variable.values.len() - 1;
+        assert_eq!(
+            col(1)[n],
+            v["v_striker_after"].as_f64().expect("a number") * v0
+        );
+        assert_eq!(
+            col(3)[n],
+            v["v_wall_ball_after"].as_f64().expect("a number") * v0
+        );
+        let plain = crate::scene::load(&dir.join("balls_wall.toml")).expect("loads");
+        let why = plain
+            .run_traced()
+            .expect("runs")
+            .1
+            .expect_err("no stiffness, no path");
+        assert!(why.contains("stiffness"), "{why}");
     }
 }

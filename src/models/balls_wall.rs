@@ -7,6 +7,7 @@
 use crate::models::doc as d;
 
 use super::params::{Fields, SceneError};
+use super::trace::{Steps, Trace, Traced, or_why};
 use super::{Curves, Model, RunError};
 use crate::integrate::{IntegrateError, Method, OdeSystem, Options, solve};
 use toml::Value;
@@ -37,7 +38,20 @@ impl OdeSystem for BallsWall {
 
 /// Final velocities `(v1, v2)` relative to the striking speed (negative: away from the wall).
 pub fn rebound(kappa: f64, p: f64, rtol: f64) -> Result<(f64, f64), IntegrateError> {
+    rebound_recorded(kappa, p, rtol, false).map(|(v, _)| v)
+}
+
+/// [`rebound`] with, when `record` is set, every accepted step `(t, [x1, v1, x2, v2])` in the
+/// scaled variables (displacements from the start in units of v0 times the time unit,
+/// velocities in units of v0, positive toward the wall); the result is the same to the bit.
+pub fn rebound_recorded(
+    kappa: f64,
+    p: f64,
+    rtol: f64,
+    record: bool,
+) -> Result<((f64, f64), Steps), IntegrateError> {
     let sys = BallsWall { kappa, p };
+    let mut steps = Vec::new();
     let mut y = vec![0.0, 1.0, 0.0, 0.0];
     let mut t = 0.0;
     for _ in 0..200 {
@@ -45,9 +59,11 @@ pub fn rebound(kappa: f64, p: f64, rtol: f64) -> Result<(f64, f64), IntegrateErr
             rtol,
             atol: rtol * 1e-3,
             method: Method::Auto,
+            trajectory: record,
             ..Options::default()
         };
-        let sol = solve(&sys, t, &y, t + 20.0, &o)?;
+        let mut sol = solve(&sys, t, &y, t + 20.0, &o)?;
+        steps.append(&mut sol.trajectory);
         t = sol.t;
         y = sol.y;
         let open = y[0] < y[2] && y[2] < 0.0;
@@ -55,7 +71,7 @@ pub fn rebound(kappa: f64, p: f64, rtol: f64) -> Result<(f64, f64), IntegrateErr
             break;
         }
     }
-    Ok((y[1], y[3]))
+    Ok(((y[1], y[3]), steps))
 }
 
 /// The `balls-wall` scene: section 3's closing experiment of 002_b53e4779673eb6ed.txt.
@@ -154,8 +170,29 @@ impl Model for BallsWallScene {
     }
 
     fn run(&self) -> Result<(BallsWallOutcome, Curves), RunError> {
+        Ok((self.go(false)?.0, vec![]))
+    }
+
+    fn run_traced(&self) -> Result<(BallsWallOutcome, Traced), RunError> {
+        let (out, trace) = self.go(true)?;
+        Ok((
+            out,
+            or_why(
+                trace,
+                "a path in seconds and metres needs `stiffness` (the ball-ball contact stiffness): without it the model is scale-free",
+            ),
+        ))
+    }
+}
+
+impl BallsWallScene {
+    /// The run, with its path in SI units when `record` is set and the stiffness gives the time
+    /// unit: t in s, each ball's displacement from the start x1, x2 in m (toward the wall) and
+    /// its velocity in m/s.
+    fn go(&self, record: bool) -> Result<(BallsWallOutcome, Option<Trace>), RunError> {
         let s = self;
-        let (v1, v2) = rebound(s.wall_stiffness_ratio, s.exponent, s.rtol)?;
+        let ((v1, v2), steps) =
+            rebound_recorded(s.wall_stiffness_ratio, s.exponent, s.rtol, record)?;
         // m x'' = -k d^p is scale-free: velocities in units of v0 depend on p and the
         // stiffness ratio only; the time unit is (m v0^(1-p)/k)^(1/(p+1))
         let time_unit = s
@@ -171,7 +208,24 @@ impl Model for BallsWallScene {
             radius: s.radius,
             time_unit_s: time_unit,
         };
-        Ok((out, vec![]))
+        let trace = time_unit.filter(|_| record).map(|unit| {
+            let mut tr = Trace::new(
+                ("t", "s"),
+                &[("x1", "m"), ("v1", "m/s"), ("x2", "m"), ("v2", "m/s")],
+            );
+            let length = s.v0 * unit;
+            let si: Steps = steps
+                .iter()
+                .map(|(t, y)| {
+                    let v = vec![y[0] * length, y[1] * s.v0, y[2] * length, y[3] * s.v0];
+                    (t * unit, v)
+                })
+                .collect();
+            // a window restarts where the last one stopped: `extend` keeps that step once
+            tr.extend(&si);
+            tr
+        });
+        Ok((out, trace))
     }
 }
 

@@ -14,7 +14,7 @@
 use crate::models::doc as d;
 
 use super::params::{Fields, SceneError, SolveSpec};
-use super::trace::Trace;
+use super::trace::{Trace, Traced, or_why};
 use super::{Curves, Model, RunError};
 use crate::integrate::{
     Direction, Event, IntegrateError, Method, OdeSystem, Options, Stats, Stop, solve,
@@ -375,8 +375,9 @@ impl Model for HertzScene {
         Ok((self.go(false)?.0, vec![]))
     }
 
-    fn run_traced(&self) -> Result<(HertzOutcome, Option<Trace>), RunError> {
-        self.go(true)
+    fn run_traced(&self) -> Result<(HertzOutcome, Traced), RunError> {
+        let (out, trace) = self.go(true)?;
+        Ok((out, or_why(trace, "nothing was recorded")))
     }
 }
 

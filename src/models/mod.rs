@@ -83,11 +83,11 @@ pub trait Model: Sized + Clone + Send + Sync + 'static {
     fn from_table(root: &toml::Table, path: &str) -> Result<Self, SceneError>;
     /// Runs the scene: the outcome and the curves of `impact run --plot`.
     fn run(&self) -> Result<(Self::Outcome, Curves), RunError>;
-    /// Runs the scene and records its path ([`trace::Trace`]: every accepted step, the events);
-    /// `None` for a model that integrates no path (its outcome is all there is). The outcome is
-    /// the one [`Model::run`] gives, to the bit.
-    fn run_traced(&self) -> Result<(Self::Outcome, Option<trace::Trace>), RunError> {
-        Ok((self.run()?.0, None))
+    /// Runs the scene and records its path ([`trace::Trace`]: every accepted step, the events),
+    /// or says why it has none (a model that integrates no path: its outcome is all there is).
+    /// The outcome is the one [`Model::run`] gives, to the bit.
+    fn run_traced(&self) -> Result<(Self::Outcome, trace::Traced), RunError> {
+        Ok((self.run()?.0, Err(trace::NO_PATH_IN_TIME.to_string())))
     }
     /// Sets a numeric scene field on the validated parameters, with the same check and message
     /// as reading it from a table; `None` when this model does not set that field this way (a

@@ -11,7 +11,7 @@
 use crate::models::doc as d;
 
 use super::params::{Fields, SceneError};
-use super::trace::Trace;
+use super::trace::{Steps, Trace, Traced, or_why};
 use super::{Curves, Model, RunError};
 use crate::integrate::{Direction, Event, IntegrateError, Method, OdeSystem, Options, Stop, solve};
 use toml::Value;
@@ -72,9 +72,6 @@ pub struct PendulumImpact {
 pub fn impact(rho: f64, sigma: f64, rtol: f64) -> Result<PendulumImpact, IntegrateError> {
     impact_recorded(rho, sigma, rtol, false).map(|(r, _)| r)
 }
-
-/// Accepted steps `(t, state)`, as the integrator records them.
-type Steps = Vec<(f64, Vec<f64>)>;
 
 /// [`impact`] with, when `record` is set, every accepted step `(t, [eps_On, eps_Cn, eps_On',
 /// eps_Cn'])` in the paper's scaled variables, the last at the unloading; the result is the
@@ -330,8 +327,9 @@ impl Model for PendulumWallScene {
         Ok((self.go(false)?.0, vec![]))
     }
 
-    fn run_traced(&self) -> Result<(PendulumWallOutcome, Option<Trace>), RunError> {
-        self.go(true)
+    fn run_traced(&self) -> Result<(PendulumWallOutcome, Traced), RunError> {
+        let (out, trace) = self.go(true)?;
+        Ok((out, or_why(trace, "nothing was recorded")))
     }
 }
 

@@ -6,6 +6,22 @@
 
 use serde::Serialize;
 
+/// Accepted steps `(t, state)`, as the integrator records them.
+pub type Steps = Vec<(f64, Vec<f64>)>;
+
+/// A traced run's path, or why it has none (said by `impact run --trace` and kept by Python's
+/// `Run.no_path`).
+pub type Traced = Result<Trace, String>;
+
+/// The path recorded, or `why` there is none.
+pub fn or_why(trace: Option<Trace>, why: &str) -> Traced {
+    trace.ok_or_else(|| why.to_string())
+}
+
+/// What a model that integrates no path says.
+pub const NO_PATH_IN_TIME: &str =
+    "the model integrates no path in time (its outcome is all a run gives)";
+
 /// One named column: its name, its unit and its values, one per accepted step.
 #[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct Column {

@@ -17,7 +17,7 @@ use crate::models::disk_friction::DiskFrictionScene;
 use crate::models::hertz::HertzScene;
 use crate::models::ode::OdeScene;
 use crate::models::pendulum_wall::PendulumWallScene;
-use crate::models::trace::Trace;
+use crate::models::trace::Traced;
 use crate::models::{Curves, Model, RunError};
 use std::any::Any;
 use std::path::Path;
@@ -76,7 +76,7 @@ trait AnyModel: Send + Sync {
     fn name(&self) -> &'static str;
     fn run_value(&self) -> Result<(serde_json::Value, Curves), RunError>;
     fn run_node(&self) -> Result<row::Node, RunError>;
-    fn run_traced(&self) -> Result<(serde_json::Value, Option<Trace>), RunError>;
+    fn run_traced(&self) -> Result<(serde_json::Value, Traced), RunError>;
     fn as_any(&self) -> &dyn Any;
     fn with_number(&self, field: &str, v: f64, path: &str) -> Option<Result<Scene, SceneError>>;
 }
@@ -97,7 +97,7 @@ impl<M: Model> AnyModel for M {
         let (out, curves) = self.run()?;
         Ok((value_of::<M>(out)?, curves))
     }
-    fn run_traced(&self) -> Result<(serde_json::Value, Option<Trace>), RunError> {
+    fn run_traced(&self) -> Result<(serde_json::Value, Traced), RunError> {
         let (out, trace) = Model::run_traced(self)?;
         Ok((value_of::<M>(out)?, trace))
     }
@@ -131,9 +131,9 @@ impl Scene {
         self.0.run_value()
     }
 
-    /// Runs it and records its path: the outcome as [`Scene::run`] gives it and the trace
-    /// (`None`: the model integrates no path), for `impact run --trace` and Python's `run`.
-    pub fn run_traced(&self) -> Result<(serde_json::Value, Option<Trace>), RunError> {
+    /// Runs it and records its path: the outcome as [`Scene::run`] gives it and the path, or
+    /// why it has none, for `impact run --trace` and Python's `run`.
+    pub fn run_traced(&self) -> Result<(serde_json::Value, Traced), RunError> {
         self.0.run_traced()
     }
 

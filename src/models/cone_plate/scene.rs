@@ -3,7 +3,7 @@
 
 use super::*;
 use crate::models::doc as d;
-use crate::models::trace::Trace;
+use crate::models::trace::{Trace, Traced, or_why};
 
 /// The effects a cone-plate scene may name.
 pub const EFFECTS: &[&str] = &[
@@ -410,8 +410,9 @@ impl crate::models::Model for ConePlateScene {
         self.go(false).map(|(out, curves, _)| (out, curves))
     }
 
-    fn run_traced(&self) -> Result<(ConePlateOutcome, Option<Trace>), crate::models::RunError> {
-        self.go(true).map(|(out, _, trace)| (out, trace))
+    fn run_traced(&self) -> Result<(ConePlateOutcome, Traced), crate::models::RunError> {
+        let (out, _, trace) = self.go(true)?;
+        Ok((out, or_why(trace, "nothing was recorded")))
     }
 }
 

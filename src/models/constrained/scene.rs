@@ -5,7 +5,7 @@ use super::{Alternative, ImpactMethod, RigidImpactScene, solve_scene_all};
 use crate::models::doc as d;
 use crate::models::rigid_impact::{Body, Law};
 use crate::models::support::Classification;
-use crate::models::trace::Trace;
+use crate::models::trace::{Trace, Traced, or_why};
 use nalgebra::{Matrix3, Vector3};
 
 type Value = toml::Value;
@@ -425,8 +425,12 @@ impl crate::models::Model for RigidImpactScene {
         Ok((self.go(false)?.0, vec![]))
     }
 
-    fn run_traced(&self) -> Result<(RigidImpactOutcome, Option<Trace>), crate::models::RunError> {
-        self.go(true)
+    fn run_traced(&self) -> Result<(RigidImpactOutcome, Traced), crate::models::RunError> {
+        let (out, trace) = self.go(true)?;
+        Ok((
+            out,
+            or_why(trace, "this run took no steps (no impact to follow)"),
+        ))
     }
 }
 

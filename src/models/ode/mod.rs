@@ -87,7 +87,7 @@ mod units;
 pub use doc::DOC;
 
 use super::params::{SceneError, SolveSpec};
-use super::trace::Trace;
+use super::trace::{Trace, Traced, or_why};
 use super::{Curves, Model, RunError};
 use crate::algebra::expr::Expr;
 use crate::integrate::{Direction, Event, OdeSystem, Options, Stats, Stop};
@@ -504,8 +504,9 @@ impl Model for OdeScene {
         Ok((self.go(false)?.0, vec![]))
     }
 
-    fn run_traced(&self) -> Result<(OdeOutcome, Option<Trace>), RunError> {
-        self.go(true)
+    fn run_traced(&self) -> Result<(OdeOutcome, Traced), RunError> {
+        let (out, trace) = self.go(true)?;
+        Ok((out, or_why(trace, "nothing was recorded")))
     }
 }
 
