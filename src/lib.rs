@@ -26,6 +26,7 @@ pub mod integrate;
 #[cfg(unix)]
 pub mod interrupt;
 pub mod models;
+pub mod paper;
 pub mod perf;
 pub mod report;
 pub mod rng;

@@ -59,7 +59,7 @@ fn verdicts(out: &Output) -> Vec<(String, String)> {
 #[test]
 fn the_test_paper_is_numbered_as_latex_numbers_it() {
     let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(PAPER)).unwrap();
-    let doc = impactcheck::algebra::tex::document::read_document(&text);
+    let doc = impactcheck::paper::source::document::read_document(&text);
     // by hand: equation (1); align rows omega_n (2), zeta \nonumber, omega_d (3); equation*
     // none; (4), (5); $$ none; \tag{A1}
     assert_eq!(doc.numbers, ["1", "2", "3", "4", "5", "A1"]);

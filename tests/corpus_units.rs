@@ -10,9 +10,9 @@
 //! (`v_{j+1}` and `\vec{F}` read alone), so that the test does not restate the naming rules.
 
 use impactcheck::algebra::expr::Expr;
-use impactcheck::algebra::tex::{TexSymbols, read_formula};
 use impactcheck::algebra::units::Unit;
-use impactcheck::verify::audit::{Units, audit, paper_blocks};
+use impactcheck::paper::audit::{Units, audit, paper_blocks};
+use impactcheck::paper::formulas::{TexSymbols, read_formula};
 
 #[derive(serde::Deserialize)]
 struct Sample {

@@ -8,9 +8,9 @@
 //! (each case is small, so a case that takes long is a fault too: the large-file case must end
 //! within seconds).
 
-use impactcheck::algebra::tex::document::read_document_with;
-use impactcheck::verify::audit::{Units, audit};
-use impactcheck::verify::tex_claims::blocks_at;
+use impactcheck::paper::audit::{Units, audit};
+use impactcheck::paper::source::blocks::blocks_at;
+use impactcheck::paper::source::document::read_document_with;
 use proptest::prelude::*;
 
 /// Pieces papers are made of, and the pieces that break them.

@@ -1,10 +1,11 @@
-//! The LaTeX reader (`src/algebra/tex.rs`) on every display equation of the three seeds
+//! The LaTeX reader (`src/paper/`) on every display equation of the three seeds
 //! (`verify/tex/`): how many relations it reads, and each one it does not,
 //! named with the construct it lacks (`cargo test --test tex_seeds -- --nocapture` prints them).
 
 use impactcheck::algebra::expr::{Expr, parse};
-use impactcheck::algebra::tex::{TexRelation, TexRow, TexSymbols, read_display};
-use impactcheck::algebra::tex_matrix::read_matrix_display;
+use impactcheck::paper::formulas::matrix::read_matrix_display;
+use impactcheck::paper::formulas::{TexRelation, TexRow, TexSymbols};
+use impactcheck::paper::source::display::read_display;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -35,7 +36,7 @@ fn blocks(paper: &str) -> Vec<(usize, Option<String>, String)> {
     out
 }
 
-/// A display's rows: read with its matrices taken out (`src/algebra/tex_matrix.rs`) where it
+/// A display's rows: read with its matrices taken out (`src/paper/formulas/matrix.rs`) where it
 /// prints one and that fails on fewer of its relations, else as formulas.
 fn rows_of(tex: &str, syms: &TexSymbols) -> Vec<TexRow> {
     let plain = read_display(tex, syms);
@@ -188,7 +189,7 @@ fn the_papers_latex_is_the_retyped_formula() {
         assert_eq!(read, typed, "{name} of (16)");
     }
     // a misprint in the LaTeX is seen: a^{3} -> a^{2} in A5
-    let bad = impactcheck::algebra::tex::read_formula(
+    let bad = impactcheck::paper::formulas::read_formula(
         r"E \frac{m^{2} n^{2} \pi^{4} b}{64 a^{2}}+E \frac{m^{2} n^{2} \pi^{4} a}{64 b^{3}}",
         &TexSymbols::default(),
     )

@@ -194,8 +194,8 @@ fn read_paper(
     preamble: &[PathBuf],
     vocabulary: &[PathBuf],
     init: bool,
-) -> anyhow::Result<impactcheck::verify::audit_paper::PaperAudit> {
-    impactcheck::verify::audit_paper::audit_paper(
+) -> anyhow::Result<impactcheck::paper::audit::paper::PaperAudit> {
+    impactcheck::paper::audit::paper::audit_paper(
         paper,
         units,
         preamble,
@@ -235,7 +235,7 @@ fn init_text(
 ) -> PyResult<String> {
     guarded(py, || {
         let p = read_paper(&paper, units.as_deref(), &preamble, &vocabulary, true)?;
-        Ok::<_, anyhow::Error>(impactcheck::verify::audit_paper::init_claims(&p, id))
+        Ok::<_, anyhow::Error>(impactcheck::paper::audit::paper::init_claims(&p, id))
     })
 }
 

@@ -14,13 +14,10 @@ pub mod expo;
 pub mod expr;
 pub mod galerkin;
 pub mod identity21;
-pub mod infer;
 pub mod operator;
 pub mod poly;
 pub mod ratfunc;
 pub mod series;
-pub mod tex;
-pub mod tex_matrix;
 pub mod trig;
 pub mod units;
 

@@ -3,7 +3,7 @@
 
 use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand, ValueEnum};
-use impactcheck::{report, verify};
+use impactcheck::{paper, report, verify};
 use std::collections::BTreeMap;
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -55,7 +55,7 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         preamble: Vec<PathBuf>,
         /// A vocabulary of quantities to add to the built-in one (TOML: a table per quantity
-        /// with `words` and `unit`, as src/verify/words/vocabulary.toml); its words replace the
+        /// with `words` and `unit`, as src/paper/words/vocabulary.toml); its words replace the
         /// built-in ones. The units the paper's prose gives its symbols ("where $\rho$ is the
         /// density") are read with it; --units overrides them.
         #[arg(long, value_name = "FILE")]
@@ -539,7 +539,7 @@ fn run_paper(command: &Command) -> Result<bool> {
             ..
         } => (paper, units, preamble, vocabulary),
     };
-    let p = verify::audit_paper::audit_paper(
+    let p = paper::audit::paper::audit_paper(
         paper,
         units.as_deref(),
         preamble,
@@ -550,11 +550,11 @@ fn run_paper(command: &Command) -> Result<bool> {
     let (a, name) = (&p.audit, &p.name);
     match command {
         Command::Audit { format, .. } => match format {
-            AuditFmt::Text => print!("{}", verify::audit::to_text(a)),
+            AuditFmt::Text => print!("{}", paper::audit::to_text(a)),
             AuditFmt::Json => println!("{}", serde_json::to_string_pretty(a)?),
-            AuditFmt::Markdown => print!("{}", verify::audit::to_markdown(a, name)),
+            AuditFmt::Markdown => print!("{}", paper::audit::to_markdown(a, name)),
         },
-        Command::Init { id, .. } => print!("{}", verify::audit_paper::init_claims(&p, id)),
+        Command::Init { id, .. } => print!("{}", paper::audit::paper::init_claims(&p, id)),
     }
     Ok(true)
 }

@@ -3,8 +3,25 @@
 //! it: how many relations the words decide, and any relation they call inconsistent that the
 //! claims' units do not.
 
-use super::audit::{Audit, audit, to_markdown, units_of_claims};
-use super::words::vocabulary::Vocabulary;
+use crate::algebra::units::Unit;
+use crate::paper::audit::{Audit, Units, audit, paper_words, to_markdown};
+use crate::paper::source::blocks::blocks_at;
+use crate::paper::words::vocabulary::Vocabulary;
+
+/// The units a claims file declares (`[symbols]` that parse as units, `[tex_symbols]`).
+pub fn units_of_claims(p: &super::PaperClaims) -> Units {
+    let mut u = Units {
+        tex_symbols: p.tex_symbols.clone(),
+        ..Units::default()
+    };
+    for (k, t) in p.symbols.iter().chain(&p.audit_symbols) {
+        if let Ok(unit) = Unit::parse(t) {
+            u.symbols.insert(k.clone(), unit);
+            u.texts.insert(k.clone(), t.clone());
+        }
+    }
+    u
+}
 
 /// The index's paragraph on the audits: each paper's counts per status and its report.
 pub fn index_section(papers: &[super::PaperClaims]) -> String {
@@ -72,11 +89,11 @@ pub fn paper_audits(papers: &[super::PaperClaims]) -> Vec<(String, String)> {
 fn words_audit(p: &super::PaperClaims) -> Option<Audit> {
     let path = super::coverage::text_path(p, p.papers_dir.as_deref())?;
     let text = std::fs::read_to_string(&path).ok()?;
-    let (blocks, doc) = super::tex_claims::blocks_at(&text, path.parent(), "");
+    let (blocks, doc) = blocks_at(&text, path.parent(), "");
     let doc = doc?;
     let vocab = Vocabulary::builtin().ok()?;
-    let units = super::audit::Units::default();
-    let words = super::audit::paper_words(&text, &blocks, &units, &vocab);
+    let units = Units::default();
+    let words = paper_words(&text, &blocks, &units, &vocab);
     Some(audit(&blocks, Some(&doc), &units.with_words(words)))
 }
 
@@ -177,6 +194,7 @@ Each paper audited again from its text alone, with no units file: the units of i
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::paper::audit::read_units;
     use std::path::Path;
 
     #[test]
@@ -194,5 +212,25 @@ mod tests {
         }
         assert!(s.starts_with("## Units of every relation"));
         assert_eq!(index_section(&[]), "");
+    }
+
+    #[test]
+    fn a_claims_file_gives_the_units_a_units_file_reads_from_it() {
+        // the seeds' claims files, read as claims and as units files: the same units and the
+        // same LaTeX spellings (000's `[tex_symbols]` among them)
+        for f in ["000_cone_plate", "001_disk", "002_constrained_impact"] {
+            let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("verify/{f}.toml"));
+            let papers = crate::verify::load_claims(&path).expect("loads");
+            let from_claims = units_of_claims(&papers[0]);
+            let from_file = read_units(&path).expect("reads");
+            assert_eq!(from_claims.symbols, from_file.symbols, "{f}");
+            assert_eq!(from_claims.texts, from_file.texts, "{f}");
+            assert_eq!(from_claims.tex_symbols, from_file.tex_symbols, "{f}");
+        }
+        let p = crate::verify::load_claims(
+            &Path::new(env!("CARGO_MANIFEST_DIR")).join("verify/000_cone_plate.toml"),
+        )
+        .expect("loads");
+        assert!(!units_of_claims(&p[0]).tex_symbols.is_empty());
     }
 }

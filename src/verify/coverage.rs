@@ -7,6 +7,7 @@
 //! `reports/README.md` stays true when a claim is added or removed.
 
 use super::{Outcome, PaperClaims};
+use crate::paper::source::blocks::numbers;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -34,47 +35,6 @@ impl Coverage {
     pub fn covered(&self) -> usize {
         self.equations.len() - self.missing.len()
     }
-}
-
-/// The `\tag{...}` labels of a text, in order, once each.
-pub fn tags(text: &str) -> Vec<String> {
-    let mut out: Vec<String> = Vec::new();
-    let mut rest = text;
-    while let Some(i) = rest.find("\\tag{") {
-        rest = &rest[i + 5..];
-        let Some(end) = rest.find('}') else { break };
-        let label = rest[..end].trim().to_string();
-        if !label.is_empty() && !out.contains(&label) {
-            out.push(label);
-        }
-        rest = &rest[end..];
-    }
-    out
-}
-
-/// The numbers of a paper's text, in order, once each: for a `.tex` file, as LaTeX numbers a
-/// source (automatic numbers, `\tag`s and numbers printed after a block) or, for a displays
-/// extract, its blocks' tags and the numbers printed after them; the `\tag{...}` labels for any
-/// other text (the seeds).
-pub fn numbers(file: &str, text: &str) -> Vec<String> {
-    if !file.ends_with(".tex") {
-        return tags(text);
-    }
-    let mut out: Vec<String> = Vec::new();
-    let all = match super::tex_claims::blocks_of(text) {
-        (_, Some(doc)) => doc.numbers,
-        // a displays extract: each block's tags, and the number printed after it
-        (blocks, None) => blocks
-            .iter()
-            .flat_map(|(after, tex)| tags(tex).into_iter().chain(after.clone()))
-            .collect(),
-    };
-    for n in all {
-        if !out.contains(&n) {
-            out.push(n);
-        }
-    }
-    out
 }
 
 /// The labels an `equation` field names: every `(...)` in it.
@@ -366,6 +326,7 @@ pub fn table(cov: &[Coverage], outcomes: &[Outcome]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::paper::source::blocks::tags;
 
     fn paper(equations: &[&str]) -> PaperClaims {
         let claims: String = equations

@@ -6,9 +6,6 @@
 //! stated error.
 
 pub mod accuracy;
-pub mod audit;
-mod audit_init;
-pub mod audit_paper;
 pub mod audit_reports;
 pub mod coverage;
 /// FNV-1a with a 128-bit state: a stable hash for change detection (the keys of
@@ -26,7 +23,6 @@ pub mod power;
 pub mod power_cache;
 pub mod series_numeric;
 pub mod tex_claims;
-pub mod words;
 
 use serde::Deserialize;
 use std::collections::BTreeMap;

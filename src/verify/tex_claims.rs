@@ -1,5 +1,5 @@
 //! `printed_tex` and `printed_from`: a claim's printed side read from LaTeX, so that what is
-//! judged is what the paper prints and not a retyped copy ([`crate::algebra::tex`]).
+//! judged is what the paper prints and not a retyped copy ([`crate::paper::formulas`]).
 //!
 //! `printed_tex = "..."` is LaTeX pasted from a paper. `printed_from = { tag = "(16)", lhs =
 //! "A_{5}" }` is the relation of the display numbered (16) whose left side reads as `A_{5}` (its
@@ -8,7 +8,7 @@
 //! display, numbered or not (as `verify audit` counts them); `relation = 2` the second relation
 //! of the row or display named (`a = b, \quad c = d`). The displays are those of the paper's own
 //! LaTeX source when the file's `file` is a `.tex` beside the claims file, numbered as LaTeX
-//! numbers them ([`read_document`]), else those of `tex/<paper>.tex` beside the claims file
+//! numbers them ([`read_document`](crate::paper::source::document::read_document)), else those of `tex/<paper>.tex` beside the claims file
 //! (`verify/tex/`, copied once from the seeds' text, so that the reports do not depend on where
 //! the papers lie). The file's `[tex_symbols]` maps any other spelling to a symbol (`"z(t)" =
 //! "z"`). Either key becomes the claim's `printed` (as text, which the kinds read as before) and
@@ -16,28 +16,11 @@
 
 use super::{ClaimSpec, PaperClaims, VerifyError};
 use crate::algebra::expr::Expr;
-use crate::algebra::tex::document::{Document, read_document};
-use crate::algebra::tex::{TexSymbols, read_display, read_formula};
-use crate::algebra::tex_matrix::{TexMatrix, factor_of, matrix_value, read_matrix_display};
-
-/// The blocks of a displays file: (the tag printed after the block, the LaTeX).
-pub(crate) fn display_blocks(text: &str) -> Vec<(Option<String>, String)> {
-    let mut out: Vec<(Option<String>, String)> = Vec::new();
-    for line in text.lines() {
-        if let Some(head) = line.strip_prefix("%% block ") {
-            out.push((
-                head.split(" tag=").nth(1).map(str::to_string),
-                String::new(),
-            ));
-        } else if !line.starts_with('%')
-            && let Some(last) = out.last_mut()
-        {
-            last.1.push_str(line);
-            last.1.push('\n');
-        }
-    }
-    out
-}
+use crate::paper::formulas::matrix::{TexMatrix, factor_of, matrix_value, read_matrix_display};
+use crate::paper::formulas::{TexSymbols, read_formula};
+use crate::paper::source::blocks::{blocks_at, display_blocks};
+use crate::paper::source::display::read_display;
+use crate::paper::source::document::Document;
 
 /// A paper's displays (each with the number printed after it, if any), its document when read
 /// from its LaTeX source, and the path read.
@@ -47,87 +30,8 @@ pub type PaperDisplays = (
     std::path::PathBuf,
 );
 
-/// The words a refused `\input` is named with (a path that leaves the paper's folder).
-pub const OUTSIDE: &str = "outside the paper's folder";
-
-/// How a paper in `dir` reads its `\input{name}`: `dir/name` (or `dir/name.tex`), refused
-/// when the path is absolute or leads out of `dir` (a paper from anyone must not make the tool
-/// read elsewhere), an error naming the file when it cannot be read.
-pub fn folder_loader(dir: &std::path::Path) -> impl Fn(&str) -> Result<String, String> + '_ {
-    move |name: &str| {
-        let refuse = || {
-            format!(
-                "`\\input{{{name}}}`: {name} is {OUTSIDE} {} (refused)",
-                dir.display()
-            )
-        };
-        let rel = std::path::Path::new(name);
-        if rel.is_absolute()
-            || rel.components().any(|c| {
-                !matches!(
-                    c,
-                    std::path::Component::Normal(_) | std::path::Component::CurDir
-                )
-            })
-        {
-            return Err(refuse());
-        }
-        let mut path = dir.join(rel);
-        if !path.is_file() {
-            path = dir.join(format!("{name}.tex"));
-        }
-        let root = dir
-            .canonicalize()
-            .map_err(|e| format!("{}: {e}", dir.display()))?;
-        let real = path
-            .canonicalize()
-            .map_err(|_| format!("`\\input{{{name}}}`: no file {} in {}", name, dir.display()))?;
-        if !real.starts_with(&root) {
-            return Err(refuse());
-        }
-        std::fs::read_to_string(&real)
-            .map_err(|e| format!("`\\input{{{name}}}`: {}: {e}", real.display()))
-    }
-}
-
-/// A paper's displays from its text: a displays extract of `%% block N` sections (the seeds'
-/// cache, `verify/tex/`), or a LaTeX source (or a text with display math) read as LaTeX numbers
-/// it, with its document.
-pub fn blocks_of(text: &str) -> (Vec<(Option<String>, String)>, Option<Document>) {
-    blocks_at(text, None, "")
-}
-
-/// As [`blocks_of`], for a paper in the folder `dir`: its `\input` files read from that folder
-/// (a path that leaves it refused, [`folder_loader`]), the macros of `preamble` made first.
-pub fn blocks_at(
-    text: &str,
-    dir: Option<&std::path::Path>,
-    preamble: &str,
-) -> (Vec<(Option<String>, String)>, Option<Document>) {
-    if text.lines().any(|l| l.starts_with("%% block ")) {
-        return (display_blocks(text), None);
-    }
-    let doc = match dir {
-        Some(d) => {
-            let here = std::path::Path::new(".");
-            let load = folder_loader(if d.as_os_str().is_empty() { here } else { d });
-            crate::algebra::tex::document::read_document_full(text, preamble, &load)
-        }
-        None if preamble.is_empty() => read_document(text),
-        None => crate::algebra::tex::document::read_document_full(text, preamble, &|name| {
-            Err(format!("`\\input{{{name}}}`: no folder to read it from"))
-        }),
-    };
-    let blocks = doc
-        .displays
-        .iter()
-        .map(|d| (d.after.clone(), d.latex.clone()))
-        .collect();
-    (blocks, Some(doc))
-}
-
 /// The displays a claims file's printed sides are read from: the paper's own LaTeX source when
-/// its `file` is a `.tex` (read as LaTeX numbers it, [`read_document`]); else the extract
+/// its `file` is a `.tex` (read as LaTeX numbers it, [`read_document`](crate::paper::source::document::read_document)); else the extract
 /// `tex/<paper>.tex` beside the claims file (the seeds' cache); else its `file`, a text with
 /// display math (`$$ ... $$` with the number printed after each). A `file` is looked for in
 /// `--papers DIR`, beside the claims file, then among the seeds
@@ -583,10 +487,10 @@ fn formula_from_paper(
 }
 
 /// For a dimension claim, which judges units only: each application `{z(t)}` as its function
-/// `z`, whose unit it has (as in the audit, [`crate::algebra::infer::unit_name`]).
+/// `z`, whose unit it has (as in the audit, [`crate::paper::units::unit_name`]).
 fn applications_as_functions(e: &Expr) -> Expr {
     e.substitute(&|s| {
-        let f = crate::algebra::infer::unit_name(s);
+        let f = crate::paper::units::unit_name(s);
         (f != s).then_some(Expr::Sym(f))
     })
 }
@@ -648,10 +552,10 @@ fn read_side(
     nth: Option<usize>,
     syms: &TexSymbols,
     difference: bool,
-) -> Result<Expr, crate::algebra::tex::TexError> {
+) -> Result<Expr, crate::paper::formulas::TexError> {
     let pieces = read_display(tex, syms);
     let mut first_err = None;
-    let side = |r: &crate::algebra::tex::TexRelation| {
+    let side = |r: &crate::paper::formulas::TexRelation| {
         let last = r.sides.last().cloned().unwrap_or(Expr::Pi);
         let zero = Expr::Num(crate::algebra::poly::Q::from_integer(0.into()));
         let minus = |a: &Expr, b: &Expr| {
@@ -682,7 +586,7 @@ fn read_side(
         return match all.get(k) {
             Some(Ok(r)) if r.sides.len() > 1 => Ok(side(r)),
             Some(Err(e)) => Err(e.clone()),
-            _ => Err(crate::algebra::tex::TexError {
+            _ => Err(crate::paper::formulas::TexError {
                 column: 1,
                 construct: format!(
                     "a relation at place {} (the LaTeX holds {} formula(s))",
@@ -714,7 +618,7 @@ fn read_side(
             }
         }
     }
-    Err(first_err.unwrap_or(crate::algebra::tex::TexError {
+    Err(first_err.unwrap_or(crate::paper::formulas::TexError {
         column: 1,
         construct: "a relation with that left side".into(),
         found: tex.into(),

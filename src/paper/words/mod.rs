@@ -17,7 +17,6 @@
 //! hand, as [`vocabulary`] says why.
 
 mod bare;
-pub mod conflicts;
 pub mod vocabulary;
 
 use bare::bare_lists;
@@ -25,9 +24,9 @@ use bare::bare_lists;
 use bare::bare_symbol;
 
 use crate::algebra::expr::Expr;
-use crate::algebra::infer::unit_name;
-use crate::algebra::tex::{TexSymbols, read_formula};
 use crate::algebra::units::Unit;
+use crate::paper::formulas::{TexSymbols, read_formula};
+use crate::paper::units::unit_name;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use vocabulary::{Hit, Vocabulary};

@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::algebra::expr::parse;
+use crate::paper::source::display::{self, read_display};
 
 /// A symbol's test value in [0.5, 2), from its name.
 fn value(name: &str) -> Option<f64> {
@@ -257,7 +258,7 @@ fn a_bad_name_part_applications_integrals_and_the_nesting_limit() {
 /// The spacing commands `\,` and `\;` are not the separators `,` and `;` of a row's relations.
 #[test]
 fn spacing_does_not_split_a_row() {
-    let parts = super::split_top(r"m\rho^2 \,\Omega = x, y \; = z; w", &[",", ";"]);
+    let parts = display::split_top(r"m\rho^2 \,\Omega = x, y \; = z; w", &[",", ";"]);
     assert_eq!(parts, [r"m\rho^2 \,\Omega = x", r" y \; = z", " w"]);
 }
 
@@ -459,14 +460,14 @@ fn labels_of_letters_bracket_derivatives_and_vectors_after_a_bare_argument() {
 /// The words of a `\text{ a) }` are no brackets: the rows around it still split.
 #[test]
 fn a_parenthesis_in_text_does_not_hide_a_row_break() {
-    let parts = super::split_top(r"\text { b) } V > a \\ m V' = -f", &["\\\\"]);
+    let parts = display::split_top(r"\text { b) } V > a \\ m V' = -f", &["\\\\"]);
     assert_eq!(parts.len(), 2, "{parts:?}");
     // a group inside the text closes, the text goes on
-    let parts = super::split_top(r"\text{ {a} b) } V > a \\ m V' = -f", &["\\\\"]);
+    let parts = display::split_top(r"\text{ {a} b) } V > a \\ m V' = -f", &["\\\\"]);
     assert_eq!(parts.len(), 2, "{parts:?}");
     // a row's space `\\[2mm]` goes with the break
     assert_eq!(
-        super::display::rows_of(r"a = b \\[2mm] c = d \\*[1ex] e = f"),
+        display::rows_of(r"a = b \\[2mm] c = d \\*[1ex] e = f"),
         ["a = b ", " c = d ", " e = f"]
     );
 }

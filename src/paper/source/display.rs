@@ -1,11 +1,12 @@
 //! Displays: the environments a display wraps its rows in, rows split at `\\`, continued
 //! rows joined, `\tag{}` taken out as the row's number, and each row's relations read.
 
-use super::{TexRow, TexSymbols, read_relation};
+use crate::algebra::expr::Expr;
+use crate::paper::formulas::{TexRow, TexSymbols, read_relation};
 
 /// The environments a display may wrap its rows in: their `\begin{..}`/`\end{..}` are dropped
 /// (with the column count of `alignat`, `alignedat` and the position of `aligned`).
-pub(super) const ENVIRONMENTS: &[&str] = &[
+pub(crate) const ENVIRONMENTS: &[&str] = &[
     "equation",
     "equation*",
     "align",
@@ -32,7 +33,7 @@ pub(super) const ENVIRONMENTS: &[&str] = &[
 ];
 
 /// `text` without the `\begin{..}` and `\end{..}` of [`ENVIRONMENTS`] (and their arguments).
-pub(super) fn drop_environments(text: &str) -> String {
+pub(crate) fn drop_environments(text: &str) -> String {
     let mut text = text.to_string();
     for env in ENVIRONMENTS {
         let open = format!("\\begin{{{env}}}");
@@ -429,7 +430,7 @@ const CONNECTIVES: &[&str] = &[
 
 /// `tex` with each `\text{..}` (`\mbox`, `\textrm`, `\textnormal`, `\textit`, `\mathrm`) of
 /// connecting words at the top level replaced by `;`.
-pub(super) fn words_as_separators(tex: &str) -> String {
+pub(crate) fn words_as_separators(tex: &str) -> String {
     let mut out = tex.to_string();
     for cmd in [
         "\\text",
@@ -672,7 +673,7 @@ fn branches(rel: &str) -> Vec<String> {
 /// row of its relations: each value with what stands before and after the `cases` (`f = a`,
 /// `f = b`), each condition a relation of its own (`x > 0`, `x \le 0`), the words of a
 /// condition (`\text{if}`, `otherwise`) separators; any other display as it is.
-pub(super) fn cases_row(block: &str) -> String {
+pub(crate) fn cases_row(block: &str) -> String {
     let open = ["\\begin{cases}", "\\begin{dcases}", "\\begin{rcases}"]
         .iter()
         .find_map(|o| block.find(o).map(|at| (at, o.len())));
@@ -722,7 +723,7 @@ pub(super) fn cases_row(block: &str) -> String {
 
 /// Whether a row that starts with `-` or `+` is a relation of its own (`-a = b`) rather than the
 /// continuation of the row before (a relation sign at the top level).
-pub(super) fn starts_relation(row: &str) -> bool {
+pub(crate) fn starts_relation(row: &str) -> bool {
     let signs = [
         "=",
         "\\le",
@@ -746,7 +747,7 @@ pub(super) fn starts_relation(row: &str) -> bool {
 }
 
 /// The row without its `\tag{...}`, and the tag.
-pub(super) fn take_tag(row: &str) -> (String, Option<String>) {
+pub(crate) fn take_tag(row: &str) -> (String, Option<String>) {
     match row.find("\\tag{") {
         Some(at) => {
             let rest = &row[at + 5..];
@@ -759,5 +760,29 @@ pub(super) fn take_tag(row: &str) -> (String, Option<String>) {
             }
         }
         None => (row.to_string(), None),
+    }
+}
+
+/// The names a paper applies as functions, read from its displays (kept with the displays'
+/// reader, which finds them).
+impl TexSymbols {
+    /// This table with the names a paper applies as functions: the names of the applications
+    /// read in `displays` (`{x(t)}` read from `x(t)`), each then applied to any arguments.
+    pub fn with_functions_of<'a>(&self, displays: impl IntoIterator<Item = &'a str>) -> Self {
+        let mut t = self.clone();
+        for d in displays {
+            t.2.extend(crate::paper::formulas::lone_increment_letters(d));
+            for row in read_display(d, self) {
+                for rel in row.relations.iter().flatten() {
+                    for s in rel.sides.iter().flat_map(Expr::symbols) {
+                        let name = crate::paper::units::unit_name(&s);
+                        if name != s {
+                            t.1.insert(name);
+                        }
+                    }
+                }
+            }
+        }
+        t
     }
 }

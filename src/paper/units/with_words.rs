@@ -4,8 +4,8 @@
 //! relation that came first. Such a relation is judged again against the named units and the
 //! paper's definitions alone; a conflict that then vanishes is no finding.
 
+use super::{Inference, Relation, Status, infer_ordered, unit_name};
 use crate::algebra::expr::Expr;
-use crate::algebra::infer::{Inference, Relation, Status, infer_ordered, unit_name};
 use crate::algebra::units::Unit;
 use std::collections::BTreeMap;
 
@@ -128,8 +128,8 @@ pub fn scope_passing(
     inputs: &mut [Option<Relation>],
     lines: &[Option<usize>],
     names: &mut [Vec<String>],
-    units: &crate::verify::audit::Units,
-) -> crate::verify::audit::Units {
+    units: &crate::paper::units::declared::Units,
+) -> crate::paper::units::declared::Units {
     let mut out = units.clone();
     // the paper's time `t`, every dot's variable, named in passing ("at time $t = 0$"): no
     // anchor (a text that says it in passing often makes it dimensionless elsewhere)
@@ -140,7 +140,7 @@ pub fn scope_passing(
     if units.sections.is_empty() {
         return out;
     }
-    let section = |line: usize| super::section_of(&units.sections, line);
+    let section = |line: usize| crate::paper::words::section_of(&units.sections, line);
     // one section with displays: nothing to scope
     let with_displays: std::collections::BTreeSet<usize> =
         lines.iter().flatten().map(|&l| section(l)).collect();
@@ -196,7 +196,7 @@ pub fn scope_passing(
         out.symbols.insert(local.clone(), w.unit);
         out.words.insert(
             local.clone(),
-            super::WordUnit {
+            crate::paper::words::WordUnit {
                 symbol: local,
                 ..w.clone()
             },

@@ -6,7 +6,7 @@
 //! `\operatorname{diag} \left\{ a, b, c \right\}` ((3.9), (3.10)) and the unit matrix
 //! `\mathbf{E}_{2}`; and combines them with scalars: `m^{-1} \rho^{-2} \begin{vmatrix} ..`,
 //! `(m_1^{-1} + m_2^{-1})\mathbf{E}_2 + ...`. [`read_matrix_display`] takes each matrix out of
-//! a display, reads its cells with [`super::tex`], lets it stand in the display as a symbol, and
+//! a display, reads its cells with [`super`], lets it stand in the display as a symbol, and
 //! [`matrix_value`] evaluates a side read that way: sums, differences, scalar multiples and
 //! quotients, and products of matrices (`pmatrix`, `bmatrix`, `Bmatrix`, `Vmatrix` and `matrix`
 //! read as `vmatrix` does).
@@ -14,9 +14,10 @@
 //! Written by hand: it extends this crate's own LaTeX reader; no crate reads LaTeX matrices into
 //! expression trees.
 
-use super::expr::{Expr, Op};
-use super::poly::Q;
-use super::tex::{TexError, TexRow, TexSymbols, read_display, read_formula, split_top};
+use super::{TexError, TexRow, TexSymbols, read_formula};
+use crate::algebra::expr::{Expr, Op};
+use crate::algebra::poly::Q;
+use crate::paper::source::display::{read_display, split_top};
 
 /// A matrix of formulas, row by row.
 pub type TexMatrix = Vec<Vec<Expr>>;

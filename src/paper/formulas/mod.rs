@@ -26,17 +26,12 @@
 //! Here the reader's types and entry points; apart: `lex` (tokens), `reader` (building
 //! expressions) and `display` (environments, rows and their tags).
 
-mod display;
-pub mod document;
 mod lex;
-pub mod macros;
+pub mod matrix;
 mod reader;
 
-pub use display::read_display;
-pub(crate) use display::split_top;
-
-use super::expr::Expr;
-use super::poly::Q;
+use crate::algebra::expr::Expr;
+use crate::algebra::poly::Q;
 use lex::lex;
 use reader::Reader;
 
@@ -86,40 +81,20 @@ impl TexSymbols {
         t
     }
 
-    /// This table with the names a paper applies as functions: the names of the applications
-    /// read in `displays` (`{x(t)}` read from `x(t)`), each then applied to any arguments.
-    pub fn with_functions_of<'a>(&self, displays: impl IntoIterator<Item = &'a str>) -> Self {
-        let mut t = self.clone();
-        for d in displays {
-            t.2.extend(lone_increment_letters(d));
-            for row in read_display(d, self) {
-                for rel in row.relations.iter().flatten() {
-                    for s in rel.sides.iter().flat_map(Expr::symbols) {
-                        let name = super::infer::unit_name(&s);
-                        if name != s {
-                            t.1.insert(name);
-                        }
-                    }
-                }
-            }
-        }
-        t
-    }
-
     /// The targets that are formulas, parsed (a target that does not parse stays a symbol
     /// with an odd name, which the claim's reader refuses naming it).
     pub(super) fn formulas(&self) -> Vec<(String, Expr)> {
         self.0
             .iter()
             .filter(|(_, t)| !is_name(t))
-            .filter_map(|(_, t)| super::expr::parse(t).ok().map(|e| (t.clone(), e)))
+            .filter_map(|(_, t)| crate::algebra::expr::parse(t).ok().map(|e| (t.clone(), e)))
             .collect()
     }
 }
 
 /// The increment letters (`\Delta`, `\delta`) that stand alone somewhere in `tex`: followed by
 /// no name (`\delta =`, `\delta^{3/2}`, `(\delta)`, `\Delta^2 w`).
-fn lone_increment_letters(tex: &str) -> Vec<String> {
+pub(crate) fn lone_increment_letters(tex: &str) -> Vec<String> {
     let mut out = Vec::new();
     for letter in ["Delta", "delta"] {
         let pat = format!("\\{letter}");

@@ -93,7 +93,7 @@ fn skip_ws(text: &str, at: usize) -> usize {
 }
 
 /// A `{..}` group at `at` (after whitespace): its inside and the index after it.
-pub(super) fn group(text: &str, at: usize) -> Option<(String, usize)> {
+pub(crate) fn group(text: &str, at: usize) -> Option<(String, usize)> {
     let start = skip_ws(text, at);
     if !text[start..].starts_with('{') {
         return None;

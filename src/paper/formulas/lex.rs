@@ -56,7 +56,7 @@ pub(super) fn lex(src: &str, syms: &TexSymbols) -> Vec<(Tok, usize)> {
             let unit = unit_after_number(&chars[i..]);
             if unit > 0 {
                 i += unit;
-                out.push((Tok::Sym(super::super::units::WRITTEN_UNIT.into()), col));
+                out.push((Tok::Sym(crate::algebra::units::WRITTEN_UNIT.into()), col));
             }
         } else if chars[i..].starts_with(&['.', '.', '.']) {
             // `c_1 N_1 + ... + c_n N_n`: an ellipsis typed as three dots
@@ -236,7 +236,7 @@ fn unit_after_number(rest: &[char]) -> usize {
         .split(|c: char| !c.is_ascii_alphabetic() && c != '°')
         .filter(|w| !w.is_empty() && *w != "mathrm" && *w != "text")
         .collect();
-    let named = |w: &str| super::super::units::Unit::named(w).is_some();
+    let named = |w: &str| crate::algebra::units::Unit::named(w).is_some();
     let is_unit = |w: &str| {
         let first = w.chars().next().map_or(0, char::len_utf8);
         named(w)

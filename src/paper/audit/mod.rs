@@ -1,5 +1,5 @@
 //! `verify audit`: the units of every relation of a paper, from its LaTeX and the units of a few
-//! symbols ([`crate::algebra::infer`]), and `verify init`: a claims file to start from.
+//! symbols ([`crate::paper::units`]), and `verify init`: a claims file to start from.
 //!
 //! The paper is its LaTeX source (or a text with display math), read as LaTeX numbers it
 //! ([`read_document`]), or a displays extract of `%% block N` sections (`verify/tex/*.tex`, the
@@ -10,58 +10,22 @@
 //! `[audit_symbols]` (more units, which only the audit reads) and `[tex_symbols]`: a claims
 //! file serves as it is.
 
-use super::VerifyError;
-use super::words::vocabulary::Vocabulary;
-use super::words::{WordUnit, Words};
 use crate::algebra::expr::Expr;
-use crate::algebra::infer::{Inference, Relation, Status, infer_ordered, unit_name};
-use crate::algebra::tex::document::Document;
-use crate::algebra::tex::{TexSymbols, read_display, read_formula};
 use crate::algebra::units::Unit;
+use crate::paper::formulas::{TexSymbols, read_formula};
+use crate::paper::source::display::read_display;
+use crate::paper::source::document::Document;
+pub use crate::paper::units::declared::{Units, read_units};
+use crate::paper::units::{Inference, Relation, Status, infer_ordered, unit_name};
+use crate::paper::words::Words;
+use crate::paper::words::vocabulary::Vocabulary;
 use serde::Serialize;
 use std::collections::BTreeMap;
-use std::path::Path;
 
-/// The declared units and LaTeX spellings an audit starts from.
-#[derive(Clone, Debug, Default)]
-pub struct Units {
-    /// Declared units by symbol.
-    pub symbols: BTreeMap<String, Unit>,
-    /// The same as written (for the claims file `init` prints).
-    pub texts: BTreeMap<String, String>,
-    /// LaTeX spellings mapped to symbols.
-    pub tex_symbols: BTreeMap<String, String>,
-    /// The units of [`Units::symbols`] that the paper's words gave (issue 52), with their
-    /// sources.
-    pub words: BTreeMap<String, WordUnit>,
-    /// The units the words gave symbols that are declared: the declared unit is used.
-    pub overridden: BTreeMap<String, WordUnit>,
-    /// The names the words call a Dirac delta (read as the inverse of their argument).
-    pub dirac: std::collections::BTreeSet<String>,
-    /// The lines where the paper's sections open (a mention in passing names its symbol in
-    /// its section only).
-    pub sections: Vec<usize>,
-}
+pub mod init;
+pub mod paper;
 
-impl Units {
-    /// These units with those the paper's words give: a symbol the words name gets their
-    /// unit unless it is declared here (the declared unit overrides, and the audit says so).
-    pub fn with_words(mut self, words: Words) -> Units {
-        self.dirac.extend(words.dirac);
-        self.sections = words.sections;
-        for (name, w) in words.units {
-            if self.symbols.contains_key(&name) {
-                self.overridden.insert(name, w);
-            } else {
-                self.symbols.insert(name.clone(), w.unit);
-                self.words.insert(name, w);
-            }
-        }
-        self
-    }
-}
-
-/// The units a paper's words give its symbols ([`super::words`]), its symbols named as the
+/// The units a paper's words give its symbols ([`crate::paper::words`]), its symbols named as the
 /// audit of `blocks` names them.
 pub fn paper_words(
     text: &str,
@@ -71,47 +35,7 @@ pub fn paper_words(
 ) -> Words {
     let syms = TexSymbols::new(units.tex_symbols.clone())
         .with_functions_of(blocks.iter().map(|(_, tex)| tex.as_str()));
-    super::words::read_words(text, &syms, vocab)
-}
-
-/// Reads a units file: `[symbols]` (and `[tex_symbols]`) of any TOML file, a claims file
-/// included; every unit checked, a bad one an error naming the file and the symbol.
-pub fn read_units(path: &Path) -> Result<Units, VerifyError> {
-    let bad = |message: String| VerifyError::BadClaims {
-        path: path.to_path_buf(),
-        message,
-    };
-    let text = std::fs::read_to_string(path).map_err(|e| bad(format!("cannot read it: {e}")))?;
-    let table: toml::Table = toml::from_str(&text).map_err(|e| bad(format!("not TOML: {e}")))?;
-    let mut out = Units::default();
-    let section = |name: &str| -> Result<BTreeMap<String, String>, VerifyError> {
-        match table.get(name) {
-            None => Ok(BTreeMap::new()),
-            Some(toml::Value::Table(t)) => t
-                .iter()
-                .map(|(k, v)| {
-                    v.as_str()
-                        .map(|s| (k.clone(), s.to_string()))
-                        .ok_or_else(|| bad(format!("{name}.{k} = {v}: a string (\"m/s\")")))
-                })
-                .collect(),
-            Some(other) => Err(bad(format!("`{name}` = {other}: a table [{name}]"))),
-        }
-    };
-    out.texts = section("symbols")?;
-    out.texts.extend(section("audit_symbols")?);
-    out.tex_symbols = section("tex_symbols")?;
-    if out.texts.is_empty() {
-        return Err(bad(
-            "no [symbols]: the units file declares the unit of at least one symbol (name = \"unit\")"
-                .into(),
-        ));
-    }
-    for (k, u) in &out.texts {
-        let unit = Unit::parse(u).map_err(|m| bad(format!("symbols.{k} = \"{u}\": {m}")))?;
-        out.symbols.insert(k.clone(), unit);
-    }
-    Ok(out)
+    crate::paper::words::read_words(text, &syms, vocab)
 }
 
 /// One relation of the paper and what the audit says of it.
@@ -225,9 +149,9 @@ impl Audit {
 }
 
 /// A paper's displays: from a displays extract (`%% block N` sections) or from its source
-/// ([`super::tex_claims::blocks_of`]).
+/// ([`crate::paper::source::blocks::blocks_of`]).
 pub fn paper_blocks(text: &str) -> (Vec<(Option<String>, String)>, Option<Document>) {
-    super::tex_claims::blocks_of(text)
+    crate::paper::source::blocks::blocks_of(text)
 }
 
 /// `(dotted, base, order)` of every `\dot{..}` and `\ddot{..}` of `tex`.
@@ -342,7 +266,8 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
     // a symbol named in passing is that quantity in its own section only
     let lines: Vec<Option<usize>> = rels.iter().map(|r| r.line).collect();
     let mut names: Vec<Vec<String>> = rels.iter().map(|r| r.names.clone()).collect();
-    let scoped = super::words::conflicts::scope_passing(&mut inputs, &lines, &mut names, units);
+    let scoped =
+        crate::paper::units::with_words::scope_passing(&mut inputs, &lines, &mut names, units);
     let units = &scoped;
     let (inf, weak, aside) = if units.words.is_empty() {
         (
@@ -358,7 +283,7 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
             .filter(|(_, w)| !w.key)
             .map(|(n, _)| n.clone())
             .collect();
-        super::words::conflicts::infer_with_words(&inputs, &names, &units.symbols, &words)
+        crate::paper::units::with_words::infer_with_words(&inputs, &names, &units.symbols, &words)
     };
     // a unit of the words set aside is no anchor
     let mut kept = units.clone();
@@ -704,23 +629,6 @@ pub fn to_markdown(a: &Audit, title: &str) -> String {
     s
 }
 
-pub use super::audit_init::init_claims;
-
-/// The units a claims file declares (`[symbols]` that parse as units, `[tex_symbols]`).
-pub fn units_of_claims(p: &super::PaperClaims) -> Units {
-    let mut u = Units {
-        tex_symbols: p.tex_symbols.clone(),
-        ..Units::default()
-    };
-    for (k, t) in p.symbols.iter().chain(&p.audit_symbols) {
-        if let Ok(unit) = Unit::parse(t) {
-            u.symbols.insert(k.clone(), unit);
-            u.texts.insert(k.clone(), t.clone());
-        }
-    }
-    u
-}
-
 /// The `\title{..}` of a LaTeX source, on one line.
 pub fn title_of(text: &str) -> Option<String> {
     let at = text.find("\\title")?;
@@ -743,10 +651,10 @@ pub fn title_of(text: &str) -> Option<String> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
-    fn units(pairs: &[(&str, &str)]) -> Units {
+    pub(super) fn units(pairs: &[(&str, &str)]) -> Units {
         let texts: BTreeMap<String, String> = pairs
             .iter()
             .map(|(a, b)| (a.to_string(), b.to_string()))
@@ -762,58 +670,12 @@ mod tests {
     }
 
     #[test]
-    fn a_left_side_without_a_unit_gives_a_claim_that_fails_on_the_right_sides_unit() {
-        // a + b = c with a in m and b in s: the left side has no unit; the claim expects c's
-        let text = "\\begin{equation} a + b = c \\end{equation}";
-        let (blocks, doc) = paper_blocks(text);
-        let u = units(&[("a", "m"), ("b", "s"), ("c", "m")]);
-        let a = audit(&blocks, doc.as_ref(), &u);
-        assert_eq!(a.relations[0].status, "inconsistent");
-        assert_eq!(a.relations[0].detail, "in m: `a`, `c`; in s: `b`");
-        let init = init_claims(&a, &["1".into()], "p", "p.tex", "T", &u);
-        assert!(init.contains("expect = \"m\""), "{init}");
-    }
-
-    #[test]
     fn a_zero_side_is_no_term_of_its_own() {
         // a + b = 0 with a in m, b in s: the literal 0 has every unit and joins no group
         let (blocks, doc) = paper_blocks("\\begin{equation} a + b = 0 \\end{equation}");
         let a = audit(&blocks, doc.as_ref(), &units(&[("a", "m"), ("b", "s")]));
         assert_eq!(a.relations[0].detail, "in m: `a`; in s: `b`");
         assert_eq!(a.relations[0].read.as_deref(), Some("a + b = 0"));
-    }
-
-    #[test]
-    fn a_claims_file_gives_the_units_a_units_file_reads_from_it() {
-        // the seeds' claims files, read as claims and as units files: the same units and the
-        // same LaTeX spellings (000's `[tex_symbols]` among them)
-        for f in ["000_cone_plate", "001_disk", "002_constrained_impact"] {
-            let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("verify/{f}.toml"));
-            let papers = crate::verify::load_claims(&path).expect("loads");
-            let from_claims = units_of_claims(&papers[0]);
-            let from_file = read_units(&path).expect("reads");
-            assert_eq!(from_claims.symbols, from_file.symbols, "{f}");
-            assert_eq!(from_claims.texts, from_file.texts, "{f}");
-            assert_eq!(from_claims.tex_symbols, from_file.tex_symbols, "{f}");
-        }
-        let p = crate::verify::load_claims(
-            &Path::new(env!("CARGO_MANIFEST_DIR")).join("verify/000_cone_plate.toml"),
-        )
-        .expect("loads");
-        assert!(!units_of_claims(&p[0]).tex_symbols.is_empty());
-    }
-
-    #[test]
-    fn an_undetermined_relation_gets_no_claim_and_says_why() {
-        // a = b c with only a declared: b and c stay free, the relation undetermined
-        let (blocks, doc) = paper_blocks("\\begin{equation} a = b c \\end{equation}");
-        let u = units(&[("a", "m")]);
-        let a = audit(&blocks, doc.as_ref(), &u);
-        assert_eq!(a.relations[0].status, "undetermined");
-        let init = init_claims(&a, &["1".into()], "p", "p.tex", "T", &u);
-        let want = format!("# (1): no claim: {}\n", a.relations[0].detail);
-        assert!(init.contains(&want), "{init}");
-        assert!(!init.contains("[[claim]]"), "{init}");
     }
 
     #[test]

@@ -5,7 +5,7 @@
 use super::super::lex::{Tok, accent_suffix, describe, greek, is_space};
 use super::{R, Reader, one, power};
 use crate::algebra::expr::{Expr, Op};
-use crate::algebra::tex::TexError;
+use crate::paper::formulas::TexError;
 
 impl Reader<'_> {
     /// `(a, b)` (a scalar product of vectors, a pair): an opaque symbol named by its parts.

@@ -3,7 +3,10 @@
 //! given), the units of its symbols from a units file and from its own words (with the
 //! vocabularies given), every relation audited; the claims file to start from.
 
-use super::audit::{Audit, Units};
+use super::{Audit, Units};
+use crate::paper::PaperError;
+use crate::paper::source::blocks::{OUTSIDE, blocks_at, numbers};
+use crate::paper::words::vocabulary::Vocabulary;
 use std::path::{Path, PathBuf};
 
 /// A paper read and audited.
@@ -32,29 +35,26 @@ pub fn audit_paper(
     say: &mut dyn FnMut(String),
 ) -> anyhow::Result<PaperAudit> {
     use anyhow::Context;
-    let mut vocab = super::words::vocabulary::Vocabulary::builtin().map_err(|message| {
-        super::VerifyError::BadClaims {
-            path: "src/verify/words/vocabulary.toml".into(),
-            message,
-        }
+    let mut vocab = Vocabulary::builtin().map_err(|message| PaperError::BadFile {
+        path: "src/paper/words/vocabulary.toml".into(),
+        message,
     })?;
     for v in vocabulary {
-        let text = std::fs::read_to_string(v).map_err(|e| super::VerifyError::BadClaims {
+        let text = std::fs::read_to_string(v).map_err(|e| PaperError::BadFile {
             path: v.clone(),
             message: format!("cannot read the vocabulary: {e}"),
         })?;
-        let more = super::words::vocabulary::Vocabulary::parse(&text, "the vocabulary").map_err(
-            |message| super::VerifyError::BadClaims {
+        let more =
+            Vocabulary::parse(&text, "the vocabulary").map_err(|message| PaperError::BadFile {
                 path: v.clone(),
                 message,
-            },
-        )?;
+            })?;
         vocab = vocab.extended(more);
     }
     let text = std::fs::read_to_string(paper)
         .with_context(|| format!("reading the paper {}", paper.display()))?;
     let units = match units {
-        Some(u) => super::audit::read_units(u)?,
+        Some(u) => super::read_units(u)?,
         None => Default::default(),
     };
     let mut macros = String::new();
@@ -65,9 +65,9 @@ pub fn audit_paper(
         );
         macros.push('\n');
     }
-    let (blocks, doc) = super::tex_claims::blocks_at(&text, paper.parent(), &macros);
+    let (blocks, doc) = blocks_at(&text, paper.parent(), &macros);
     for problem in doc.iter().flat_map(|d| &d.problems) {
-        if problem.contains(super::tex_claims::OUTSIDE) {
+        if problem.contains(OUTSIDE) {
             anyhow::bail!("{}: {problem}", paper.display());
         }
         say(format!("{}: {problem}", paper.display()));
@@ -86,9 +86,9 @@ pub fn audit_paper(
     }
     // the units the paper's words give its symbols (a displays extract has no words)
     let units = if doc.is_some() {
-        let expanded = crate::algebra::tex::macros::expand_with(&text, &macros)
+        let expanded = crate::paper::source::macros::expand_with(&text, &macros)
             .map_or_else(|_| text.clone(), |e| e.0);
-        let words = super::audit::paper_words(&expanded, &blocks, &units, &vocab);
+        let words = super::paper_words(&expanded, &blocks, &units, &vocab);
         for note in &words.notes {
             say(format!("{}: {note}", paper.display()));
         }
@@ -96,7 +96,7 @@ pub fn audit_paper(
     } else {
         units
     };
-    let audit = super::audit::audit(&blocks, doc.as_ref(), &units);
+    let audit = super::audit(&blocks, doc.as_ref(), &units);
     let name = paper
         .file_name()
         .map_or_else(String::new, |n| n.to_string_lossy().to_string());
@@ -111,12 +111,12 @@ pub fn audit_paper(
 
 /// The claims file `verify init` prints for an audited paper, its claims' ids starting `id`.
 pub fn init_claims(p: &PaperAudit, id: &str) -> String {
-    let numbers = super::coverage::numbers(&p.name, &p.text);
+    let numbers = numbers(&p.name, &p.text);
     let title = if p.document {
-        super::audit::title_of(&p.text)
+        super::title_of(&p.text)
     } else {
         None
     }
     .unwrap_or_else(|| p.name.clone());
-    super::audit::init_claims(&p.audit, &numbers, id, &p.name, &title, &p.units)
+    super::init::init_claims(&p.audit, &numbers, id, &p.name, &title, &p.units)
 }

@@ -1,9 +1,9 @@
-//! `verify init`: a claims file to start from, written from a paper's audit ([`super::audit`]):
+//! `verify init`: a claims file to start from, written from a paper's audit ([`super`]):
 //! every symbol with its unit and where it comes from, and for every relation the audit reads a
 //! dimension claim on it (named by its tag, or by its display and place) or one line saying why
 //! none.
 
-use super::audit::{Audit, AuditRelation, Units};
+use super::{Audit, AuditRelation, Units};
 use crate::algebra::expr::Expr;
 use crate::algebra::units::Unit;
 
@@ -133,7 +133,7 @@ pub fn init_claims(
 /// The unit a dimension claim on the relation `r` expects, or why `verify init` writes none.
 fn init_claim(a: &Audit, r: &AuditRelation) -> Result<String, String> {
     let unit = |n: &str| {
-        let n = crate::algebra::infer::unit_name(n);
+        let n = crate::paper::units::unit_name(n);
         a.symbols
             .iter()
             .find(|y| y.name == n)
@@ -150,7 +150,7 @@ fn init_claim(a: &Audit, r: &AuditRelation) -> Result<String, String> {
     if let Some(pair) = r
         .names
         .iter()
-        .find(|n| n.starts_with('{') && crate::algebra::infer::unit_name(n) == **n)
+        .find(|n| n.starts_with('{') && crate::paper::units::unit_name(n) == **n)
     {
         return Err(format!(
             "reads `{pair}` (a pair or a product of vectors) as one symbol the formula language has no name for; map its spelling in [tex_symbols]"
@@ -200,5 +200,38 @@ fn key(name: &str) -> String {
         name.to_string()
     } else {
         format!("{name:?}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::tests::units;
+    use super::super::{audit, paper_blocks};
+    use super::*;
+
+    #[test]
+    fn a_left_side_without_a_unit_gives_a_claim_that_fails_on_the_right_sides_unit() {
+        // a + b = c with a in m and b in s: the left side has no unit; the claim expects c's
+        let text = "\\begin{equation} a + b = c \\end{equation}";
+        let (blocks, doc) = paper_blocks(text);
+        let u = units(&[("a", "m"), ("b", "s"), ("c", "m")]);
+        let a = audit(&blocks, doc.as_ref(), &u);
+        assert_eq!(a.relations[0].status, "inconsistent");
+        assert_eq!(a.relations[0].detail, "in m: `a`, `c`; in s: `b`");
+        let init = init_claims(&a, &["1".into()], "p", "p.tex", "T", &u);
+        assert!(init.contains("expect = \"m\""), "{init}");
+    }
+
+    #[test]
+    fn an_undetermined_relation_gets_no_claim_and_says_why() {
+        // a = b c with only a declared: b and c stay free, the relation undetermined
+        let (blocks, doc) = paper_blocks("\\begin{equation} a = b c \\end{equation}");
+        let u = units(&[("a", "m")]);
+        let a = audit(&blocks, doc.as_ref(), &u);
+        assert_eq!(a.relations[0].status, "undetermined");
+        let init = init_claims(&a, &["1".into()], "p", "p.tex", "T", &u);
+        let want = format!("# (1): no claim: {}\n", a.relations[0].detail);
+        assert!(init.contains(&want), "{init}");
+        assert!(!init.contains("[[claim]]"), "{init}");
     }
 }

@@ -23,10 +23,16 @@
 //!
 //! Written by hand: the system is small (tens of unknowns), must stay exact, and must say which
 //! relations fixed each unit; no crate does the bookkeeping.
+//!
+//! Apart: [`declared`] (the units an audit starts from: a units file, the paper's words) and
+//! [`with_words`] (the conflicts that the words decide, and a letter scoped per section).
 
-use super::expr::{Calc, Expr, Func, Op};
-use super::poly::Q;
-use super::units::{ELLIPSIS, INFINITY, OPERAND, Unit, WRITTEN_UNIT, every_unit};
+pub mod declared;
+pub mod with_words;
+
+use crate::algebra::expr::{Calc, Expr, Func, Op};
+use crate::algebra::poly::Q;
+use crate::algebra::units::{ELLIPSIS, INFINITY, OPERAND, Unit, WRITTEN_UNIT, every_unit};
 use num_traits::{One, ToPrimitive, Zero};
 use std::collections::{BTreeMap, BTreeSet};
 
