@@ -1,7 +1,7 @@
 //! The shape of the house as tests (issue 42), the way rustc's `src/tools/tidy` fails a build on
 //! a file too long and ArchUnit states layers as assertions: a rule no test checks erodes.
 //!
-//! Three rules over every `.rs` file under `src/`, each failure naming the file, the line and the
+//! Four rules over every `.rs` file under `src/`, each failure naming the file, the line and the
 //! rule:
 //! - **file length**: at most [`MAX_FILE_LINES`] lines (every line, as `wc -l` counts them);
 //! - **function length**: at most [`MAX_FN_LINES`] lines, counted from the line of the `fn`
@@ -12,13 +12,20 @@
 //!   that climb to the crate root), outside comments and string literals, names a top-level
 //!   module `m` that the file's own module may import ([`FLOORS`], the README's tour). A
 //!   top-level module missing from the table is itself a failure, so a new module must be given
-//!   its floor.
+//!   its floor;
+//! - **no two files importing each other** (issue 64): a file that names an item of another
+//!   (through `crate::`, `super::`, `self::` or a child module, in a `use` or in code) imports
+//!   it; two files that import each other are one piece of code in two places, and what they
+//!   share goes into the lower one. A module's file and the files of its own submodules are
+//!   exempt: they are one module's face and parts (a part reaches its module's private helpers
+//!   through `super::`).
 //!
 //! The checks read source text with a small lexer of their own (comments, strings, raw strings,
-//! chars and lifetimes): `syn` would parse more exactly but is a heavy dependency for three
+//! chars and lifetimes): `syn` would parse more exactly but is a heavy dependency for four
 //! rules, and the lexer is tested below on the cases that would fool a line-based grep.
 //! `planted` tests each rule on a violation planted in text, and on look-alikes that must pass.
 
+use std::collections::BTreeMap;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -29,7 +36,9 @@ const MAX_FN_LINES: usize = 200;
 
 /// Each top-level module of the crate and the top-level modules it may name (itself included).
 /// The floors, lowest first: `algebra`, `integrate` and the utilities `rng`, `interrupt` import
-/// nothing of the crate but themselves; `models` imports those; `scene` imports `models`;
+/// nothing of the crate but themselves; `paper` (a paper as read: its source, formulas, words,
+/// units and audit) imports `algebra` only, and only `verify` and the front ends import it;
+/// `models` imports the lowest four but never `paper`; `scene` imports `models`;
 /// `report` renders plain data and never imports `verify` or a front end; `verify` imports all
 /// of these and never `cli`, `perf` or a binary; `cli` and `perf` are the front ends' library
 /// half. `lib` (src/lib.rs) declares the modules.
@@ -79,6 +88,7 @@ enum Tok {
     Open(char),
     Close(char),
     Semi,
+    Comma,
     Other,
 }
 
@@ -165,6 +175,7 @@ fn lex(src: &str) -> Vec<(Tok, usize)> {
                     '(' | '[' | '{' => Tok::Open(x),
                     ')' | ']' | '}' => Tok::Close(x),
                     ';' => Tok::Semi,
+                    ',' => Tok::Comma,
                     _ => Tok::Other,
                 },
                 line,
@@ -350,7 +361,7 @@ fn crate_paths(toks: &[(Tok, usize)], path: &[String]) -> Vec<(String, usize)> {
                             out.push((m.clone(), *l));
                             first = false;
                         }
-                        Tok::Other if depth == 1 => first = true,
+                        Tok::Other | Tok::Comma if depth == 1 => first = true,
                         _ => {}
                     }
                 }
@@ -417,6 +428,184 @@ fn check_file(rel: &str, src: &str) -> Vec<Violation> {
     out
 }
 
+/// Every path into the crate that the tokens name, as the module path it names (items
+/// included: `crate::paper::units::Units` is `[paper, units, Units]`), with its line: paths
+/// from `crate::`, from `super::` chains and `self::`, and from a child module of the file's
+/// own (`marks::marked` in `reader/mod.rs`); groups (`crate::{a::b, c}`) expanded, renames
+/// (`as x`) dropped. `path` is the file's module path; `modules` every module of the crate.
+fn named_paths(
+    toks: &[(Tok, usize)],
+    path: &[String],
+    modules: &BTreeMap<Vec<String>, String>,
+) -> Vec<(Vec<String>, usize)> {
+    let ident = |k: usize| match toks.get(k) {
+        Some((Tok::Ident(s), _)) => Some(s.as_str()),
+        _ => None,
+    };
+    let sep = |k: usize| matches!(toks.get(k), Some((Tok::PathSep, _)));
+    let mut out = Vec::new();
+    let mut inline: Vec<i32> = Vec::new();
+    let mut depth = 0i32;
+    let mut k = 0;
+    while k < toks.len() {
+        match &toks[k].0 {
+            Tok::Open('{') => {
+                if k >= 2 && ident(k - 2) == Some("mod") && ident(k - 1).is_some() {
+                    inline.push(depth);
+                }
+                depth += 1;
+            }
+            Tok::Close('}') => {
+                depth -= 1;
+                if inline.last() == Some(&depth) {
+                    inline.pop();
+                }
+            }
+            _ => {}
+        }
+        let starts = k == 0 || !sep(k - 1);
+        let from = match ident(k) {
+            Some("crate") if starts && sep(k + 1) => Some((Vec::new(), k + 2)),
+            Some("self") if starts && sep(k + 1) => Some((path.to_vec(), k + 2)),
+            Some("super") if starts && sep(k + 1) => {
+                // inline modules are climbed out of first; they stay in this file
+                let mut level = path.len() + inline.len();
+                let mut j = k;
+                while ident(j) == Some("super") && sep(j + 1) {
+                    level = level.saturating_sub(1);
+                    j += 2;
+                }
+                Some((path[..level.min(path.len())].to_vec(), j))
+            }
+            Some(name) if starts && sep(k + 1) => {
+                let mut child = path.to_vec();
+                child.push(name.to_string());
+                modules.contains_key(&child).then_some((path.to_vec(), k))
+            }
+            _ => None,
+        };
+        let Some((base, j)) = from else {
+            k += 1;
+            continue;
+        };
+        let end = path_items(toks, j, base, &mut out);
+        // the braces of a group were walked over: count them as the loop would
+        for (t, _) in &toks[k + 1..end.min(toks.len())] {
+            match t {
+                Tok::Open('{') => depth += 1,
+                Tok::Close('}') => depth -= 1,
+                _ => {}
+            }
+        }
+        k = end.max(k + 1);
+    }
+    out
+}
+
+/// Walks one path from `toks[j]` on, its segments after `prefix`, into `out`; returns the index
+/// after it.
+fn path_items(
+    toks: &[(Tok, usize)],
+    mut j: usize,
+    mut segs: Vec<String>,
+    out: &mut Vec<(Vec<String>, usize)>,
+) -> usize {
+    loop {
+        let Some((t, line)) = toks.get(j) else {
+            out.push((segs, toks.last().map_or(1, |t| t.1)));
+            return j;
+        };
+        match t {
+            Tok::Ident(s) => {
+                if s != "self" {
+                    segs.push(s.clone());
+                }
+                if matches!(toks.get(j + 1), Some((Tok::PathSep, _))) {
+                    j += 2;
+                    continue;
+                }
+                out.push((segs, *line));
+                // a rename: `as name`
+                if matches!(toks.get(j + 1), Some((Tok::Ident(a), _)) if a == "as") {
+                    return j + 3;
+                }
+                return j + 1;
+            }
+            Tok::Open('{') => {
+                j += 1;
+                loop {
+                    match toks.get(j) {
+                        None => return j,
+                        Some((Tok::Close('}'), _)) => return j + 1,
+                        Some((Tok::Comma, _)) => j += 1,
+                        Some(_) => j = path_items(toks, j, segs.clone(), out).max(j + 1),
+                    }
+                }
+            }
+            _ => {
+                // a glob `*` or the end of the path
+                out.push((segs, *line));
+                return j + 1;
+            }
+        }
+    }
+}
+
+/// The file of the module a path names: the longest prefix of it that is a module.
+fn file_of<'a>(segs: &[String], modules: &'a BTreeMap<Vec<String>, String>) -> Option<&'a str> {
+    (1..=segs.len())
+        .rev()
+        .find_map(|k| modules.get(&segs[..k]).map(String::as_str))
+}
+
+/// Every pair of files that import each other (each names an item of the other), one violation
+/// per pair at the first file's import. A module's own parts are not such a pair: a file and
+/// the files of its submodules (`reader/mod.rs` and `reader/marks.rs`, which reaches its
+/// module's private helpers through `super::`) are one module's face and parts. `files` are
+/// (path under `src/`, text).
+fn check_pairs(files: &[(String, String)]) -> Vec<Violation> {
+    let modules: BTreeMap<Vec<String>, String> = files
+        .iter()
+        .filter(|(rel, _)| rel != "lib.rs" && !rel.starts_with("bin/"))
+        .map(|(rel, _)| (module_path(rel), rel.clone()))
+        .collect();
+    // (importer, imported) -> the first line
+    let mut edges: BTreeMap<(String, String), usize> = BTreeMap::new();
+    for (rel, src) in files {
+        if rel == "lib.rs" || rel.starts_with("bin/") {
+            continue;
+        }
+        let path = module_path(rel);
+        for (segs, line) in named_paths(&lex(src), &path, &modules) {
+            if let Some(f) = file_of(&segs, &modules)
+                && f != rel
+            {
+                edges.entry((rel.clone(), f.to_string())).or_insert(line);
+            }
+        }
+    }
+    let part_of = |a: &str, b: &str| {
+        let (a, b) = (module_path(a), module_path(b));
+        a.starts_with(&b) || b.starts_with(&a)
+    };
+    let mut out = Vec::new();
+    for ((a, b), line) in &edges {
+        if a < b
+            && !part_of(a, b)
+            && let Some(back) = edges.get(&(b.clone(), a.clone()))
+        {
+            out.push(Violation {
+                file: format!("src/{a}"),
+                line: *line,
+                rule: format!(
+                    "files importing each other: src/{a} imports src/{b} (line {line}), and src/{b} imports src/{a} (line {back}); move what they share into the lower one"
+                ),
+            });
+        }
+    }
+    out
+}
+
 /// Every `.rs` file under `dir`, sorted.
 fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     let mut entries: Vec<_> = std::fs::read_dir(dir)
@@ -444,6 +633,7 @@ fn the_source_keeps_its_shape() {
         files.len()
     );
     let mut all = Vec::new();
+    let mut texts = Vec::new();
     for f in &files {
         let rel = f
             .strip_prefix(&root)
@@ -452,7 +642,9 @@ fn the_source_keeps_its_shape() {
             .replace('\\', "/");
         let text = std::fs::read_to_string(f).unwrap();
         all.extend(check_file(&rel, &text));
+        texts.push((rel, text));
     }
+    all.extend(check_pairs(&texts));
     let list: Vec<String> = all.iter().map(ToString::to_string).collect();
     assert!(
         list.is_empty(),
@@ -601,6 +793,47 @@ mod planted {
                 "`models` imports `crate::report`",
             ),
             ("newfloor/mod.rs", "\n", "module `newfloor` has no floor"),
+            // the paper room: above algebra, below verify and everything that runs a model
+            (
+                "paper/audit/mod.rs",
+                "use crate::verify::PaperClaims;\n",
+                "`paper` imports `crate::verify`",
+            ),
+            (
+                "paper/words/mod.rs",
+                "fn f() { crate::models::registry(); }\n",
+                "`paper` imports `crate::models`",
+            ),
+            (
+                "paper/units/mod.rs",
+                "use crate::{algebra::units::Unit, scene::Scene};\n",
+                "`paper` imports `crate::scene`",
+            ),
+            (
+                "paper/source/blocks.rs",
+                "use super::super::super::report::svg;\n",
+                "`paper` imports `crate::report`",
+            ),
+            (
+                "paper/audit/paper.rs",
+                "use crate::cli::Format;\n",
+                "`paper` imports `crate::cli`",
+            ),
+            (
+                "paper/mod.rs",
+                "use crate::perf::bench;\n",
+                "`paper` imports `crate::perf`",
+            ),
+            (
+                "algebra/expr/mod.rs",
+                "use crate::paper::formulas::TexSymbols;\n",
+                "`algebra` imports `crate::paper`",
+            ),
+            (
+                "models/ode/mod.rs",
+                "use crate::paper::units::unit_name;\n",
+                "`models` imports `crate::paper`",
+            ),
         ];
         for (rel, src, want) in cases {
             let got = rules(rel, src);
@@ -657,6 +890,15 @@ mod planted {
             ),
             // the binaries are the top floor
             ("bin/verify.rs", "use impactcheck::cli;\nfn main() {}\n"),
+            // the paper room reads the algebra; verify reads the paper
+            (
+                "paper/units/mod.rs",
+                "use crate::algebra::{expr::Expr, units::Unit};\n",
+            ),
+            (
+                "verify/tex_claims.rs",
+                "use crate::paper::source::blocks::blocks_at;\n",
+            ),
         ];
         for (rel, src) in fine {
             assert!(
@@ -664,6 +906,115 @@ mod planted {
                 "{rel}: {src:?} gave {:?}",
                 rules(rel, src)
             );
+        }
+    }
+
+    /// The pair rule over a few files (path under `src/`, text).
+    fn pairs(files: &[(&str, &str)]) -> Vec<String> {
+        let owned: Vec<(String, String)> = files
+            .iter()
+            .map(|(a, b)| (a.to_string(), b.to_string()))
+            .collect();
+        check_pairs(&owned)
+            .iter()
+            .map(ToString::to_string)
+            .collect()
+    }
+
+    #[test]
+    fn files_importing_each_other() {
+        // siblings through `super::`
+        let got = pairs(&[
+            ("report/mod.rs", "pub mod plot;\npub mod svg;\n"),
+            ("report/plot.rs", "\nuse super::svg::{Scale, Series};\n"),
+            ("report/svg.rs", "use super::plot::figure;\n"),
+        ]);
+        assert_eq!(
+            got,
+            [
+                "src/report/plot.rs:2: files importing each other: src/report/plot.rs imports src/report/svg.rs (line 2), and src/report/svg.rs imports src/report/plot.rs (line 1); move what they share into the lower one"
+            ]
+        );
+        // through `crate::` paths, a group, an expression, and a test module inside the file
+        let cases: &[[(&str, &str); 2]] = &[
+            [
+                (
+                    "verify/x.rs",
+                    "use crate::{paper::audit::Audit, verify::y::f};\n",
+                ),
+                ("verify/y.rs", "fn g() { crate::verify::x::h(); }\n"),
+            ],
+            [
+                (
+                    "verify/kinds/mod.rs",
+                    "fn f() {\n    super::power::measure();\n}\n",
+                ),
+                ("verify/power.rs", "use super::kinds::{Checked, Session};\n"),
+            ],
+            [
+                ("algebra/calculus.rs", "use super::expr::{Calc, Expr};\n"),
+                (
+                    "algebra/expr/mod.rs",
+                    "fn f() {}\n#[cfg(test)]\nmod tests {\n    use super::super::calculus::sum_range;\n}\n",
+                ),
+            ],
+            [
+                (
+                    "verify/audit.rs",
+                    "use crate::verify::words::conflicts as c;\n",
+                ),
+                (
+                    "verify/words/conflicts.rs",
+                    "fn f(u: &crate::verify::audit::Units) {}\n",
+                ),
+            ],
+        ];
+        for files in cases {
+            let got = pairs(files);
+            assert_eq!(got.len(), 1, "{files:?} gave {got:?}");
+            assert!(got[0].contains("files importing each other"), "{got:?}");
+            for (rel, _) in files {
+                assert!(got[0].contains(&format!("src/{rel}")), "{got:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn files_that_do_not_import_each_other_pass() {
+        let fine: &[&[(&str, &str)]] = &[
+            // one way only
+            &[
+                ("report/plot.rs", "pub struct Series;\n"),
+                ("report/svg.rs", "pub use super::plot::Series;\n"),
+            ],
+            // a module and its own parts (the parts reach its private helpers through super)
+            &[
+                (
+                    "paper/formulas/reader/mod.rs",
+                    "mod marks;\nuse marks::marked;\n",
+                ),
+                (
+                    "paper/formulas/reader/marks.rs",
+                    "use super::{Reader, mul};\n",
+                ),
+            ],
+            // names in comments and strings; a rename that is not a module; the same name in
+            // another module
+            &[
+                (
+                    "verify/a.rs",
+                    "// crate::verify::b::f\nfn f() -> &'static str { \"super::b\" }\n",
+                ),
+                ("verify/b.rs", "use super::a::{self as alias, f as g};\n"),
+            ],
+            &[
+                ("verify/a.rs", "use crate::paper::units::Unit;\n"),
+                ("paper/units/mod.rs", "use crate::algebra::units::Unit;\n"),
+                ("algebra/units.rs", "pub struct Unit;\n"),
+            ],
+        ];
+        for files in fine {
+            assert!(pairs(files).is_empty(), "{files:?} gave {:?}", pairs(files));
         }
     }
 }

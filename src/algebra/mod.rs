@@ -7,7 +7,6 @@
 //! physical dimensions ([`dims`]), exact trigonometric integrals ([`trig`]) and the Galerkin
 //! coefficients (12)-(16) ([`galerkin`]). Crossing to `f64` happens in one place, [`eval`].
 
-pub mod calculus;
 pub mod dims;
 pub mod eval;
 pub mod expo;

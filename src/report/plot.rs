@@ -8,8 +8,53 @@
 //!
 //! Text widths are estimated here from DejaVu Sans' advances (the sans-serif face the tests
 //! render with), rounded up by character class, so that the layout errs on the roomy side.
+//!
+//! The primitives a figure is drawn from (a curve [`Series`], an axis [`Scale`], a tick label
+//! [`short_number`]) live here, below the entry points of `svg.rs` that re-export them.
 
-use super::svg::{Scale, Series, short_number};
+/// One curve.
+#[derive(Clone)]
+pub struct Series<'a> {
+    /// Legend text.
+    pub name: &'a str,
+    /// Points `(x, y)`.
+    pub points: Vec<(f64, f64)>,
+}
+
+/// Axis scale.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Scale {
+    /// Linear.
+    Linear,
+    /// Base-10 logarithmic (non-positive values are dropped).
+    Log,
+}
+
+/// A short tick label: `0.5`, `20`, `1e-3` (no more digits than the value needs, to 3 figures).
+pub fn short_number(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let e = v.abs().log10().floor() as i32;
+    if (-3..=4).contains(&e) {
+        let digits = (2 - e).max(0) as usize;
+        let s = format!("{v:.digits$}");
+        let s = if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        };
+        return s;
+    }
+    let m = v / 10f64.powi(e);
+    let ms = format!("{m:.2}");
+    let ms = ms.trim_end_matches('0').trim_end_matches('.');
+    if ms == "1" {
+        format!("1e{e}")
+    } else {
+        format!("{ms}e{e}")
+    }
+}
 
 /// The Okabe-Ito palette (safe for the common colour-vision deficiencies), yellow last.
 pub(crate) const COLORS: [&str; 8] = [

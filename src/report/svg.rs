@@ -4,24 +4,7 @@
 //! polylines with axes and a legend.
 
 use super::plot::escape;
-
-/// One curve.
-#[derive(Clone)]
-pub struct Series<'a> {
-    /// Legend text.
-    pub name: &'a str,
-    /// Points `(x, y)`.
-    pub points: Vec<(f64, f64)>,
-}
-
-/// Axis scale.
-#[derive(Clone, Copy, PartialEq, Eq)]
-pub enum Scale {
-    /// Linear.
-    Linear,
-    /// Base-10 logarithmic (non-positive values are dropped).
-    Log,
-}
+pub use super::plot::{Scale, Series, short_number};
 
 /// Renders a plot with one or more series sharing axes, laid out by [`super::plot::figure`]:
 /// 1-2-5 ticks (decades on a log axis) in one format per axis, axis titles clear of the tick
@@ -115,32 +98,6 @@ pub fn plot_curves(
     curves: &[(String, Vec<(f64, f64)>)],
 ) -> String {
     plot(title, xlabel, ylabel, xs, ys, &as_series(curves))
-}
-
-/// A short tick label: `0.5`, `20`, `1e-3` (no more digits than the value needs, to 3 figures).
-pub fn short_number(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{v}");
-    }
-    let e = v.abs().log10().floor() as i32;
-    if (-3..=4).contains(&e) {
-        let digits = (2 - e).max(0) as usize;
-        let s = format!("{v:.digits$}");
-        let s = if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            s
-        };
-        return s;
-    }
-    let m = v / 10f64.powi(e);
-    let ms = format!("{m:.2}");
-    let ms = ms.trim_end_matches('0').trim_end_matches('.');
-    if ms == "1" {
-        format!("1e{e}")
-    } else {
-        format!("{ms}e{e}")
-    }
 }
 
 /// One axis of a region map: its label, grid values and whether the grid is logarithmic.

@@ -35,7 +35,6 @@ use super::kinds::{Checked, KindEntry, Session};
 use super::{ClaimSpec, Outcome, Verdict};
 use crate::algebra::expr::{self, Expr, Inequality, Op};
 use crate::algebra::poly::Q;
-use crate::algebra::units::Unit;
 use num_traits::{Signed, Zero};
 use std::collections::BTreeMap;
 
@@ -716,19 +715,24 @@ fn fnv(s: &str) -> u64 {
     h
 }
 
-/// Symbols of the same unit, by unit (for the swaps).
-pub(crate) fn same_unit_table(units: &BTreeMap<String, Unit>) -> BTreeMap<String, Vec<String>> {
-    let mut out = BTreeMap::new();
-    for (s, u) in units {
-        let others: Vec<String> = units
-            .iter()
-            .filter(|(t, v)| *t != s && *v == u)
-            .map(|(t, _)| t.clone())
-            .take(3)
-            .collect();
-        out.insert(s.clone(), others);
+/// The power of a file's claims, measured as its check is made.
+impl Checked<'_> {
+    /// Measures the power of each claim for which `pick(id)` holds, given its outcome of
+    /// [`Checked::check_all`] ([`measure`]).
+    pub fn measure_power<'s>(
+        &self,
+        outcomes: &mut [Outcome],
+        pick: &dyn Fn(&str) -> bool,
+        new_session: &(dyn Fn() -> Session<'s> + Sync),
+        tick: &dyn Fn(&str),
+    ) {
+        for ((c, entry), o) in self.file.claim.iter().zip(&self.entries).zip(outcomes) {
+            if pick(&c.id) {
+                o.power = Some(measure(self, entry, c, o, new_session));
+                tick(&c.id);
+            }
+        }
     }
-    out
 }
 
 #[cfg(test)]

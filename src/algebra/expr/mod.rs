@@ -23,7 +23,7 @@
 //! the constant; the functions are `sqrt exp ln sin cos tan asin acos atan abs ellipk ellipe
 //! factorial gamma erf sign heaviside`, and `max(a, b)`, `min(a, b)`, `beta(a, b)` (read as
 //! $(a + b \pm |a - b|)/2$ and $\Gamma(a)\Gamma(b)/\Gamma(a + b)$, so every other part of the tool
-//! knows them); and `diff(e, x)`, `int(e, x, lo, hi)`, `at(e, x, v)` (see [`super::calculus`]).
+//! knows them); and `diff(e, x)`, `int(e, x, lo, hi)`, `at(e, x, v)` (see [`calculus`]).
 //!
 //! A parsed [`Expr`] is a tree. It becomes an exact [`RatFunc`] when it is rational (integer
 //! powers, no functions; `pi` stays a symbol, which is sound for identities because $\pi$ is
@@ -42,6 +42,7 @@ use num_integer::Integer;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 use std::fmt;
 
+pub mod calculus;
 mod parse;
 
 pub use parse::{ParseError, parse, parse_inequality};
@@ -334,7 +335,7 @@ pub enum Expr {
     Call(Func, Box<Expr>),
     /// A calculus operation on a formula with respect to a variable (`diff(e, x)`,
     /// `int(e, x, lo, hi)`, `at(e, x, v)`): the operation, the formula, the variable and the
-    /// further arguments (`[lo, hi]` or `[v]`). See [`super::calculus`].
+    /// further arguments (`[lo, hi]` or `[v]`). See [`calculus`].
     Calc(Calc, Box<Expr>, String, Vec<Expr>),
 }
 
@@ -739,7 +740,7 @@ impl Expr {
             }
             Expr::Call(..) => return None,
             Expr::Calc(Calc::Int, body, var, extra) => {
-                super::calculus::integral_ratfunc(&body.lower().ok()?, var, &extra[0], &extra[1])?
+                calculus::integral_ratfunc(&body.lower().ok()?, var, &extra[0], &extra[1])?
             }
             Expr::Calc(..) => return self.lower().ok()?.to_ratfunc(),
             Expr::Bin(op, a, b) => {
@@ -870,7 +871,7 @@ impl Expr {
             Expr::Calc(Calc::Int, body, var, extra) => {
                 let body = body.lower()?;
                 let (lo, hi) = (extra[0].eval(value)?, extra[1].eval(value)?);
-                super::calculus::integral_f64(
+                calculus::integral_f64(
                     &|x: f64| body.eval(&|s: &str| if s == var { Some(x) } else { value(s) }),
                     lo,
                     hi,
@@ -878,7 +879,7 @@ impl Expr {
             }
             Expr::Calc(Calc::Sum, body, var, extra) => {
                 let (lo, hi) = (extra[0].eval(value)?, extra[1].eval(value)?);
-                let (lo, hi) = super::calculus::sum_range(lo, hi, body)?;
+                let (lo, hi) = calculus::sum_range(lo, hi, body)?;
                 let mut acc = 0.0;
                 for i in lo..=hi {
                     let x = i as f64;

@@ -27,7 +27,7 @@ impl Reader<'_> {
                 .lower()
                 .map_err(|m| self.bad_formula(&field, &e.to_string(), m))?;
             for x in states {
-                let d = crate::algebra::calculus::derivative(&lowered, x).map_err(|m| {
+                let d = crate::algebra::expr::calculus::derivative(&lowered, x).map_err(|m| {
                     self.bad_formula(
                         &field,
                         &e.to_string(),

@@ -82,9 +82,9 @@ impl Reader<'_> {
         let mut out = Vec::new();
         for g in args {
             let lowered = g.lower().ok()?;
-            let mut rate = crate::algebra::calculus::derivative(&lowered, "t").ok()?;
+            let mut rate = crate::algebra::expr::calculus::derivative(&lowered, "t").ok()?;
             for (x, f) in states.iter().zip(held) {
-                let d = crate::algebra::calculus::derivative(&lowered, x).ok()?;
+                let d = crate::algebra::expr::calculus::derivative(&lowered, x).ok()?;
                 rate = Expr::Bin(
                     Op::Add,
                     Box::new(rate),

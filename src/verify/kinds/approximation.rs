@@ -8,7 +8,7 @@
 //! floor (1e-11 relative). An approximation to order N has an error of order N + 1: the slope must
 //! be at least N + 1 - 1/4.
 
-use super::model::compare_rows;
+use super::rows::compare_rows;
 use super::scene::exact_point_text;
 use super::{Checked, claim_err, g4};
 use crate::algebra::expr::Expr;

@@ -294,7 +294,7 @@ impl Identity {
     /// A non-rational identity (sqrt, exp of a non-linear argument, rational powers) compared
     /// in `f64` at seeded random points, each symbol in [0.5, 2]: holds when every relative
     /// difference is below 1e-12, plus twice the largest estimated relative error of a numeric
-    /// `int` ([`crate::algebra::calculus::integral_with_error`]), which the detail states.
+    /// `int` ([`crate::algebra::expr::calculus::integral_with_error`]), which the detail states.
     fn numeric(
         &self,
         cx: &Checked,
@@ -322,7 +322,7 @@ impl Identity {
         // derived/printed at each point: one constant is a coefficient misprint's signature
         let mut ratios = Vec::new();
         // the quadratures of `int` evaluated below, and their error estimates
-        let _ = crate::algebra::calculus::quadrature_log();
+        let _ = crate::algebra::expr::calculus::quadrature_log();
         for _ in 0..8 {
             let vals: BTreeMap<String, f64> = syms
                 .iter()
@@ -357,7 +357,7 @@ impl Identity {
             worst_abs = worst_abs.max((a - b).abs());
         }
         // a numeric integral widens the tolerance by twice its estimated error
-        let quad = crate::algebra::calculus::quadrature_log();
+        let quad = crate::algebra::expr::calculus::quadrature_log();
         let tol = 1e-12 + 2.0 * quad.worst_rel;
         let mut text = match self.atol {
             Some(atol) => format!(

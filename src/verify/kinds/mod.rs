@@ -44,6 +44,7 @@ mod map;
 mod model;
 mod not_checkable;
 mod probability;
+mod rows;
 mod scene;
 mod threshold;
 
@@ -217,7 +218,7 @@ pub struct Checked<'a> {
     /// The checked claims, in the file's order.
     claims: Vec<Box<dyn Claim>>,
     /// The kind of each claim, in the file's order.
-    entries: Vec<KindEntry>,
+    pub(crate) entries: Vec<KindEntry>,
     /// Symbols of the same unit as each symbol (for [`super::power`]'s swaps).
     same_unit: BTreeMap<String, Vec<String>>,
 }
@@ -341,7 +342,7 @@ impl<'a> Checked<'a> {
             entries: Vec::new(),
             same_unit: BTreeMap::new(),
         };
-        me.same_unit = super::power::same_unit_table(&me.units);
+        me.same_unit = same_unit_table(&me.units);
         let def_units = me
             .defs
             .iter()
@@ -414,23 +415,6 @@ impl<'a> Checked<'a> {
             .map(|(_, tex)| tex.as_str())
             .collect();
         (!rows.is_empty()).then(|| rows.join(" \\\\ "))
-    }
-
-    /// Measures the power of each claim for which `pick(id)` holds, given its outcome of
-    /// [`Checked::check_all`] ([`super::power::measure`]).
-    pub fn measure_power<'s>(
-        &self,
-        outcomes: &mut [Outcome],
-        pick: &dyn Fn(&str) -> bool,
-        new_session: &(dyn Fn() -> Session<'s> + Sync),
-        tick: &dyn Fn(&str),
-    ) {
-        for ((c, entry), o) in self.file.claim.iter().zip(&self.entries).zip(outcomes) {
-            if pick(&c.id) {
-                o.power = Some(super::power::measure(self, entry, c, o, new_session));
-                tick(&c.id);
-            }
-        }
     }
 
     /// The file's symbols of the same unit as `s`.
@@ -633,4 +617,19 @@ impl<'a> Checked<'a> {
     fn expand(&self, e: &Expr) -> Expr {
         e.substitute(&|s: &str| self.defs.get(s).cloned())
     }
+}
+
+/// Symbols of the same unit, by unit (for the swaps).
+pub(crate) fn same_unit_table(units: &BTreeMap<String, Unit>) -> BTreeMap<String, Vec<String>> {
+    let mut out = BTreeMap::new();
+    for (s, u) in units {
+        let others: Vec<String> = units
+            .iter()
+            .filter(|(t, v)| *t != s && *v == u)
+            .map(|(t, _)| t.clone())
+            .take(3)
+            .collect();
+        out.insert(s.clone(), others);
+    }
+    out
 }

@@ -167,7 +167,7 @@ impl Kind for Threshold {
             .map(|r| r.as_ref().map(|(v, _)| *v).map_err(Clone::clone))
             .collect();
         let what = format!("the model's threshold of {}", self.field);
-        let (verdict, mut detail) = super::model::compare_rows(&points, &rows, self.rtol, &what);
+        let (verdict, mut detail) = super::rows::compare_rows(&points, &rows, self.rtol, &what);
         // what the behaviour is on each side, over the points (a stick or a reversed slip)
         let (mut below, mut above) = (Vec::new(), Vec::new());
         for (b, a) in located.iter().flatten().map(|(_, s)| s) {

@@ -21,9 +21,9 @@
 //! Written by hand: a computer-algebra crate would bring its own expression type; these rules are
 //! ~200 lines over ours.
 
-use super::expr::{Calc, Expr, Func, Op};
-use super::poly::{Monomial, Poly, Q, Sym, qi};
-use super::ratfunc::RatFunc;
+use super::{Calc, Expr, Func, Op};
+use crate::algebra::poly::{Monomial, Poly, Q, Sym, qi};
+use crate::algebra::ratfunc::RatFunc;
 use num_traits::One;
 
 fn num(v: i64) -> Expr {

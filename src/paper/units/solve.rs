@@ -1,0 +1,186 @@
+//! The solution: the relations taken into the system one at a time (definitions first, then the
+//! fewest unknowns, or, with units from the words, each chosen against what is fixed so far),
+//! a relation that contradicts the system rejected, and every relation and symbol judged.
+
+use super::conflicts::inconsistency;
+use super::system::System;
+use super::walk::{Constraint, constraints, is_local, unknowns};
+use super::{Inference, Relation, Status, SymbolUnit, unit_name};
+use crate::algebra::expr::Expr;
+use crate::algebra::units::{ELLIPSIS, INFINITY, OPERAND, Unit, WRITTEN_UNIT};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// Infers the units of every symbol of `relations` from the `declared` ones and judges each
+/// relation. `None` relations (unreadable) are passed over and get no status of their own
+/// (their index still holds a status, `Undetermined(vec![])`, which the caller replaces).
+pub fn infer(relations: &[Option<Relation>], declared: &BTreeMap<String, Unit>) -> Inference {
+    infer_ordered(relations, declared, false)
+}
+
+/// As [`infer`]; with `anchored_first` (units from a paper's words), the relations are taken
+/// one at a time against what is fixed so far: a definition that fixes its symbol and claims
+/// nothing else, then the relation with the most terms whose units are all fixed (a governing
+/// equation, whose known terms fix each other term's unit, before a two-term definition of a
+/// derived constant), then the fewest unknowns, in the paper's order.
+pub fn infer_ordered(
+    relations: &[Option<Relation>],
+    declared: &BTreeMap<String, Unit>,
+    anchored_first: bool,
+) -> Inference {
+    let decl = |s: &str| declared.get(s).copied();
+    let cs: Vec<Vec<Constraint>> = relations
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            r.as_ref()
+                .map_or_else(Vec::new, |r| constraints(r, &decl, i))
+        })
+        .collect();
+    let mut order: Vec<usize> = (0..relations.len())
+        .filter(|&i| relations[i].is_some())
+        .collect();
+    // definitions first (a bare undeclared symbol on the left: the paper's own statement of
+    // its unit), then the relations with the fewest unknowns, each group in the paper's order
+    let defines = |i: usize| {
+        relations[i].as_ref().is_some_and(|r| {
+            r.sides.len() == 2
+                && matches!(&r.sides[0], Expr::Sym(s) if declared.get(&unit_name(s)).is_none())
+        })
+    };
+    // a dotted symbol or an increment whose base is declared is as good as declared (`\Delta
+    // V` with V a velocity): it is no unknown when the relations are ordered
+    let as_declared: BTreeSet<String> = relations
+        .iter()
+        .flatten()
+        .flat_map(|r| &r.dots)
+        .filter(|(_, base, order)| {
+            declared.contains_key(base) && (*order == 0 || declared.contains_key("t"))
+        })
+        .map(|(dotted, _, _)| dotted.clone())
+        .collect();
+    let open = |i: usize| unknowns(&cs[i]).difference(&as_declared).count();
+    let mut system = System::default();
+    let mut rejected = BTreeSet::new();
+    let mut take = |i: usize, system: &mut System| {
+        let mut trial = system.clone();
+        if cs[i].iter().all(|c| trial.add(c, i).is_ok()) {
+            *system = trial;
+        } else {
+            rejected.insert(i);
+        }
+    };
+    if anchored_first {
+        // one at a time, each chosen against what the system fixes so far
+        let mut left: Vec<usize> = order.clone();
+        while !left.is_empty() {
+            let key = |i: usize| {
+                // the unknowns nothing fixes yet (an integral's variable is none)
+                let open: BTreeSet<String> = unknowns(&cs[i])
+                    .into_iter()
+                    .filter(|v| {
+                        !is_local(v) && !as_declared.contains(v) && system.fixed(v).is_none()
+                    })
+                    .collect();
+                let known = |e: &Expr| e.symbols().iter().all(|s| !open.contains(&unit_name(s)));
+                let r = relations[i].as_ref();
+                // it fixes every unknown it names, with what is fixed so far (a definition of
+                // known things, `L(\delta) = e^{-\delta t}..`): it can contradict nothing else
+                let closes = || {
+                    let mut trial = system.clone();
+                    cs[i].iter().all(|c| trial.add(c, i).is_ok())
+                        && open.iter().all(|v| trial.fixed(v).is_some())
+                };
+                // a definition that fixes its symbol and claims nothing else: one term on the
+                // right (or every term known), every unknown fixed by it
+                let pure_definition = r.is_some_and(|r| {
+                    defines(i)
+                        && !known(&r.sides[0])
+                        && (r.sides[1].terms().len() == 1
+                            || r.sides[1].terms().iter().all(|t| known(t)))
+                        && closes()
+                });
+                let anchored = r.map_or(0, |r| {
+                    r.sides
+                        .iter()
+                        .flat_map(|e| e.terms())
+                        .filter(|t| !t.symbols().is_empty() && known(t))
+                        .count()
+                });
+                (!pure_definition, std::cmp::Reverse(anchored), open.len(), i)
+            };
+            let Some(k) = (0..left.len()).min_by_key(|&k| key(left[k])) else {
+                break;
+            };
+            let i = left.remove(k);
+            take(i, &mut system);
+        }
+    } else {
+        order.sort_by_key(|&i| (!defines(i), open(i), i));
+        for &i in &order {
+            take(i, &mut system);
+        }
+    }
+    let statuses = (0..relations.len())
+        .map(|i| {
+            if rejected.contains(&i) {
+                return inconsistency(&system, &cs[i]);
+            }
+            let open: Vec<String> = unknowns(&cs[i])
+                .into_iter()
+                .filter(|v| !is_local(v) && system.fixed(v).is_none())
+                .collect();
+            if open.is_empty() && relations[i].is_some() {
+                Status::Consistent
+            } else {
+                Status::Undetermined(open)
+            }
+        })
+        .collect();
+    let mut names: BTreeSet<String> = cs
+        .iter()
+        .flatten()
+        .flat_map(|c| {
+            c.left
+                .1
+                .coeffs
+                .keys()
+                .chain(c.right.1.coeffs.keys())
+                .filter(|v| !is_local(v))
+                .cloned()
+        })
+        .collect();
+    for r in relations.iter().flatten() {
+        for s in &r.sides {
+            names.extend(
+                s.symbols()
+                    .iter()
+                    .filter(|x| {
+                        !x.is_empty()
+                            && ![ELLIPSIS, INFINITY, OPERAND, WRITTEN_UNIT].contains(&x.as_str())
+                    })
+                    .map(|x| unit_name(x)),
+            );
+        }
+    }
+    let symbols = names
+        .into_iter()
+        .map(|name| {
+            if let Some(u) = declared.get(&name) {
+                return SymbolUnit {
+                    name,
+                    unit: Some(*u),
+                    declared: true,
+                    from: vec![],
+                };
+            }
+            let fixed = system.fixed(&name);
+            SymbolUnit {
+                unit: fixed.map(|(u, _)| u),
+                from: fixed.map_or_else(Vec::new, |(_, f)| f.iter().copied().collect()),
+                name,
+                declared: false,
+            }
+        })
+        .collect();
+    Inference { statuses, symbols }
+}

@@ -1,0 +1,225 @@
+//! The inference's unit tests.
+
+use super::*;
+use crate::algebra::expr::parse;
+use std::collections::BTreeMap;
+
+fn rel(text: &str) -> Option<Relation> {
+    let sides = text.split('=').map(|s| parse(s).unwrap()).collect();
+    Some(Relation {
+        sides,
+        dots: vec![],
+        rels: vec![],
+    })
+}
+
+fn units(pairs: &[(&str, &str)]) -> BTreeMap<String, Unit> {
+    pairs
+        .iter()
+        .map(|(n, u)| (n.to_string(), Unit::parse(u).unwrap()))
+        .collect()
+}
+
+fn unit_of(inf: &Inference, name: &str) -> Option<String> {
+    inf.symbols
+        .iter()
+        .find(|s| s.name == name)
+        .and_then(|s| s.unit.map(|u| u.to_string()))
+}
+
+#[test]
+fn units_flow_through_a_chain_of_relations() {
+    // F = k x, a = F/m, v = a t, E = m v^2/2: from m, x, t and F's unit, by hand
+    // k = N/m = kg s^-2, a = m s^-2, v = m s^-1, E = J
+    let rs = [
+        rel("F = k*x"),
+        rel("a = F/m"),
+        rel("v = a*t"),
+        rel("E = m*v^2/2"),
+    ];
+    let d = units(&[("m", "kg"), ("x", "m"), ("t", "s"), ("F", "N")]);
+    let inf = infer(&rs, &d);
+    assert!(
+        inf.statuses.iter().all(|s| *s == Status::Consistent),
+        "{:?}",
+        inf.statuses
+    );
+    assert_eq!(unit_of(&inf, "k").as_deref(), Some("kg s^-2"));
+    assert_eq!(unit_of(&inf, "v").as_deref(), Some("m s^-1"));
+    assert_eq!(unit_of(&inf, "E").as_deref(), Some("kg m^2 s^-2"));
+    // E's unit came from a = F/m, v = a t and its own relation, not from F = k x
+    let e = inf.symbols.iter().find(|s| s.name == "E").unwrap();
+    assert_eq!(e.from, vec![1, 2, 3]);
+    assert!(!e.declared);
+}
+
+#[test]
+fn a_bad_relation_is_named_and_does_not_poison_the_rest() {
+    // the third says v = a t^2: wrong; the fourth fixes v from declared units alone
+    let rs = [
+        rel("F = k*x"),
+        rel("a = F/m"),
+        rel("v = a*t^2"),
+        rel("v = x/t"),
+        rel("E = m*v^2/2"),
+    ];
+    let d = units(&[("m", "kg"), ("x", "m"), ("t", "s"), ("F", "N")]);
+    let inf = infer(&rs, &d);
+    assert!(
+        matches!(&inf.statuses[2], Status::Inconsistent { .. }),
+        "{:?}",
+        inf.statuses
+    );
+    for i in [0, 1, 3, 4] {
+        assert_eq!(
+            inf.statuses[i],
+            Status::Consistent,
+            "{i}: {:?}",
+            inf.statuses
+        );
+    }
+    assert_eq!(unit_of(&inf, "E").as_deref(), Some("kg m^2 s^-2"));
+    let Status::Inconsistent {
+        left,
+        left_unit,
+        right,
+        right_unit,
+        what,
+    } = &inf.statuses[2]
+    else {
+        unreachable!()
+    };
+    assert_eq!((left.as_str(), left_unit.as_str()), ("v", "m s^-1"));
+    assert_eq!((right.as_str(), right_unit.as_str()), ("a*t^2", "m"));
+    assert_eq!(what, "the sides");
+}
+
+#[test]
+fn sums_functions_and_powers_constrain() {
+    // x0 + v t: v is m/s; exp(-c t/m) makes c kg/s; sqrt(k/m) is 1/s; w^(3/2) scales
+    let rs = [
+        rel("y = x0 + v*t"),
+        rel("z = exp(-c*t/m)"),
+        rel("om = sqrt(kk/m)"),
+        rel("P = q*w^(3/2)"),
+    ];
+    let d = units(&[
+        ("m", "kg"),
+        ("x0", "m"),
+        ("t", "s"),
+        ("kk", "N/m"),
+        ("w", "m"),
+        ("P", "N"),
+    ]);
+    let inf = infer(&rs, &d);
+    assert_eq!(unit_of(&inf, "v").as_deref(), Some("m s^-1"));
+    assert_eq!(unit_of(&inf, "c").as_deref(), Some("kg s^-1"));
+    assert_eq!(unit_of(&inf, "z").as_deref(), Some("1"));
+    assert_eq!(unit_of(&inf, "om").as_deref(), Some("s^-1"));
+    assert_eq!(unit_of(&inf, "q").as_deref(), Some("kg m^(-1/2) s^-2"));
+    assert_eq!(inf.statuses[3], Status::Consistent);
+}
+
+#[test]
+fn a_sign_or_step_of_a_dimensional_argument_is_a_pure_number() {
+    // y = a sign(v) with v in m/s: sign takes any unit and gives 1, as heaviside does
+    let d = units(&[("y", "m"), ("a", "m"), ("v", "m/s")]);
+    for text in ["y = a*sign(v)", "y = a*heaviside(v)"] {
+        let inf = infer(&[rel(text)], &d);
+        assert_eq!(inf.statuses[0], Status::Consistent, "{text}");
+    }
+    // and a sign is no length: y = sign(v) is a unit error
+    let inf = infer(&[rel("y = sign(v)")], &d);
+    assert!(matches!(inf.statuses[0], Status::Inconsistent { .. }));
+}
+
+#[test]
+fn nothing_fixes_a_lone_ratio() {
+    // a = b c with only a known: b and c are open, named
+    let inf = infer(&[rel("a = b*c")], &units(&[("a", "m")]));
+    assert_eq!(
+        inf.statuses[0],
+        Status::Undetermined(vec!["b".into(), "c".into()])
+    );
+    assert_eq!(unit_of(&inf, "b"), None);
+}
+
+#[test]
+fn applications_and_dots_take_their_base_unit() {
+    // m zdd = -P with z in m, P in N and t in s: m is kg; zd = z per second
+    let mut r = Relation {
+        sides: vec![
+            parse("m*zdd").unwrap(),
+            Expr::Neg(Box::new(Expr::Sym("{P(t)}".into()))),
+        ],
+        dots: vec![],
+        rels: vec![],
+    };
+    r.dots = vec![("zdd".into(), "z".into(), 2), ("zd".into(), "z".into(), 1)];
+    let inf = infer(
+        &[Some(r.clone())],
+        &units(&[("z", "m"), ("P", "N"), ("t", "s")]),
+    );
+    assert_eq!(unit_of(&inf, "m").as_deref(), Some("kg"));
+    assert_eq!(unit_of(&inf, "zd").as_deref(), Some("m s^-1"));
+    // a dot is per unit of t, whatever it is: with t declared in kg (any other unit), zd
+    // is m/kg, as z/t is
+    let inf = infer(
+        &[Some(r.clone())],
+        &units(&[("z", "m"), ("P", "N"), ("t", "kg")]),
+    );
+    assert_eq!(unit_of(&inf, "zd").as_deref(), Some("kg^-1 m"));
+    // and with t undeclared, a nondimensional `zd = z` is consistent (t a pure number)
+    let own = Relation {
+        sides: vec![parse("zd").unwrap(), parse("z").unwrap()],
+        dots: vec![("zd".into(), "z".into(), 1)],
+        rels: vec![],
+    };
+    let inf = infer(&[Some(own)], &BTreeMap::new());
+    assert!(!matches!(inf.statuses[0], Status::Inconsistent { .. }));
+    assert_eq!(unit_name("{w(x,y,t)}"), "w");
+    assert_eq!(unit_name("{int_S w dS}"), "{int_S w dS}");
+}
+
+/// The units of the two sides of an inconsistent relation.
+fn side_units(s: &Status) -> (&String, &String) {
+    let Status::Inconsistent {
+        left_unit,
+        right_unit,
+        ..
+    } = s
+    else {
+        panic!("not inconsistent: {s:?}")
+    };
+    (left_unit, right_unit)
+}
+
+#[test]
+fn an_inconsistency_through_an_unknown_shows_the_unknown_with_its_base_unit() {
+    // a q + b q^2 + c q^3 with a in m, b in m s, c in s: the first two terms need q in
+    // 1/s, the first and the last q^2 in m/s: no unit of q serves. Each pair alone leaves
+    // q free, so the sides are shown with q: `m [q]` for a q (by hand)
+    let inf = infer(
+        &[rel("y = a*q + b*q^2 + c*q^3")],
+        &units(&[("a", "m"), ("b", "m s"), ("c", "s")]),
+    );
+    let (left_unit, right_unit) = side_units(&inf.statuses[0]);
+    let both = format!("{left_unit} | {right_unit}");
+    assert!(both.contains("m [q]"), "{both}");
+}
+
+#[test]
+fn a_declared_relation_that_is_wrong_is_inconsistent() {
+    let inf = infer(
+        &[rel("F = m*x")],
+        &units(&[("F", "N"), ("m", "kg"), ("x", "m")]),
+    );
+    let (left_unit, right_unit) = side_units(&inf.statuses[0]);
+    assert_eq!(
+        (left_unit.as_str(), right_unit.as_str()),
+        ("kg m s^-2", "kg m")
+    );
+    // and unreadable input has no status of its own
+    let inf = infer(&[None, rel("F = m*x")], &units(&[("F", "N")]));
+    assert_eq!(inf.statuses[0], Status::Undetermined(vec![]));
+}
