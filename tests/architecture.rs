@@ -283,94 +283,15 @@ fn module_path(rel: &str) -> Vec<String> {
 
 /// Every top-level module that the tokens name through the crate root, with its line:
 /// `crate::m`, each `m` of `crate::{m::.., n}`, and `super::...::m` where the supers climb to the
-/// root. `path` is the file's module path.
+/// root (a path that stays in the file's own top-level module names that module). `path` is the
+/// file's module path.
 fn crate_paths(toks: &[(Tok, usize)], path: &[String]) -> Vec<(String, usize)> {
-    let ident = |k: usize| match toks.get(k) {
-        Some((Tok::Ident(s), _)) => Some(s.as_str()),
-        _ => None,
-    };
-    let sep = |k: usize| matches!(toks.get(k), Some((Tok::PathSep, _)));
-    let mut out = Vec::new();
-    // inline modules (`mod tests { .. }`) open at a brace depth; `super` inside one climbs
-    // out of it first
-    let mut inline: Vec<i32> = Vec::new();
-    let mut depth = 0i32;
-    let mut k = 0;
-    while k < toks.len() {
-        let line = toks[k].1;
-        match &toks[k].0 {
-            Tok::Open('{') => {
-                if k >= 2 && ident(k - 2) == Some("mod") && ident(k - 1).is_some() {
-                    inline.push(depth);
-                }
-                depth += 1;
-            }
-            Tok::Close('}') => {
-                depth -= 1;
-                if inline.last() == Some(&depth) {
-                    inline.pop();
-                }
-            }
-            _ => {}
-        }
-        // a path continues a previous one (`a::crate` cannot occur; `x::super` neither)
-        let starts = k == 0 || !sep(k - 1);
-        let root_at = if starts && ident(k) == Some("crate") && sep(k + 1) {
-            Some(k + 2)
-        } else if starts && ident(k) == Some("super") {
-            // `super` from a module file climbs one level; the first super of a file `a/b.rs`
-            // is `a`
-            let mut level = path.len() + inline.len();
-            let mut j = k;
-            while ident(j) == Some("super") && sep(j + 1) {
-                level = level.saturating_sub(1);
-                j += 2;
-            }
-            (level == 0 && j > k).then_some(j)
-        } else {
-            None
-        };
-        let Some(j) = root_at else {
-            k += 1;
-            continue;
-        };
-        match toks.get(j) {
-            Some((Tok::Ident(m), _)) => {
-                out.push((m.clone(), line));
-                k = j;
-            }
-            Some((Tok::Open('{'), _)) => {
-                // a group: each top-level item's first identifier
-                let mut depth = 0;
-                let mut first = true;
-                for (u, l) in &toks[j..] {
-                    match u {
-                        Tok::Open(_) => {
-                            depth += 1;
-                            if depth == 1 {
-                                first = true;
-                            }
-                        }
-                        Tok::Close(_) => {
-                            depth -= 1;
-                            if depth == 0 {
-                                break;
-                            }
-                        }
-                        Tok::Ident(m) if depth == 1 && first => {
-                            out.push((m.clone(), *l));
-                            first = false;
-                        }
-                        Tok::Other | Tok::Comma if depth == 1 => first = true,
-                        _ => {}
-                    }
-                }
-                // the group's braces are counted by the loop
-                k = j;
-            }
-            _ => k = j,
-        }
-    }
+    let mut out: Vec<(String, usize)> = named_paths(toks, path, &BTreeMap::new())
+        .into_iter()
+        .filter_map(|(segs, line)| Some((segs.into_iter().next()?, line)))
+        .collect();
+    // the items of one group (`crate::cli::{a, b}`) name their module once
+    out.dedup();
     out
 }
 
