@@ -63,6 +63,12 @@ enum Command {
         /// text (a line per relation), json or markdown (a report: the inconsistent first).
         #[arg(long, value_enum, default_value = "text")]
         format: AuditFmt,
+        /// Also measure the audit's power: every relation it calls consistent misprinted the
+        /// ways unit errors happen (its last term times or over a symbol with a unit, a factor
+        /// with a unit dropped, a symbol squared, t^2 for t), the paper audited again, and the
+        /// misprints called inconsistent counted, per relation and in all (json: `power`).
+        #[arg(long)]
+        power: bool,
     },
     /// Print a claims file to start from: the header with the paper's numbers, [symbols] with
     /// the declared and inferred units, and a dimension claim per readable numbered relation,
@@ -549,11 +555,33 @@ fn run_paper(command: &Command) -> Result<bool> {
     )?;
     let (a, name) = (&p.audit, &p.name);
     match command {
-        Command::Audit { format, .. } => match format {
-            AuditFmt::Text => print!("{}", paper::audit::to_text(a)),
-            AuditFmt::Json => println!("{}", serde_json::to_string_pretty(a)?),
-            AuditFmt::Markdown => print!("{}", paper::audit::to_markdown(a, name)),
-        },
+        Command::Audit { format, power, .. } => {
+            let power = power.then(|| p.power());
+            match format {
+                AuditFmt::Text => {
+                    print!("{}", paper::audit::to_text(a));
+                    if let Some(pw) = &power {
+                        print!("{}", paper::audit::power::to_text(pw));
+                    }
+                }
+                AuditFmt::Json => match &power {
+                    None => println!("{}", serde_json::to_string_pretty(a)?),
+                    Some(pw) => println!(
+                        "{}",
+                        serde_json::to_string_pretty(&paper::audit::power::WithPower {
+                            audit: a,
+                            power: pw
+                        })?
+                    ),
+                },
+                AuditFmt::Markdown => {
+                    print!("{}", paper::audit::to_markdown(a, name));
+                    if let Some(pw) = &power {
+                        print!("{}", paper::audit::power::to_markdown(pw));
+                    }
+                }
+            }
+        }
         Command::Init { id, .. } => print!("{}", paper::audit::paper::init_claims(&p, id)),
     }
     Ok(true)

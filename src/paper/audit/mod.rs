@@ -24,6 +24,7 @@ use std::collections::BTreeMap;
 
 pub mod init;
 pub mod paper;
+pub mod power;
 
 /// The units a paper's words give its symbols ([`crate::paper::words`]), its symbols named as the
 /// audit of `blocks` names them.
@@ -82,6 +83,10 @@ pub struct AuditRelation {
     /// The unit of its right side, when it has one.
     #[serde(skip)]
     pub right_unit: Option<Unit>,
+    /// For a consistent relation, the unit every side shares (`"1"`: it holds only as a
+    /// relation of pure numbers, which decides nothing of a physical unit).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unit: Option<String>,
 }
 
 /// One symbol and its unit.
@@ -135,9 +140,22 @@ pub struct Audit {
     pub relations: Vec<AuditRelation>,
     /// Every symbol met, sorted by name.
     pub symbols: Vec<AuditSymbol>,
+    /// The consistent relations whose sides share a physical unit (not `1`).
+    pub consistent_in_a_unit: usize,
+    /// The consistent relations that hold only as relations of pure numbers (every side in `1`).
+    pub consistent_pure: usize,
 }
 
 impl Audit {
+    /// What the consistent relations decide, in words: how many hold in a physical unit and how
+    /// many only as relations of pure numbers.
+    pub fn decided(&self) -> String {
+        format!(
+            "Consistent in a physical unit: {}; consistent only as pure numbers (every side in 1): {}.",
+            self.consistent_in_a_unit, self.consistent_pure
+        )
+    }
+
     /// How many relations have each status.
     pub fn counts(&self) -> BTreeMap<&'static str, usize> {
         let mut c = BTreeMap::new();
@@ -176,7 +194,29 @@ fn dots(tex: &str, syms: &TexSymbols) -> Vec<(String, String, u32)> {
 
 /// Audits the relations of `blocks` with the units given.
 pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units: &Units) -> Audit {
-    let original_words = &units.words;
+    let (rels, inputs) = read_relations(blocks, doc, units);
+    judge_relations(rels, inputs, units)
+}
+
+/// As [`audit`], with the audit's power on the paper ([`power`]).
+pub fn audit_with_power(
+    blocks: &[(Option<String>, String)],
+    doc: Option<&Document>,
+    units: &Units,
+) -> (Audit, power::AuditPower) {
+    let (rels, inputs) = read_relations(blocks, doc, units);
+    let a = judge_relations(rels.clone(), inputs.clone(), units);
+    let p = power::measure(&a, &rels, &inputs, units);
+    (a, p)
+}
+
+/// Every relation of `blocks` as the audit reports it (not yet judged), and as the inference
+/// reads it (`None`: unreadable).
+pub(super) fn read_relations(
+    blocks: &[(Option<String>, String)],
+    doc: Option<&Document>,
+    units: &Units,
+) -> (Vec<AuditRelation>, Vec<Option<Relation>>) {
     let syms = TexSymbols::new(units.tex_symbols.clone())
         .with_dirac(units.dirac.iter().cloned())
         .with_functions_of(blocks.iter().map(|(_, tex)| tex.as_str()));
@@ -210,6 +250,7 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
                     sides: Vec::new(),
                     side_unit: None,
                     right_unit: None,
+                    unit: None,
                 };
                 match rel {
                     Err(e) => {
@@ -263,6 +304,16 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
         }
     }
     operator_images(&mut inputs);
+    (rels, inputs)
+}
+
+/// The audit of relations read by [`read_relations`]: the units inferred, each relation judged.
+pub(super) fn judge_relations(
+    mut rels: Vec<AuditRelation>,
+    mut inputs: Vec<Option<Relation>>,
+    units: &Units,
+) -> Audit {
+    let original_words = &units.words;
     // a symbol named in passing is that quantity in its own section only
     let lines: Vec<Option<usize>> = rels.iter().map(|r| r.line).collect();
     let mut names: Vec<Vec<String>> = rels.iter().map(|r| r.names.clone()).collect();
@@ -347,9 +398,19 @@ pub fn audit(blocks: &[(Option<String>, String)], doc: Option<&Document>, units:
             }
         })
         .collect();
+    let consistent_pure = rels
+        .iter()
+        .filter(|r| r.status == "consistent" && r.unit.as_deref() == Some("1"))
+        .count();
+    let consistent_in_a_unit = rels
+        .iter()
+        .filter(|r| r.status == "consistent" && r.unit.as_deref().is_some_and(|u| u != "1"))
+        .count();
     Audit {
         relations: rels,
         symbols,
+        consistent_in_a_unit,
+        consistent_pure,
     }
 }
 
@@ -408,6 +469,15 @@ fn judge(
     units: &Units,
     weak: &std::collections::BTreeSet<usize>,
 ) {
+    // each relation as the details name it: its number, or its display's first characters
+    let places: Vec<String> = rels
+        .iter()
+        .map(|r| {
+            r.number
+                .as_ref()
+                .map_or_else(|| format!("`{}`", short(&r.latex)), |n| format!("({n})"))
+        })
+        .collect();
     let unit_of = |name: &str| {
         units.symbols.get(name).copied().or_else(|| {
             inf.symbols
@@ -433,6 +503,7 @@ fn judge(
             Status::Consistent => {
                 r.status = "consistent";
                 r.detail = shared.map_or_else(String::new, |u| format!("every side in {u}"));
+                r.unit = shared.map(|u| u.to_string());
             }
             Status::Inconsistent {
                 left,
@@ -440,6 +511,7 @@ fn judge(
                 right,
                 right_unit,
                 what,
+                against,
             } => {
                 r.status = "inconsistent";
                 r.detail = match term_groups(input, &unit_of) {
@@ -466,6 +538,36 @@ fn judge(
                         "; units from the paper's words: {}",
                         from_words.join(", ")
                     ));
+                }
+                if !against.is_empty() {
+                    let (doubt, fixed): (Vec<usize>, Vec<usize>) = against
+                        .iter()
+                        .partition(|&&j| matches!(inf.statuses[j], Status::Inconsistent { .. }));
+                    let names = |v: &[usize]| {
+                        v.iter()
+                            .map(|&j| places[j].clone())
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    };
+                    let mut parts = Vec::new();
+                    if !doubt.is_empty() {
+                        parts.push(format!(
+                            "it and {} cannot both hold: one of them is wrong",
+                            names(&doubt)
+                        ));
+                    }
+                    if !fixed.is_empty() {
+                        parts.push(format!(
+                            "it contradicts the units that {} fix",
+                            names(&fixed)
+                        ));
+                    }
+                    r.detail.push_str(&format!("; {}", parts.join("; ")));
+                }
+                if inf.bounded {
+                    r.detail.push_str(
+                        "; the search for the relations to blame was bounded: this one was rejected taken one at a time",
+                    );
                 }
                 if weak.contains(&i) {
                     r.status = "undetermined";
@@ -560,9 +662,10 @@ pub fn to_text(a: &Audit) -> String {
     }
     let counts: Vec<String> = a.counts().iter().map(|(k, v)| format!("{v} {k}")).collect();
     s.push_str(&format!(
-        "\n{} relations: {}\n",
+        "\n{} relations: {}\n{}\n",
         a.relations.len(),
-        counts.join(", ")
+        counts.join(", "),
+        a.decided()
     ));
     s
 }
@@ -573,9 +676,10 @@ pub fn to_markdown(a: &Audit, title: &str) -> String {
     let esc = |t: &str| t.replace('|', "\\|").replace('\n', " ");
     let counts: Vec<String> = a.counts().iter().map(|(k, v)| format!("{v} {k}")).collect();
     let mut s = format!(
-        "# Units audit: {title}\n\n{} relations: {}. Units of the symbols not declared are inferred from the relations (`verify audit`); a relation is inconsistent when it contradicts what the declared units and the other relations fix.\n\n",
+        "# Units audit: {title}\n\n{} relations: {}. {} Units of the symbols not declared are inferred from the relations (`verify audit`); a relation is inconsistent when it contradicts what the declared units and the other relations fix.\n\n",
         a.relations.len(),
-        counts.join(", ")
+        counts.join(", "),
+        a.decided()
     );
     let bad: Vec<&AuditRelation> = a
         .relations

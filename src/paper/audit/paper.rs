@@ -21,6 +21,19 @@ pub struct PaperAudit {
     pub document: bool,
     /// The units used: the units file's, then the words'.
     pub units: Units,
+    /// The paper's displays (each with the number printed after it).
+    pub blocks: Vec<(Option<String>, String)>,
+    /// Its document, when read from a LaTeX source.
+    pub doc: Option<crate::paper::source::document::Document>,
+}
+
+impl PaperAudit {
+    /// The audit's power on this paper: each relation it calls consistent misprinted with a
+    /// unit error and the paper audited again ([`super::power`]).
+    pub fn power(&self) -> super::power::AuditPower {
+        let (rels, inputs) = super::read_relations(&self.blocks, self.doc.as_ref(), &self.units);
+        super::power::measure(&self.audit, &rels, &inputs, &self.units)
+    }
 }
 
 /// Reads `paper` and audits it as `verify audit` does; `say` hears what the command line prints
@@ -106,6 +119,8 @@ pub fn audit_paper(
         text,
         document: doc.is_some(),
         units,
+        blocks,
+        doc,
     })
 }
 

@@ -81,6 +81,10 @@ pub enum Status {
         right_unit: String,
         /// What must agree: "the sides", "the terms of a sum", "the argument of exp".
         what: String,
+        /// The other relations of its conflict (indices into the input): together with it
+        /// they cannot all hold, and without it they do. Empty when it contradicts the
+        /// declared units alone, or when the search for the blame was bounded.
+        against: Vec<usize>,
     },
     /// Consistent so far, but these symbols' units are fixed by nothing.
     Undetermined(Vec<String>),
@@ -104,6 +108,9 @@ pub struct SymbolUnit {
 pub struct Inference {
     /// One per relation given.
     pub statuses: Vec<Status>,
+    /// Whether the search for the relations to blame hit its bound: the relations called
+    /// inconsistent are then those the one-at-a-time judgement rejected.
+    pub bounded: bool,
     /// Every symbol of the relations, declared or not, sorted by name.
     pub symbols: Vec<SymbolUnit>,
 }

@@ -2,7 +2,7 @@
 //! fewest unknowns, or, with units from the words, each chosen against what is fixed so far),
 //! a relation that contradicts the system rejected, and every relation and symbol judged.
 
-use super::conflicts::inconsistency;
+use super::conflicts::{Blame, inconsistency, localise, system_of};
 use super::system::System;
 use super::walk::{Constraint, constraints, is_local, unknowns};
 use super::{Inference, Relation, Status, SymbolUnit, unit_name};
@@ -120,10 +120,20 @@ pub fn infer_ordered(
             take(i, &mut system);
         }
     }
+    // the blame, whatever the order (the one-at-a-time judgement above stands where the search
+    // is bounded, and with units from a paper's words)
+    let (blame, found, against) = blame_of(relations, declared, &cs, &order, anchored_first);
+    if let Some((s, blamed)) = found {
+        system = s;
+        rejected = blamed;
+    }
     let statuses = (0..relations.len())
         .map(|i| {
             if rejected.contains(&i) {
-                return inconsistency(&system, &cs[i]);
+                return match against.get(&i) {
+                    Some((s, others)) => inconsistency(s, &cs[i], others.clone()),
+                    None => inconsistency(&system, &cs[i], Vec::new()),
+                };
             }
             let open: Vec<String> = unknowns(&cs[i])
                 .into_iter()
@@ -182,5 +192,81 @@ pub fn infer_ordered(
             }
         })
         .collect();
-    Inference { statuses, symbols }
+    Inference {
+        statuses,
+        bounded: blame.bounded,
+        symbols,
+    }
+}
+
+/// The system of the relations taken without the blamed ones and the blamed set (`None` when
+/// no conflict, or the search bounded), and for each blamed relation the system it contradicts
+/// (that of every relation but its correction set) and the other relations of its core.
+#[allow(clippy::type_complexity)]
+fn blame_of(
+    relations: &[Option<Relation>],
+    declared: &BTreeMap<String, Unit>,
+    cs: &[Vec<Constraint>],
+    order: &[usize],
+    anchored_first: bool,
+) -> (
+    Blame,
+    Option<(System, BTreeSet<usize>)>,
+    BTreeMap<usize, (System, Vec<usize>)>,
+) {
+    let readable: Vec<usize> = order_all(relations);
+    // a definition: the only relation with its new symbol alone on the left, the paper's
+    // statement of that symbol's unit (blamed last among sets of one size)
+    let left_symbol = |i: usize| match relations[i].as_ref().map(|r| (r.sides.len(), &r.sides[0])) {
+        Some((2, Expr::Sym(s))) if declared.get(&unit_name(s)).is_none() => Some(unit_name(s)),
+        _ => None,
+    };
+    let lefts: Vec<Option<String>> = (0..relations.len()).map(left_symbol).collect();
+    let definitions: BTreeSet<usize> = (0..relations.len())
+        .filter(|&i| lefts[i].is_some() && lefts.iter().filter(|l| **l == lefts[i]).count() == 1)
+        .collect();
+    // units from a paper's words keep the one-at-a-time judgement, whose weak conflicts the
+    // audit sets apart, until a letter's roles are told apart
+    let blame = if anchored_first {
+        Blame::default()
+    } else {
+        localise(cs, &readable, &definitions)
+    };
+    let taken = |without: &BTreeSet<usize>| -> Vec<usize> {
+        order
+            .iter()
+            .copied()
+            .filter(|i| !without.contains(i))
+            .collect()
+    };
+    let mut against: BTreeMap<usize, (System, Vec<usize>)> = BTreeMap::new();
+    if blame.bounded || blame.blamed.is_empty() {
+        return (blame, None, against);
+    }
+    let blamed: BTreeSet<usize> = blame.blamed.keys().copied().collect();
+    let Ok(rest) = system_of(cs, &taken(&blamed)) else {
+        return (blame, None, against);
+    };
+    for (&i, set) in &blame.blamed {
+        let Ok(s) = system_of(cs, &taken(set)) else {
+            continue;
+        };
+        let others = blame
+            .cores
+            .iter()
+            .filter(|c| c.contains(&i))
+            .min_by_key(|c| c.len())
+            .map_or_else(Vec::new, |c| {
+                c.iter().copied().filter(|&j| j != i).collect()
+            });
+        against.insert(i, (s, others));
+    }
+    (blame, Some((rest, blamed)), against)
+}
+
+/// The readable relations, in the paper's order.
+fn order_all(relations: &[Option<Relation>]) -> Vec<usize> {
+    (0..relations.len())
+        .filter(|&i| relations[i].is_some())
+        .collect()
 }

@@ -53,15 +53,16 @@ impl System {
         (coeffs, rhs, from)
     }
 
-    /// Adds an equation; `Err` when it contradicts the system (0 = a non-zero unit).
-    pub(super) fn add(&mut self, c: &Constraint, rel: usize) -> Result<(), ()> {
+    /// Adds an equation of the relation `rel`; `Err` with the relations whose equations
+    /// combine to the contradiction (0 = a non-zero unit), `rel` among them.
+    pub(super) fn add(&mut self, c: &Constraint, rel: usize) -> Result<(), BTreeSet<usize>> {
         let (coeffs, rhs) = c.equation();
         let (mut coeffs, mut rhs, from) = self.reduce(coeffs, rhs, [rel].into());
         let Some((pivot, a)) = coeffs.iter().next().map(|(v, a)| (v.clone(), a.clone())) else {
             return if rhs.iter().all(Zero::is_zero) {
                 Ok(())
             } else {
-                Err(())
+                Err(from)
             };
         };
         coeffs.remove(&pivot);

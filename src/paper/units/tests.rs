@@ -55,7 +55,10 @@ fn units_flow_through_a_chain_of_relations() {
 
 #[test]
 fn a_bad_relation_is_named_and_does_not_poison_the_rest() {
-    // the third says v = a t^2: wrong; the fourth fixes v from declared units alone
+    // the third says v = a t^2 (m), the fourth v = x/t (m/s): v is declared nowhere, so the
+    // two disagree and nothing decides which is wrong: both are blamed, each naming the other;
+    // a = F/m, the only relation with `a` alone on its left, is the paper's definition of a
+    // and is not blamed (a smallest set that spares it corrects as well); E's unit needs v's
     let rs = [
         rel("F = k*x"),
         rel("a = F/m"),
@@ -64,12 +67,39 @@ fn a_bad_relation_is_named_and_does_not_poison_the_rest() {
         rel("E = m*v^2/2"),
     ];
     let d = units(&[("m", "kg"), ("x", "m"), ("t", "s"), ("F", "N")]);
+    // in any order of the relations
+    for shift in 0..rs.len() {
+        let order: Vec<usize> = (0..rs.len()).map(|k| (k + shift) % rs.len()).collect();
+        let shuffled: Vec<Option<Relation>> = order.iter().map(|&k| rs[k].clone()).collect();
+        let inf = infer(&shuffled, &d);
+        let at = |k: usize| &inf.statuses[order.iter().position(|&j| j == k).unwrap()];
+        let index = |k: usize| order.iter().position(|&j| j == k).unwrap();
+        for (bad, other) in [(2, 3), (3, 2)] {
+            let Status::Inconsistent { against, .. } = at(bad) else {
+                panic!("{bad}: {:?}", inf.statuses)
+            };
+            assert!(against.contains(&index(other)), "{bad}: {against:?}");
+        }
+        for k in [0, 1] {
+            assert_eq!(*at(k), Status::Consistent, "{k}: {:?}", inf.statuses);
+        }
+        assert!(
+            matches!(at(4), Status::Undetermined(v) if v.contains(&"v".to_string())),
+            "{:?}",
+            at(4)
+        );
+        assert_eq!(unit_of(&inf, "k").as_deref(), Some("kg s^-2"));
+    }
+    // with v declared, only the wrong one is blamed, against the declared units alone
+    let d = units(&[
+        ("m", "kg"),
+        ("x", "m"),
+        ("t", "s"),
+        ("F", "N"),
+        ("v", "m/s"),
+    ]);
     let inf = infer(&rs, &d);
-    assert!(
-        matches!(&inf.statuses[2], Status::Inconsistent { .. }),
-        "{:?}",
-        inf.statuses
-    );
+    assert!(matches!(&inf.statuses[2], Status::Inconsistent { .. }));
     for i in [0, 1, 3, 4] {
         assert_eq!(
             inf.statuses[i],
@@ -85,6 +115,7 @@ fn a_bad_relation_is_named_and_does_not_poison_the_rest() {
         right,
         right_unit,
         what,
+        ..
     } = &inf.statuses[2]
     else {
         unreachable!()
