@@ -13,7 +13,9 @@
 //! with nothing to decide between them are both blamed, each naming the other. Among sets of
 //! one size, those that spare the paper's definitions are kept (a relation that is the only
 //! one with a new symbol alone on its left, `a = F/m`, is how the paper states that symbol's
-//! unit: another relation on it is blamed before it).
+//! unit: another relation on it is blamed before it, and its detail names the definition whose
+//! unit it contradicts; a misprinted definition is thus found through the relation it
+//! contradicts, which `verify audit --power` counts as a misprint that survives).
 //!
 //! The search is bounded ([`MAX_CHECKS`] systems solved, hitting sets of at most [`MAX_SIZE`]
 //! relations per conflict); past a bound the caller keeps the one-at-a-time judgement and says
@@ -25,8 +27,9 @@ use super::walk::Constraint;
 use num_traits::Zero;
 use std::collections::{BTreeMap, BTreeSet};
 
-/// The most systems the search solves before it gives up (each a solve of up to every relation).
-pub(super) const MAX_CHECKS: usize = 400;
+/// The most systems the search solves before it gives up (a solve of the relations outside the
+/// cores found, or of a core while it is shrunk).
+pub(super) const MAX_CHECKS: usize = 2_000;
 /// The largest correction set tried for one conflict.
 pub(super) const MAX_SIZE: usize = 4;
 /// The most candidate sets enumerated for one conflict and size.
@@ -150,9 +153,6 @@ pub(super) fn localise(
 ) -> Blame {
     let mut checks = 0;
     let mut cores: Vec<BTreeSet<usize>> = Vec::new();
-    let without = |h: &BTreeSet<usize>| -> Vec<usize> {
-        all.iter().copied().filter(|i| !h.contains(i)).collect()
-    };
     checks += 1;
     match system_of(cs, all) {
         Ok(_) => return Blame::default(),
@@ -166,6 +166,26 @@ pub(super) fn localise(
                 ..Blame::default()
             };
         }
+        // the relations of no core found so far, solved once: each candidate adds the rest
+        let union: BTreeSet<usize> = cores.iter().flatten().copied().collect();
+        let outside: Vec<usize> = all.iter().copied().filter(|i| !union.contains(i)).collect();
+        checks += 1;
+        let base = match system_of(cs, &outside) {
+            Ok(s) => s,
+            Err(core) => {
+                cores.push(minimized(cs, core, &mut checks));
+                continue 'search;
+            }
+        };
+        let holds_without = |set: &BTreeSet<usize>| -> Result<(), BTreeSet<usize>> {
+            let mut s = base.clone();
+            for &i in all.iter().filter(|i| union.contains(i) && !set.contains(i)) {
+                for c in &cs[i] {
+                    s.add(c, i)?;
+                }
+            }
+            Ok(())
+        };
         let groups = conflicts(&cores);
         let mut choices: Vec<Vec<BTreeSet<usize>>> = Vec::new();
         for g in &groups {
@@ -192,7 +212,7 @@ pub(super) fn localise(
                         first.difference(&choices[g][0]).copied().collect();
                     set.extend(h.iter().copied());
                     checks += 1;
-                    if let Err(core) = system_of(cs, &without(&set)) {
+                    if let Err(core) = holds_without(&set) {
                         cores.push(minimized(cs, core, &mut checks));
                         continue 'search;
                     }

@@ -62,6 +62,16 @@ pub fn infer_ordered(
     let mut system = System::default();
     let mut rejected = BTreeSet::new();
     let mut take = |i: usize, system: &mut System| {
+        // one equation: checked in place (a clone of the system per relation made the pass
+        // quadratic); several: on a copy, kept when all hold
+        if let [c] = cs[i].as_slice() {
+            if system.contradicts(c) {
+                rejected.insert(i);
+            } else {
+                let _ = system.add(c, i);
+            }
+            return;
+        }
         let mut trial = system.clone();
         if cs[i].iter().all(|c| trial.add(c, i).is_ok()) {
             *system = trial;

@@ -53,6 +53,14 @@ impl System {
         (coeffs, rhs, from)
     }
 
+    /// Whether an equation contradicts the system (it reduces to 0 = a non-zero unit), which
+    /// [`System::add`] would then refuse.
+    pub(super) fn contradicts(&self, c: &Constraint) -> bool {
+        let (coeffs, rhs) = c.equation();
+        let (rest, rhs, _) = self.reduce(coeffs, rhs, BTreeSet::new());
+        rest.is_empty() && rhs.iter().any(|x| !x.is_zero())
+    }
+
     /// Adds an equation of the relation `rel`; `Err` with the relations whose equations
     /// combine to the contradiction (0 = a non-zero unit), `rel` among them.
     pub(super) fn add(&mut self, c: &Constraint, rel: usize) -> Result<(), BTreeSet<usize>> {
