@@ -244,3 +244,41 @@ fn the_cart_blames_both_relations_that_disagree_on_p() {
         }
     }
 }
+
+/// `verify audit --suggest`: `F = m a`, `E = F x`, `P = E/t` hold seven symbols in three
+/// independent equations, so four units must be given (counted by hand: 7 - 3); given the units
+/// the suggestion asks for (any units), every relation is decided. With F declared, three.
+#[test]
+fn the_suggestion_names_the_fewest_symbols_that_decide_every_relation() {
+    let dir = Scratch::new("suggest");
+    let paper = dir.join("paper.tex");
+    std::fs::write(
+        &paper,
+        "\\begin{equation} F = m a \\end{equation}\n\\begin{equation} E = F x \\end{equation}\n\\begin{equation} P = E / t \\end{equation}\n",
+    )
+    .expect("writes");
+    let run = |extra: &[&std::ffi::OsStr]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_verify"))
+            .arg("audit")
+            .arg(&paper)
+            .args(extra)
+            .output()
+            .expect("runs");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).expect("utf-8")
+    };
+    let suggested = run(&["--suggest".as_ref()]);
+    assert_eq!(suggested.matches("= \"?\"").count(), 4, "{suggested}");
+    let units = dir.join("units.toml");
+    std::fs::write(&units, suggested.replace("\"?\"", "\"kg m\"")).expect("writes");
+    let audited = run(&["--units".as_ref(), units.as_os_str()]);
+    assert!(audited.contains("3 relations: 3 consistent"), "{audited}");
+    std::fs::write(&units, "[symbols]\nF = \"N\"\n").expect("writes");
+    let again = run(&["--units".as_ref(), units.as_os_str(), "--suggest".as_ref()]);
+    assert_eq!(again.matches("= \"?\"").count(), 3, "{again}");
+    assert!(again.contains("F = \"N\""), "{again}");
+}

@@ -69,6 +69,11 @@ enum Command {
         /// misprints called inconsistent counted, per relation and in all (json: `power`).
         #[arg(long)]
         power: bool,
+        /// Print a units file to start from instead of the audit: the units declared and named
+        /// in the paper's words, then the fewest symbols whose units, once given, decide every
+        /// relation, each "?" with the relations it appears in (fill them in, then --units).
+        #[arg(long, conflicts_with = "power")]
+        suggest: bool,
     },
     /// Print a claims file to start from: the header with the paper's numbers, [symbols] with
     /// the declared and inferred units, and a dimension claim per readable numbered relation,
@@ -555,6 +560,7 @@ fn run_paper(command: &Command) -> Result<bool> {
     )?;
     let (a, name) = (&p.audit, &p.name);
     match command {
+        Command::Audit { suggest: true, .. } => print!("{}", p.suggest()),
         Command::Audit { format, power, .. } => {
             let power = power.then(|| p.power());
             match format {

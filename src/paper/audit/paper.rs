@@ -28,6 +28,46 @@ pub struct PaperAudit {
 }
 
 impl PaperAudit {
+    /// A units file to start from: the units declared and named in the words, then the fewest
+    /// symbols whose units, once given, decide every relation ([`crate::paper::units::suggest`]),
+    /// each `"?"` with the relations it appears in.
+    pub fn suggest(&self) -> String {
+        let (rels, inputs) = super::read_relations(&self.blocks, self.doc.as_ref(), &self.units);
+        let critical = crate::paper::units::suggest::critical_symbols(&inputs, &self.units.symbols);
+        let place = |i: usize| {
+            rels[i].number.as_ref().map_or_else(
+                || format!("`{}`", super::short(&rels[i].latex)),
+                |n| format!("({n})"),
+            )
+        };
+        let mut s = format!(
+            "# The units of {}: {} symbol(s) to give (\"?\"), the fewest whose units decide every relation;\n# fill them in and audit again with --units FILE.\n[symbols]\n",
+            self.name,
+            critical.len()
+        );
+        for (name, text) in &self.units.texts {
+            s.push_str(&format!("{} = \"{text}\"\n", toml_key(name)));
+        }
+        for (name, w) in &self.units.words {
+            s.push_str(&format!(
+                "{} = \"{}\"  # {}\n",
+                toml_key(name),
+                w.unit,
+                w.source()
+            ));
+        }
+        for (name, at) in &critical {
+            let places: Vec<String> = at.iter().take(6).map(|&i| place(i)).collect();
+            let more = if at.len() > 6 { ", ..." } else { "" };
+            s.push_str(&format!(
+                "{} = \"?\"  # in {}{more}\n",
+                toml_key(name),
+                places.join(", ")
+            ));
+        }
+        s
+    }
+
     /// The audit's power on this paper: each relation it calls consistent misprinted with a
     /// unit error and the paper audited again ([`super::power`]).
     pub fn power(&self) -> super::power::AuditPower {
@@ -134,4 +174,17 @@ pub fn init_claims(p: &PaperAudit, id: &str) -> String {
     }
     .unwrap_or_else(|| p.name.clone());
     super::init::init_claims(&p.audit, &numbers, id, &p.name, &title, &p.units)
+}
+
+/// A symbol as a TOML key: bare when it can be, else quoted.
+fn toml_key(name: &str) -> String {
+    if !name.is_empty()
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+    {
+        name.to_string()
+    } else {
+        format!("{name:?}")
+    }
 }

@@ -33,6 +33,7 @@
 mod conflicts;
 pub mod declared;
 mod solve;
+pub mod suggest;
 mod system;
 mod walk;
 pub mod with_words;
