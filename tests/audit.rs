@@ -533,3 +533,80 @@ fn the_main_jobs_audit_files_are_the_seeds_audits() {
         assert!(md.contains(&format!("({paper})")), "{md}");
     }
 }
+
+/// `verify audit --suggest` prints a units file to start from: the declared units as given, then
+/// each symbol to give as "?" with the relations it appears in (at most six named), as many as
+/// the relations leave free (counted by hand below).
+#[test]
+fn the_suggestion_is_a_units_file_to_fill_in() {
+    let dir = Scratch::new("audit-suggest");
+    let paper = dir.join("paper.tex");
+    // eight relations `y = a b_k` (k = 1..8) and `w_{1} = y c`: with `a` declared, y and the
+    // eight b_k are nine unknowns in eight equations, w_1 and c two more in one: two to give
+    let mut tex = String::new();
+    for k in 1..=8 {
+        tex.push_str(&format!(
+            "\\begin{{equation}} y = a b_{{{k}}} \\end{{equation}}\n"
+        ));
+    }
+    tex.push_str("\\begin{equation} w_{1} = y c \\end{equation}\n");
+    std::fs::write(&paper, tex).unwrap();
+    let units = dir.join("units.toml");
+    std::fs::write(&units, "[symbols]\na = \"kg\"\n").unwrap();
+    let out = verify(&[
+        "audit",
+        paper.to_str().unwrap(),
+        "--units",
+        units.to_str().unwrap(),
+        "--suggest",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("[symbols]\na = \"kg\"\n"), "{text}");
+    assert_eq!(text.matches("= \"?\"").count(), 2, "{text}");
+    assert!(text.contains("2 symbol(s) to give"), "{text}");
+    // y is open in all nine relations: six named, then "..."
+    assert!(
+        text.contains("y = \"?\"  # in (1), (2), (3), (4), (5), (6), ...\n"),
+        "{text}"
+    );
+    // the file, filled in, decides every relation
+    std::fs::write(&units, text.replace("\"?\"", "\"m\"")).unwrap();
+    let out = verify(&[
+        "audit",
+        paper.to_str().unwrap(),
+        "--units",
+        units.to_str().unwrap(),
+    ]);
+    let audited = String::from_utf8(out.stdout).unwrap();
+    assert!(audited.contains("9 relations: 9 consistent"), "{audited}");
+    // a symbol in exactly six relations: all six named, no "..."
+    let mut tex = String::new();
+    for k in 1..=5 {
+        tex.push_str(&format!(
+            "\\begin{{equation}} y = a b_{{{k}}} \\end{{equation}}\n"
+        ));
+    }
+    tex.push_str("\\begin{equation} w_{1} = y c \\end{equation}\n");
+    std::fs::write(&paper, tex).unwrap();
+    std::fs::write(&units, "[symbols]\na = \"kg\"\n").unwrap();
+    let out = verify(&[
+        "audit",
+        paper.to_str().unwrap(),
+        "--units",
+        units.to_str().unwrap(),
+        "--suggest",
+    ]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.contains("y = \"?\"  # in (1), (2), (3), (4), (5), (6)\n"),
+        "{text}"
+    );
+    // --suggest and --power are one or the other
+    let out = verify(&["audit", paper.to_str().unwrap(), "--suggest", "--power"]);
+    assert_eq!(out.status.code(), Some(2));
+}

@@ -188,3 +188,17 @@ fn toml_key(name: &str) -> String {
         format!("{name:?}")
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::toml_key;
+
+    #[test]
+    fn a_symbol_is_a_bare_key_when_it_can_be() {
+        assert_eq!(toml_key("omega_n"), "omega_n");
+        assert_eq!(toml_key("x-1"), "x-1");
+        assert_eq!(toml_key("{op L(w,F)}"), "\"{op L(w,F)}\"");
+        assert_eq!(toml_key("v.x"), "\"v.x\"");
+        assert_eq!(toml_key(""), "\"\"");
+    }
+}

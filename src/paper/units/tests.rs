@@ -254,3 +254,49 @@ fn a_declared_relation_that_is_wrong_is_inconsistent() {
     let inf = infer(&[None, rel("F = m*x")], &units(&[("F", "N")]));
     assert_eq!(inf.statuses[0], Status::Undetermined(vec![]));
 }
+
+/// `F = m a`, `E = F x`, `P = E/t`: seven symbols, three independent equations, so four units
+/// to give (counted by hand). The picks, by hand: E and F are open in two undetermined
+/// relations each (E first by name); with E and F given, x is fixed by `E = F x`; then P, a, m
+/// and t are each open in one, P first by name (upper case sorts first), which fixes t; then a,
+/// which fixes m.
+#[test]
+fn the_fewest_symbols_that_decide_every_relation() {
+    let rs = [rel("F = m*a"), rel("E = F*x"), rel("P = E/t")];
+    let picks = suggest::critical_symbols(&rs, &BTreeMap::new());
+    let names: Vec<&str> = picks.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["E", "F", "P", "a"]);
+    assert_eq!(picks[0].1, [1, 2]);
+    assert_eq!(picks[3].1, [0]);
+    // given those (any units), every relation is decided
+    let given = units(&[("E", "J"), ("F", "N"), ("P", "W"), ("a", "m/s^2")]);
+    let inf = infer(&rs, &given);
+    assert!(
+        inf.statuses.iter().all(|s| *s == Status::Consistent),
+        "{:?}",
+        inf.statuses
+    );
+    // a declared unit is one fewer to give, and is never suggested
+    let picks = suggest::critical_symbols(&rs, &units(&[("F", "N")]));
+    assert_eq!(picks.len(), 3, "{picks:?}");
+    assert!(picks.iter().all(|(n, _)| n != "F"));
+    // everything declared: nothing to give
+    let all = units(&[
+        ("F", "N"),
+        ("m", "kg"),
+        ("a", "m/s^2"),
+        ("E", "J"),
+        ("x", "m"),
+        ("P", "W"),
+        ("t", "s"),
+    ]);
+    assert!(suggest::critical_symbols(&rs, &all).is_empty());
+    // relations called inconsistent are decided already: v = x/t and v = x t (x, t declared)
+    // blame each other, and nothing is left to give; with a third relation on w that holds,
+    // w's unit is fixed through neither of them and is to give
+    let rs = [rel("v = x/t"), rel("v = x*t")];
+    assert!(suggest::critical_symbols(&rs, &units(&[("x", "m"), ("t", "s")])).is_empty());
+    let rs = [rel("v = x/t"), rel("v = x*t"), rel("w = q*x")];
+    let picks = suggest::critical_symbols(&rs, &units(&[("x", "m"), ("t", "s")]));
+    assert_eq!(picks, [("q".to_string(), vec![2])]);
+}
