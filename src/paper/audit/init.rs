@@ -192,10 +192,11 @@ fn init_claim(a: &Audit, r: &AuditRelation) -> Result<String, String> {
 }
 
 /// A TOML key: bare when it can be, quoted otherwise.
-fn key(name: &str) -> String {
-    if name
-        .chars()
-        .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+pub(super) fn key(name: &str) -> String {
+    if !name.is_empty()
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
     {
         name.to_string()
     } else {
@@ -208,6 +209,15 @@ mod tests {
     use super::super::tests::units;
     use super::super::{audit, paper_blocks};
     use super::*;
+
+    #[test]
+    fn a_symbol_is_a_bare_key_when_it_can_be() {
+        assert_eq!(key("omega_n"), "omega_n");
+        assert_eq!(key("x-1"), "x-1");
+        assert_eq!(key("{op L(w,F)}"), "\"{op L(w,F)}\"");
+        assert_eq!(key("v.x"), "\"v.x\"");
+        assert_eq!(key(""), "\"\"");
+    }
 
     #[test]
     fn a_left_side_without_a_unit_gives_a_claim_that_fails_on_the_right_sides_unit() {

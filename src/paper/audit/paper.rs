@@ -46,12 +46,12 @@ impl PaperAudit {
             critical.len()
         );
         for (name, text) in &self.units.texts {
-            s.push_str(&format!("{} = \"{text}\"\n", toml_key(name)));
+            s.push_str(&format!("{} = \"{text}\"\n", super::init::key(name)));
         }
         for (name, w) in &self.units.words {
             s.push_str(&format!(
                 "{} = \"{}\"  # {}\n",
-                toml_key(name),
+                super::init::key(name),
                 w.unit,
                 w.source()
             ));
@@ -61,7 +61,7 @@ impl PaperAudit {
             let more = if at.len() > 6 { ", ..." } else { "" };
             s.push_str(&format!(
                 "{} = \"?\"  # in {}{more}\n",
-                toml_key(name),
+                super::init::key(name),
                 places.join(", ")
             ));
         }
@@ -174,31 +174,4 @@ pub fn init_claims(p: &PaperAudit, id: &str) -> String {
     }
     .unwrap_or_else(|| p.name.clone());
     super::init::init_claims(&p.audit, &numbers, id, &p.name, &title, &p.units)
-}
-
-/// A symbol as a TOML key: bare when it can be, else quoted.
-fn toml_key(name: &str) -> String {
-    if !name.is_empty()
-        && name
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
-    {
-        name.to_string()
-    } else {
-        format!("{name:?}")
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::toml_key;
-
-    #[test]
-    fn a_symbol_is_a_bare_key_when_it_can_be() {
-        assert_eq!(toml_key("omega_n"), "omega_n");
-        assert_eq!(toml_key("x-1"), "x-1");
-        assert_eq!(toml_key("{op L(w,F)}"), "\"{op L(w,F)}\"");
-        assert_eq!(toml_key("v.x"), "\"v.x\"");
-        assert_eq!(toml_key(""), "\"\"");
-    }
 }

@@ -4,7 +4,7 @@
 
 use super::conflicts::{Blame, inconsistency, localise, system_of};
 use super::system::System;
-use super::walk::{Constraint, constraints, is_local, unknowns};
+use super::walk::{Constraint, all_constraints, is_local, unknowns};
 use super::{Inference, Relation, Status, SymbolUnit, unit_name};
 use crate::algebra::expr::Expr;
 use crate::algebra::units::{ELLIPSIS, INFINITY, OPERAND, Unit, WRITTEN_UNIT};
@@ -27,15 +27,7 @@ pub fn infer_ordered(
     declared: &BTreeMap<String, Unit>,
     anchored_first: bool,
 ) -> Inference {
-    let decl = |s: &str| declared.get(s).copied();
-    let cs: Vec<Vec<Constraint>> = relations
-        .iter()
-        .enumerate()
-        .map(|(i, r)| {
-            r.as_ref()
-                .map_or_else(Vec::new, |r| constraints(r, &decl, i))
-        })
-        .collect();
+    let cs = all_constraints(relations, declared);
     let mut order: Vec<usize> = (0..relations.len())
         .filter(|&i| relations[i].is_some())
         .collect();

@@ -6,7 +6,7 @@
 //! given in turn until the system fixes every unknown.
 
 use super::conflicts::system_of;
-use super::walk::{Constraint, Form, constraints, is_local, unknowns};
+use super::walk::{Constraint, Form, all_constraints, is_local, unknowns};
 use super::{Relation, Status, infer, unit_name};
 use crate::algebra::units::Unit;
 use std::collections::{BTreeMap, BTreeSet};
@@ -18,15 +18,7 @@ pub fn critical_symbols(
     declared: &BTreeMap<String, Unit>,
 ) -> Vec<(String, Vec<usize>)> {
     let inf = infer(relations, declared);
-    let decl = |s: &str| declared.get(s).copied();
-    let cs: Vec<Vec<Constraint>> = relations
-        .iter()
-        .enumerate()
-        .map(|(i, r)| {
-            r.as_ref()
-                .map_or_else(Vec::new, |r| constraints(r, &decl, i))
-        })
-        .collect();
+    let cs = all_constraints(relations, declared);
     let kept: Vec<usize> = (0..relations.len())
         .filter(|&i| relations[i].is_some())
         .filter(|&i| !matches!(inf.statuses[i], Status::Inconsistent { .. }))

@@ -316,6 +316,22 @@ pub(super) fn constraints(
     out
 }
 
+/// The equations of every relation ([`constraints`]; none for an unreadable one).
+pub(super) fn all_constraints(
+    relations: &[Option<Relation>],
+    declared: &BTreeMap<String, Unit>,
+) -> Vec<Vec<Constraint>> {
+    let decl = |s: &str| declared.get(s).copied();
+    relations
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            r.as_ref()
+                .map_or_else(Vec::new, |r| constraints(r, &decl, i))
+        })
+        .collect()
+}
+
 /// The undeclared symbols a relation's unit forms name.
 pub(super) fn unknowns(cs: &[Constraint]) -> BTreeSet<String> {
     cs.iter()
