@@ -1,11 +1,15 @@
-//! The audits the main job writes (`reports/audit/`): each paper's audit under its claims'
-//! units, and (issue 52) the same paper audited from its own words, with no units file, beside
-//! it: how many relations the words decide, and any relation they call inconsistent that the
-//! claims' units do not.
+//! The audits the main job writes (`reports/audit/`): each paper's audit under its declared
+//! units (its claims' units, and over them the referee's units file beside its displays,
+//! `tex/<paper>.units.toml`, every symbol's unit from its meaning in the paper), and (issue
+//! 52) the same paper audited from its own words, with no units file, beside it: how many
+//! relations the words decide, and any relation they call inconsistent that the declared
+//! units do not.
 
 use crate::algebra::units::Unit;
 use crate::paper::audit::power::{self, AuditPower, WithPower};
-use crate::paper::audit::{Audit, Units, audit, audit_with_power, paper_words, to_markdown};
+use crate::paper::audit::{
+    Audit, Units, audit, audit_with_power, paper_words, read_units, to_markdown,
+};
 use crate::paper::source::blocks::blocks_at;
 use crate::paper::words::vocabulary::Vocabulary;
 use std::collections::BTreeMap;
@@ -26,7 +30,24 @@ pub fn units_of_claims(p: &super::PaperClaims) -> Units {
     u
 }
 
-/// Each paper's audit under its claims' units, with the audit's power, computed once per run
+/// The units a paper is audited with in the main job: its claims' units, and over them those of
+/// the units file beside its displays (`tex/000.tex`: `tex/000.units.toml`), when there is one.
+pub fn units_of_paper(
+    p: &super::PaperClaims,
+    displays: &std::path::Path,
+) -> Result<Units, crate::paper::PaperError> {
+    let mut u = units_of_claims(p);
+    let file = displays.with_extension("units.toml");
+    if file.is_file() {
+        let f = read_units(&file)?;
+        u.symbols.extend(f.symbols);
+        u.texts.extend(f.texts);
+        u.tex_symbols.extend(f.tex_symbols);
+    }
+    Ok(u)
+}
+
+/// Each paper's audit under its declared units, with the audit's power, computed once per run
 /// (the index and the paper's own report both show them).
 fn audited(p: &super::PaperClaims) -> Option<(Audit, AuditPower)> {
     static DONE: Mutex<BTreeMap<(String, std::path::PathBuf), (Audit, AuditPower)>> =
@@ -35,8 +56,8 @@ fn audited(p: &super::PaperClaims) -> Option<(Audit, AuditPower)> {
     if let Some(hit) = DONE.lock().ok()?.get(&key) {
         return Some(hit.clone());
     }
-    let (blocks, doc, _) = super::tex_claims::paper_displays(p).ok()?;
-    let out = audit_with_power(&blocks, doc.as_ref(), &units_of_claims(p));
+    let (blocks, doc, path) = super::tex_claims::paper_displays(p).ok()?;
+    let out = audit_with_power(&blocks, doc.as_ref(), &units_of_paper(p, &path).ok()?);
     DONE.lock().ok()?.insert(key, out.clone());
     Some(out)
 }
@@ -70,7 +91,7 @@ pub fn index_section(papers: &[super::PaperClaims]) -> String {
         return String::new();
     }
     format!(
-        "## Units of every relation\n\nEach paper's displays read from its LaTeX and every relation's units checked, the units of the symbols no claims file declares inferred from the relations (`verify audit`; a relation is inconsistent when it contradicts what the declared units and the other relations fix).\n\n| paper | relations | consistent | of them in a physical unit | inconsistent | undetermined | unreadable | misprints caught (the audit's power) |\n|---|---|---|---|---|---|---|---|\n{}\n\nThe audit's power: each relation it calls consistent misprinted with a unit error (its last term times or over a symbol with a unit, a factor with a unit dropped, a symbol squared, `t^2` for `t`), the paper audited again, and the misprints it calls inconsistent counted (`verify audit --power`; each paper's report lists the misprints that survive and why).\n\n",
+        "## Units of every relation\n\nEach paper's displays read from its LaTeX and every relation's units checked, the units of the symbols neither its claims file nor its units file (`verify/tex/<paper>.units.toml`) declares inferred from the relations (`verify audit`; a relation is inconsistent when it contradicts what the declared units and the other relations fix).\n\n| paper | relations | consistent | of them in a physical unit | inconsistent | undetermined | unreadable | misprints caught (the audit's power) |\n|---|---|---|---|---|---|---|---|\n{}\n\nThe audit's power: each relation it calls consistent misprinted with a unit error (its last term times or over a symbol with a unit, a factor with a unit dropped, a symbol squared, `t^2` for `t`), the paper audited again, and the misprints it calls inconsistent counted (`verify audit --power`; each paper's report lists the misprints that survive and why).\n\n",
         rows.join("\n")
     )
 }
@@ -158,15 +179,18 @@ fn words_counts(p: &super::PaperClaims, out: &std::path::Path) -> Option<WordsCo
 }
 
 /// The index's paragraph on the audits from the words: per paper, the relations each audit
-/// decides, and the relations the words call inconsistent that the claims' units do not. A
+/// decides, and the relations the words call inconsistent that the declared units do not. A
 /// paper whose text is missing keeps the audit an earlier run wrote into `out`.
 pub fn words_section(papers: &[super::PaperClaims], out: &std::path::Path) -> String {
     let mut rows = Vec::new();
     for p in papers {
-        let Ok((blocks, doc, _)) = super::tex_claims::paper_displays(p) else {
+        let Ok((blocks, doc, path)) = super::tex_claims::paper_displays(p) else {
             continue;
         };
-        let declared = audit(&blocks, doc.as_ref(), &units_of_claims(p));
+        let Ok(units) = units_of_paper(p, &path) else {
+            continue;
+        };
+        let declared = audit(&blocks, doc.as_ref(), &units);
         let Some(words) = words_counts(p, out) else {
             rows.push(format!(
                 "| {} | the paper's text is not here | | | |",
@@ -211,7 +235,7 @@ pub fn words_section(papers: &[super::PaperClaims], out: &std::path::Path) -> St
     format!(
         "## Units from the paper's words
 
-Each paper audited again from its text alone, with no units file: the units of its symbols taken from the sentences that name them (\"where $\\rho$ is the density\", \"a ball of mass $m$\", a nomenclature), each with its sentence quoted (`verify audit PAPER`).\n\n| paper | symbols named in words | relations decided from the words | decided with the claims' units | share | inconsistent from the words, not under the claims' units |\n|---|---|---|---|---|---|\n{}\n\n",
+Each paper audited again from its text alone, with no units file: the units of its symbols taken from the sentences that name them (\"where $\\rho$ is the density\", \"a ball of mass $m$\", a nomenclature), each with its sentence quoted (`verify audit PAPER`).\n\n| paper | symbols named in words | relations decided from the words | decided with the declared units | share | inconsistent from the words, not under the declared units |\n|---|---|---|---|---|---|\n{}\n\n",
         rows.join("\n")
     )
 }
@@ -219,21 +243,21 @@ Each paper audited again from its text alone, with no units file: the units of i
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::paper::audit::read_units;
     use std::path::Path;
 
     #[test]
     fn the_index_counts_each_seeds_relations_by_status() {
-        // the counts of tests/audit.rs's the_seeds_audit (reviewed relation by relation)
+        // the counts of tests/audit.rs's the_seeds_audit_with_their_units_files (each
+        // inconsistent relation checked by hand)
         let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("verify");
         let papers = crate::verify::load_claims(&dir).expect("loads");
         let s = index_section(&papers);
         // relations, consistent; (of them in a physical unit); inconsistent, undetermined,
         // unreadable; the power
         for (head, tail) in [
-            ("| [000](audit/000.md) | 51 | 39 | ", " | 8 | 1 | 3 | "),
-            ("| [001](audit/001.md) | 97 | 86 | ", " | 1 | 9 | 1 | "),
-            ("| [002](audit/002.md) | 141 | 100 | ", " | 7 | 31 | 3 | "),
+            ("| [000](audit/000.md) | 51 | 35 | ", " | 13 | 0 | 3 | "),
+            ("| [001](audit/001.md) | 97 | 93 | ", " | 2 | 1 | 1 | "),
+            ("| [002](audit/002.md) | 141 | 124 | ", " | 13 | 1 | 3 | "),
         ] {
             let row = s.lines().find(|l| l.starts_with(head)).expect(head);
             assert!(row.contains(tail), "{row}");
@@ -249,6 +273,28 @@ mod tests {
         }
         assert!(s.starts_with("## Units of every relation"));
         assert_eq!(index_section(&[]), "");
+    }
+
+    #[test]
+    fn a_units_file_beside_the_displays_is_laid_over_the_claims_units() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("verify");
+        let p = crate::verify::load_claims(&dir.join("000_cone_plate.toml")).expect("loads");
+        // the claims' a8 is the printed definition's unit; the units file's, A8's meaning in (20)
+        let claims = units_of_claims(&p[0]);
+        assert_eq!(claims.texts.get("a8").map(String::as_str), Some("1/(m s)"));
+        let both = units_of_paper(&p[0], &dir.join("tex/000.tex")).expect("reads");
+        assert_eq!(
+            both.symbols.get("a8"),
+            Unit::parse("1/(m s^3)").ok().as_ref()
+        );
+        // a symbol only the units file declares, and one only the claims declare
+        assert!(!claims.symbols.contains_key("A1") && both.symbols.contains_key("A1"));
+        for k in claims.symbols.keys() {
+            assert!(both.symbols.contains_key(k), "{k}");
+        }
+        // no units file: the claims' units alone
+        let none = units_of_paper(&p[0], &dir.join("tex/none.tex")).expect("reads");
+        assert_eq!(none.symbols, claims.symbols);
     }
 
     #[test]

@@ -6,14 +6,17 @@
 //! is a bare 0): its last term multiplied by a symbol with a unit (a mass when the paper has
 //! one: `... \, m`), the same term divided by it, a factor with a unit dropped from that term,
 //! a symbol with a unit squared, and the time `t` for `t^2`. A misprint that leaves the unit of
-//! its side as it was (a factor of unit 1) is no unit error and is not made. A relation whose
+//! its side as it was (a factor of unit 1) is no unit error and is not made; nor is one that a
+//! referee who knew every unit could not see, the relation still holding in units with every
+//! symbol's unit as the audit found it (`z(0) = 0` misprinted `z(0) m = 0`: a bare 0 has every
+//! unit; `a = b = 0`, both vanish, each in its own unit). A relation whose
 //! misprints all survive says why: it defines its symbol (its unit is whatever the relation
 //! makes it), or it is the only relation on a symbol.
 
 use super::{AuditRelation, Units, judge_relations};
 use crate::algebra::expr::{Expr, Op};
 use crate::algebra::units::{Unit, dimension};
-use crate::paper::units::{Relation, unit_name};
+use crate::paper::units::{Relation, holds_in_units, unit_name};
 use serde::Serialize;
 
 /// The power of the audit on one relation it calls consistent.
@@ -35,9 +38,10 @@ pub struct RelationPower {
 }
 
 /// The most consistent relations misprinted in one paper: past it, as many spread evenly over
-/// the paper (each misprint audits the whole paper again; a paper of 1,000 relations would take
-/// minutes), and the report says how many were measured.
-pub const MAX_RELATIONS: usize = 100;
+/// the paper, and the report says how many were measured. Each misprint audits again the
+/// relations it reaches through symbols of unknown unit (a generated paper of 1,000
+/// relations: every one measured in about 3 s, benches/audit_size.py).
+pub const MAX_RELATIONS: usize = 1_000;
 
 /// The power of the audit on a paper.
 #[derive(Clone, Debug, Serialize)]
@@ -115,9 +119,6 @@ fn misprints(
         last
     };
     let side = &r.sides[at];
-    let Some(before) = unit_in(side, unit_of) else {
-        return Vec::new();
-    };
     let has_unit = |e: &Expr| unit_in(e, unit_of).is_some_and(|u| !u.is_one());
     let mut out: Vec<(String, Expr)> = Vec::new();
     if let Some(m) = by {
@@ -161,13 +162,14 @@ fn misprints(
         out.push(("`t^2` for `t`".into(), square("t")));
     }
     out.into_iter()
-        // a unit error changes the side's unit
-        .filter(|(_, e)| unit_in(e, unit_of).is_some_and(|u| u != before))
         .map(|(what, e)| {
             let mut m = r.clone();
             m.sides[at] = e;
             (what, m)
         })
+        // with every unit as the audit found it, the misprinted relation no longer holds in
+        // units: a unit error a referee who knew every unit could see
+        .filter(|(_, m)| !holds_in_units(m, unit_of))
         .collect()
 }
 
@@ -299,6 +301,58 @@ pub fn measure(
     out
 }
 
+/// The names of unknown unit in `r` (its symbols' unit names not declared in `units`, and the
+/// time when it differentiates by it): what links it to other relations.
+fn unknown_names(r: &Relation, units: &Units) -> Vec<String> {
+    let mut out: Vec<String> = r
+        .sides
+        .iter()
+        .flat_map(Expr::symbols)
+        .chain(
+            r.dots
+                .iter()
+                .flat_map(|(d, b, _)| [d.clone(), b.clone(), "t".into()]),
+        )
+        .map(|s| unit_name(&s))
+        .filter(|n| !units.symbols.contains_key(n))
+        .collect();
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// The indices of the relations that `m`, relation `i` misprinted, reaches through names of
+/// unknown unit shared one with the next, with `i` itself, in order; with units from the
+/// words (whose scopes span the paper), every relation.
+fn reachable(i: usize, m: &Relation, inputs: &[Option<Relation>], units: &Units) -> Vec<usize> {
+    if !units.words.is_empty() {
+        return (0..inputs.len()).collect();
+    }
+    let names: Vec<Vec<String>> = inputs
+        .iter()
+        .map(|r| {
+            r.as_ref()
+                .map_or_else(Vec::new, |r| unknown_names(r, units))
+        })
+        .collect();
+    let mut seen = vec![false; inputs.len()];
+    seen[i] = true;
+    let mut known: std::collections::BTreeSet<String> =
+        unknown_names(m, units).into_iter().collect();
+    let mut grew = true;
+    while grew {
+        grew = false;
+        for (j, ns) in names.iter().enumerate() {
+            if !seen[j] && ns.iter().any(|n| known.contains(n)) {
+                seen[j] = true;
+                known.extend(ns.iter().cloned());
+                grew = true;
+            }
+        }
+    }
+    (0..inputs.len()).filter(|&j| seen[j]).collect()
+}
+
 /// The power on relation `i` (its audit entry `r`) of its misprints `ms`.
 fn relation_power(
     i: usize,
@@ -320,12 +374,17 @@ fn relation_power(
         why: None,
     };
     for (what, m) in ms {
-        let mut rels2 = rels.to_vec();
-        rels2[i].names = m.sides.iter().flat_map(Expr::symbols).collect();
-        let mut inputs2 = inputs.to_vec();
-        inputs2[i] = Some(m);
+        // the relations the misprint can reach through symbols of unknown unit, in order: the
+        // others share no unknown with them and cannot change its status (with units from the
+        // words, whose scopes span the paper, every relation)
+        let reach = reachable(i, &m, inputs, units);
+        let at = reach.iter().position(|&j| j == i).unwrap_or(0);
+        let mut rels2: Vec<AuditRelation> = reach.iter().map(|&j| rels[j].clone()).collect();
+        let mut inputs2: Vec<Option<Relation>> = reach.iter().map(|&j| inputs[j].clone()).collect();
+        rels2[at].names = m.sides.iter().flat_map(Expr::symbols).collect();
+        inputs2[at] = Some(m);
         let again = judge_relations(rels2, inputs2, units);
-        if again.relations[i].status == "inconsistent" {
+        if again.relations[at].status == "inconsistent" {
             p.caught += 1;
         } else {
             p.survived.push(what);
@@ -392,4 +451,121 @@ pub fn to_markdown(p: &AuditPower) -> String {
         }
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::tests::units;
+    use super::super::{audit_with_power, paper_blocks};
+    use super::*;
+
+    /// The power of the audit of `tex` (displays) under the declared `pairs`.
+    fn power_of(tex: &str, pairs: &[(&str, &str)]) -> AuditPower {
+        let (blocks, doc) = paper_blocks(tex);
+        audit_with_power(&blocks, doc.as_ref(), &units(pairs)).1
+    }
+
+    const FMA: [(&str, &str); 5] = [
+        ("F", "N"),
+        ("m", "kg"),
+        ("a", "m/s^2"),
+        ("k", "N/m"),
+        ("x", "m"),
+    ];
+
+    #[test]
+    fn each_misprint_of_a_relation_of_declared_symbols_is_caught() {
+        // by hand: m a times m, over m, without a, with m squared: each kg^2 m s^-2, m s^-2,
+        // kg, kg^2 m s^-2, none N
+        let p = power_of("\\begin{equation} F = m a \\end{equation}", &FMA);
+        assert_eq!((p.consistent, p.misprints, p.caught), (1, 4, 4));
+        assert!((p.share() - 1.0).abs() < f64::EPSILON);
+        assert!(p.summary().contains("4 of 4 misprints"), "{}", p.summary());
+    }
+
+    #[test]
+    fn a_side_of_zero_takes_every_unit_so_its_lone_term_has_no_misprint() {
+        // `x = 0`: x times m is still equal to a 0 in units; no referee could see it
+        let p = power_of("\\begin{equation} x = 0 \\end{equation}", &FMA);
+        assert_eq!((p.consistent, p.misprints), (0, 0));
+        assert!((p.share() - 1.0).abs() < f64::EPSILON);
+    }
+
+    #[test]
+    fn a_chain_to_zero_says_each_side_vanishes_so_no_side_has_a_misprint() {
+        // `x = F/k = 0`: x and F/k both vanish, each in its unit; x m would vanish as well
+        let p = power_of("\\begin{equation} x = F/k = 0 \\end{equation}", &FMA);
+        assert_eq!(p.misprints, 0);
+        // `x = F/k`, no zero: x m is kg m against m
+        let p = power_of("\\begin{equation} x = F/k \\end{equation}", &FMA);
+        assert_eq!((p.misprints, p.caught), (4, 4));
+    }
+
+    #[test]
+    fn a_sum_equal_to_zero_is_misprinted_in_its_last_term() {
+        // `m a + k x = 0`: k x times m, over m, without x (k alone, N/m): each term then
+        // disagrees with m a (N); m squared changes m a; all four caught
+        let p = power_of("\\begin{equation} m a + k x = 0 \\end{equation}", &FMA);
+        assert_eq!((p.consistent, p.misprints, p.caught), (1, 4, 4));
+    }
+
+    #[test]
+    fn a_definition_absorbs_its_misprints_and_says_why() {
+        // E has no declared unit and no other relation: whatever E = F x makes it
+        let p = power_of(
+            "\\begin{equation} F = m a \\end{equation}\n\\begin{equation} E = F x \\end{equation}",
+            &FMA,
+        );
+        let e = &p.relations[1];
+        assert_eq!((e.caught, e.survived.len()), (0, e.misprints));
+        assert!(e.misprints > 0);
+        let why = e.why.as_deref().unwrap_or("");
+        assert!(why.contains("it defines `E`"), "{why}");
+        assert!(p.share() < 1.0);
+    }
+
+    #[test]
+    fn a_misprint_reaches_the_relations_that_share_an_unknown_with_it() {
+        let (blocks, doc) = paper_blocks(
+            "\\begin{equation} u = F x \\end{equation}\n\\begin{equation} u = w \\end{equation}\n\\begin{equation} w = P t \\end{equation}\n\\begin{equation} k = m a \\end{equation}",
+        );
+        let declared = units(&[("F", "N"), ("x", "m"), ("P", "W"), ("t", "s"), ("m", "kg")]);
+        let (_, inputs) = super::super::read_relations(&blocks, doc.as_ref(), &declared);
+        let m0 = inputs[0].clone().expect("read");
+        // u links (1) to (2), w (2) to (3); k and a are (4)'s alone, F, m declared
+        assert_eq!(reachable(0, &m0, &inputs, &declared), vec![0, 1, 2]);
+        let m3 = inputs[3].clone().expect("read");
+        assert_eq!(reachable(3, &m3, &inputs, &declared), vec![3]);
+        // with units from the words, every relation
+        let mut words = declared.clone();
+        let w = crate::paper::words::WordUnit {
+            symbol: "a".into(),
+            unit: crate::algebra::units::Unit::parse("m/s^2").expect("a unit"),
+            quantity: "acceleration".into(),
+            quote: "the acceleration $a$".into(),
+            line: 1,
+            key: true,
+        };
+        words.words.insert("a".into(), w);
+        assert_eq!(reachable(3, &m3, &inputs, &words), vec![0, 1, 2, 3]);
+        // and the misprint of (1) caught through (3), which fixes u = w as W s = J
+        let p = power_of(
+            "\\begin{equation} u = F x \\end{equation}\n\\begin{equation} u = w \\end{equation}\n\\begin{equation} w = P t \\end{equation}",
+            &[("F", "N"), ("x", "m"), ("P", "W"), ("t", "s"), ("m", "kg")],
+        );
+        assert_eq!(p.relations[0].misprints, p.relations[0].caught);
+        assert!(p.relations[0].caught > 0);
+    }
+
+    #[test]
+    fn the_term_is_multiplied_by_a_mass_when_the_paper_has_one() {
+        let (blocks, doc) = paper_blocks("\\begin{equation} F = m a \\end{equation}");
+        let a = super::super::audit(&blocks, doc.as_ref(), &units(&FMA));
+        assert_eq!(multiplier(&a).as_deref(), Some("m"));
+        let no_mass = [("F", "N"), ("a", "m/s^2"), ("x", "m")];
+        let (blocks, doc) = paper_blocks("\\begin{equation} F = a x \\end{equation}");
+        let a = super::super::audit(&blocks, doc.as_ref(), &units(&no_mass));
+        // the first symbol with a unit other than 1, declared first
+        assert_eq!(multiplier(&a).as_deref(), Some("F"));
+    }
 }

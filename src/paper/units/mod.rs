@@ -38,7 +38,7 @@ mod system;
 mod walk;
 pub mod with_words;
 
-pub use solve::{infer, infer_ordered};
+pub use solve::{holds_in_units, infer, infer_ordered};
 
 use crate::algebra::expr::Expr;
 use crate::algebra::units::Unit;

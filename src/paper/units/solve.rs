@@ -272,3 +272,12 @@ fn order_all(relations: &[Option<Relation>]) -> Vec<usize> {
         .filter(|&i| relations[i].is_some())
         .collect()
 }
+
+/// Whether `r` alone holds in units when each symbol has the unit `unit_of` gives its unit name
+/// (a symbol with none stays free): the equations the audit draws from it have a solution. A
+/// misprint is a unit error a referee could see when, with every unit known, it makes this
+/// false (`verify audit --power`).
+pub fn holds_in_units(r: &Relation, unit_of: &dyn Fn(&str) -> Option<Unit>) -> bool {
+    let cs = super::walk::constraints(r, unit_of, 0);
+    super::conflicts::system_of(&[cs], &[0]).is_ok()
+}
