@@ -305,3 +305,13 @@ def verify(
     """The verdicts of a claims file or folder (default: the repository's ``verify/``), as
     ``verify --claims PATH --format json`` prints them; nothing is written."""
     return json.loads(verify_json(None if claims is None else str(claims), only, power))
+
+
+def __getattr__(name: str) -> Any:
+    """``impactcheck.dask`` without an ``import impactcheck.dask`` first: the submodule is loaded
+    on first use (it imports nothing of Dask until a sweep runs)."""
+    if name == "dask":
+        import importlib
+
+        return importlib.import_module(f"{__name__}.dask")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -7,6 +7,7 @@ import json
 import math
 import os
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -253,3 +254,11 @@ def test_a_panic_becomes_impactcheck_error_and_the_interpreter_lives():
     # Exception, not BaseException: a notebook's `except Exception` catches it
     assert issubclass(ic.ImpactcheckError, Exception)
     assert ic.run(ROOT / "scenes" / "hertz.toml")["model"] == "hertz"
+
+
+def test_the_dask_submodule_is_there_after_importing_the_package_alone():
+    # a fresh interpreter, so that no other test has imported impactcheck.dask first
+    code = "import impactcheck as ic; print(ic.dask.sweep.__name__); ic.nothing"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.stdout.strip() == "sweep", out.stderr
+    assert "AttributeError: module 'impactcheck' has no attribute 'nothing'" in out.stderr

@@ -242,3 +242,24 @@ fn a_bad_vocabulary_is_refused_naming_what() {
         Some("spring_rate")
     );
 }
+
+#[test]
+fn an_escaped_dollar_in_the_prose_opens_no_math() {
+    // the math spans of the prose, by hand: `m` and `v_0`; `\$5` is a price, and a `$` at the
+    // very start opens math
+    let math = |p: &str| -> Vec<String> {
+        items(p)
+            .into_iter()
+            .filter_map(|(_, i)| match i {
+                Item::Math(m) => Some(m),
+                Item::Text(_) => None,
+            })
+            .collect()
+    };
+    assert_eq!(
+        math("a ball worth \\$5 of mass $m$ at the speed $v_0$"),
+        vec!["m".to_string(), "v_0".to_string()]
+    );
+    assert_eq!(math("$m$ is the mass"), vec!["m".to_string()]);
+    assert_eq!(math("\\(x\\) and \\$ alone"), vec!["x".to_string()]);
+}
