@@ -19,7 +19,9 @@
 //!
 //! Names: a function application read as an opaque symbol (`{w(x,y,t)}`) has the unit of its
 //! function (`w`); a dotted symbol (`zd`, `zdd` from `\dot{z}`, `\ddot{z}`) the unit of its
-//! base per second (per second squared), given as [`Relation::dots`].
+//! base per second (per second squared), given as [`Relation::dots`]. A letter in an index
+//! exponent (`\lambda^m`, `x^{n+1}`) is a count there, an unknown of its own, not the quantity
+//! the same letter names elsewhere (m a mass); so is the variable of a sum or an integral.
 //!
 //! Written by hand: the system is small (tens of unknowns), must stay exact, and must say which
 //! relations fixed each unit; no crate does the bookkeeping.

@@ -300,3 +300,42 @@ fn the_fewest_symbols_that_decide_every_relation() {
     let picks = suggest::critical_symbols(&rs, &units(&[("x", "m"), ("t", "s")]));
     assert_eq!(picks, [("q".to_string(), vec![2])]);
 }
+
+#[test]
+fn a_letter_as_an_index_exponent_is_not_the_quantity_it_names_elsewhere() {
+    // m a mass in F = m a, and m the power of lambda in y = lambda^m: the mass keeps kg and
+    // F = m a stays consistent in N, by hand; before, the exponent made m (and F) pure
+    let rs = [rel("F = m*a"), rel("y = lambda^m"), rel("w = x^(2*m + 1)")];
+    let d = units(&[("a", "m/s^2"), ("F", "N")]);
+    let inf = infer(&rs, &d);
+    assert_eq!(unit_of(&inf, "m").as_deref(), Some("kg"));
+    assert_eq!(inf.statuses[0], Status::Consistent);
+    // a physical exponent (a product of two letters) is still the quantities': t in s makes
+    // k t a time, not a pure number
+    let rs = [rel("y = z^(k*t)"), rel("k = 1/s")];
+    let d = units(&[("t", "s"), ("s", "s")]);
+    let inf = infer(&rs, &d);
+    assert_eq!(unit_of(&inf, "k").as_deref(), Some("s^-1"));
+    let rs = [rel("y = z^(k*t)"), rel("k = 1/s")];
+    let d = units(&[("t", "s"), ("s", "m")]);
+    let inf = infer(&rs, &d);
+    assert!(
+        inf.statuses
+            .iter()
+            .any(|s| matches!(s, Status::Inconsistent { .. })),
+        "{:?}",
+        inf.statuses
+    );
+}
+
+#[test]
+fn an_index_exponent_is_sums_of_letters_and_numbers_with_a_number_beside_each_product() {
+    use super::walk::index_like;
+    let p = |s: &str| parse(s).unwrap();
+    for yes in ["m", "n + 1", "k - i", "2*n", "n/2", "-m", "3"] {
+        assert!(index_like(&p(yes)), "{yes}");
+    }
+    for no in ["k*t", "alpha*t/2", "sqrt(n)", "x^2", "m/n"] {
+        assert!(!index_like(&p(no)), "{no}");
+    }
+}

@@ -211,7 +211,11 @@ pub(super) fn walk_in(
         }
         Expr::Bin(op, a, b) => {
             let fa = walk_in(a, declared, out, scope);
-            let fb = walk_in(b, declared, out, scope);
+            let fb = if *op == Op::Pow && index_like(b) {
+                exponent_walk(b, declared, out, scope)
+            } else {
+                walk_in(b, declared, out, scope)
+            };
             match op {
                 Op::Add | Op::Sub => {
                     // a literal 0 has every unit
@@ -242,6 +246,46 @@ pub(super) fn walk_in(
             }
         }
     }
+}
+
+/// Whether an exponent is an index (`\lambda^m`, `x^{n+1}`, `\alpha^{k-i}`, `r^{2n}`): symbols and
+/// numbers under sums, with a number beside each product. Its letters name counts, not the
+/// quantities the same letters name elsewhere (m a mass, and m in `\lambda^m`).
+pub(super) fn index_like(e: &Expr) -> bool {
+    match e {
+        Expr::Sym(_) | Expr::Num(_) => true,
+        Expr::Neg(a) => index_like(a),
+        Expr::Bin(Op::Add | Op::Sub, a, b) => index_like(a) && index_like(b),
+        Expr::Bin(Op::Mul | Op::Div, a, b) => {
+            (matches!(**a, Expr::Num(_)) && index_like(b))
+                || (matches!(**b, Expr::Num(_)) && index_like(a))
+        }
+        _ => false,
+    }
+}
+
+/// An index exponent walked with each of its letters an unknown of its own (a role apart from
+/// the quantity the letter names elsewhere in the paper).
+fn exponent_walk(
+    b: &Expr,
+    declared: &dyn Fn(&str) -> Option<Unit>,
+    out: &mut Vec<Constraint>,
+    scope: &mut Scope,
+) -> Form {
+    let letters: Vec<String> = b
+        .symbols()
+        .into_iter()
+        .filter(|s| !scope.bound.iter().any(|(x, _)| x == s))
+        .collect();
+    for s in &letters {
+        let local = scope.local(&format!("exponent {s}"));
+        scope.bound.push((s.clone(), local));
+    }
+    let f = walk_in(b, declared, out, scope);
+    for _ in &letters {
+        scope.bound.pop();
+    }
+    f
 }
 
 /// The equations of a relation: its sides pairwise equal, every term of every sum equal, every
