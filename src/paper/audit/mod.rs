@@ -319,6 +319,10 @@ pub(super) fn judge_relations(
     let mut names: Vec<Vec<String>> = rels.iter().map(|r| r.names.clone()).collect();
     let scoped =
         crate::paper::units::with_words::scope_passing(&mut inputs, &lines, &mut names, units);
+    // a letter the words name, defined anew in a later section: that section's own
+    crate::paper::units::with_words::scope_redefined(&mut inputs, &lines, &mut names, units);
+    // a part the paper says is dimensionless: its letters its own
+    crate::paper::units::with_words::scope_dimensionless(&mut inputs, &lines, &mut names, units);
     let units = &scoped;
     let (inf, weak, aside) = if units.words.is_empty() {
         (
@@ -780,6 +784,65 @@ pub(super) mod tests {
         let a = audit(&blocks, doc.as_ref(), &units(&[("a", "m"), ("b", "s")]));
         assert_eq!(a.relations[0].detail, "in m: `a`; in s: `b`");
         assert_eq!(a.relations[0].read.as_deref(), Some("a + b = 0"));
+    }
+
+    #[test]
+    fn a_dimensionless_section_takes_no_unit_from_the_words_or_from_outside() {
+        // sec. 1 names v a speed and x a length, and v = x/t holds; sec. 2 says it is
+        // non-dimensional and writes v = x + 1 and x = 2, which in SI units would be alarms
+        let text = "\\section{Model}\nThe speed $v$, the displacement $x$ and the time $t$ obey\n\\begin{equation} v = x/t \\end{equation}\n\\section{Scaled}\nIn non-dimensional form, with $\\lambda$ the period,\n\\begin{equation} v = x + 1 \\end{equation}\n\\begin{equation} \\lambda = x v \\end{equation}\n";
+        let (blocks, doc) = paper_blocks(text);
+        let vocab = Vocabulary::builtin().expect("vocabulary");
+        let words = paper_words(text, &blocks, &Units::default(), &vocab);
+        assert_eq!(words.dimensionless, vec![(5, usize::MAX)]);
+        let u = Units::default().with_words(words);
+        // the period of the scaled section gives no unit
+        assert!(u.words.contains_key("v") && !u.words.contains_key("lambda"));
+        let a = audit(&blocks, doc.as_ref(), &u);
+        let st: Vec<&str> = a.relations.iter().map(|r| r.status).collect();
+        assert_eq!(
+            st,
+            vec!["consistent", "consistent", "consistent"],
+            "{:?}",
+            a.relations
+        );
+        // the second section's letters are its own
+        assert!(
+            a.symbols.iter().any(|s| s.name == "v_dim5"),
+            "{:?}",
+            a.symbols
+        );
+        assert_eq!(a.relations[0].detail, "every side in m s^-1");
+    }
+
+    #[test]
+    fn a_letter_the_words_define_and_a_later_section_defines_anew_is_that_sections_own() {
+        // sec. 1: u = 2 c, where c is the speed of sound (a key); sec. 2 defines c = cos(x) for
+        // short, an alarm if c were still the speed there
+        let sec1 = "\\section{Waves}\n\\begin{equation} u = 2 c \\end{equation}\nwhere $c$ is the speed of sound.\n";
+        let text = format!(
+            "{sec1}\\section{{Testing}}\nFor shorthand\n\\begin{{equation}} c = \\cos x \\end{{equation}}\n"
+        );
+        let (blocks, doc) = paper_blocks(&text);
+        let vocab = Vocabulary::builtin().expect("vocabulary");
+        let words = paper_words(&text, &blocks, &Units::default(), &vocab);
+        let u = Units::default().with_words(words);
+        assert!(u.words.get("c").is_some_and(|w| w.key), "{:?}", u.words);
+        let a = audit(&blocks, doc.as_ref(), &u);
+        let st: Vec<&str> = a.relations.iter().map(|r| r.status).collect();
+        assert_eq!(st, vec!["consistent", "consistent"], "{:?}", a.relations);
+        assert_eq!(a.relations[0].detail, "every side in m s^-1");
+        assert!(
+            a.symbols.iter().any(|s| s.name == "c_sec2"),
+            "{:?}",
+            a.symbols
+        );
+        // in the key's own section the same display is checked against the speed
+        let text = format!("{sec1}\\begin{{equation}} c = \\cos x \\end{{equation}}\n");
+        let (blocks, doc) = paper_blocks(&text);
+        let words = paper_words(&text, &blocks, &Units::default(), &vocab);
+        let a = audit(&blocks, doc.as_ref(), &Units::default().with_words(words));
+        assert_eq!(a.relations[1].status, "inconsistent", "{:?}", a.relations);
     }
 
     #[test]

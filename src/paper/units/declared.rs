@@ -27,6 +27,17 @@ pub struct Units {
     /// The lines where the paper's sections open (a mention in passing names its symbol in
     /// its section only).
     pub sections: Vec<usize>,
+    /// The spans of lines `[from, to)` the paper says are dimensionless: no unit of the words
+    /// holds there, and the symbols of their relations are their own.
+    pub dimensionless: Vec<(usize, usize)>,
+}
+
+/// The first line of the span of `spans` (each `[from, to)`) that holds `line`.
+pub fn span_of(spans: &[(usize, usize)], line: usize) -> Option<usize> {
+    spans
+        .iter()
+        .find(|&&(a, b)| a <= line && line < b)
+        .map(|&(a, _)| a)
 }
 
 impl Units {
@@ -35,7 +46,12 @@ impl Units {
     pub fn with_words(mut self, words: Words) -> Units {
         self.dirac.extend(words.dirac);
         self.sections = words.sections;
+        self.dimensionless = words.dimensionless;
         for (name, w) in words.units {
+            // a unit from the words of a dimensionless part holds nowhere
+            if span_of(&self.dimensionless, w.line).is_some() {
+                continue;
+            }
             if self.symbols.contains_key(&name) {
                 self.overridden.insert(name, w);
             } else {
@@ -85,4 +101,20 @@ pub fn read_units(path: &Path) -> Result<Units, PaperError> {
         out.symbols.insert(k.clone(), unit);
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_line_is_in_a_span_from_its_first_line_to_before_its_last() {
+        let spans = [(3, 5), (9, usize::MAX)];
+        let got: Vec<Option<usize>> = [2, 3, 4, 5, 8, 9, 100]
+            .iter()
+            .map(|&l| super::span_of(&spans, l))
+            .collect();
+        assert_eq!(
+            got,
+            vec![None, Some(3), Some(3), None, None, Some(9), Some(9)]
+        );
+    }
 }

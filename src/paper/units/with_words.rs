@@ -7,7 +7,7 @@
 use super::{Inference, Relation, Status, infer_ordered, unit_name};
 use crate::algebra::expr::Expr;
 use crate::algebra::units::Unit;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// The relations the inference calls inconsistent that contradict only what other relations
 /// gave, not the named units through the paper's definitions: judged again with the declared
@@ -150,13 +150,7 @@ pub fn scope_passing(
     for (x, w) in units.words.iter().filter(|(x, w)| !w.key && *x != "t") {
         let s = section(w.line);
         let local = format!("{x}_sec{s}");
-        for (i, input) in inputs.iter_mut().enumerate() {
-            let (Some(r), Some(line)) = (input.as_mut(), lines[i]) else {
-                continue;
-            };
-            if section(line) != s {
-                continue;
-            }
+        for (i, r) in relations_at(inputs, lines, |line| section(line) == s) {
             // the symbol, its applications `{x(t)}`, and its dotted names `xd`
             let mut renamed: BTreeMap<String, String> = BTreeMap::new();
             renamed.insert(x.clone(), local.clone());
@@ -174,22 +168,7 @@ pub fn scope_passing(
                     n.replacen(&base, new, 1)
                 })
             };
-            for side in r.sides.iter_mut() {
-                *side = renamed_in(side, &rename);
-            }
-            for (dotted, base, _) in r.dots.iter_mut() {
-                if let Some(d) = rename(dotted) {
-                    *dotted = d;
-                }
-                if let Some(b) = rename(base) {
-                    *base = b;
-                }
-            }
-            for n in names[i].iter_mut() {
-                if let Some(m) = rename(n) {
-                    *n = m;
-                }
-            }
+            rename_relation(r, &mut names[i], &rename);
         }
         out.symbols.remove(x);
         out.words.remove(x);
@@ -203,6 +182,121 @@ pub fn scope_passing(
         );
     }
     out
+}
+
+/// A letter the words' key ("where $c$ is", a nomenclature) gives a unit in one section and a
+/// later section's display defines anew
+/// (`c = \cos\frac{2\pi x}{L}` for shorthand, where `c` was the speed of sound): from that
+/// section on to its end the letter is the section's own (`c_secK`), with no unit from the
+/// words (a letter named in passing is its section's own already, [`scope_passing`]; a unit
+/// written out, as a nomenclature gives it, holds for the whole paper). A definition is a
+/// relation of two sides whose left side is the letter alone.
+pub fn scope_redefined(
+    inputs: &mut [Option<Relation>],
+    lines: &[Option<usize>],
+    names: &mut [Vec<String>],
+    units: &crate::paper::units::declared::Units,
+) {
+    if units.sections.is_empty() {
+        return;
+    }
+    let section = |line: usize| crate::paper::words::section_of(&units.sections, line);
+    // (letter, section) of each redefinition
+    let mut redefined: BTreeSet<(String, usize)> = BTreeSet::new();
+    for (i, r) in inputs.iter().enumerate() {
+        let (Some(r), Some(line)) = (r, lines[i]) else {
+            continue;
+        };
+        if let (2, Some(Expr::Sym(x))) = (r.sides.len(), r.sides.first())
+            && let Some(w) = units.words.get(x)
+            && w.key
+            && w.quantity != "written"
+            && section(w.line) != section(line)
+        {
+            redefined.insert((x.clone(), section(line)));
+        }
+    }
+    for (x, s) in redefined {
+        let local = format!("{x}_sec{s}");
+        let rename = |n: &str| (unit_name(n) == x).then(|| n.replacen(&x, &local, 1));
+        for (i, r) in relations_at(inputs, lines, |line| section(line) == s) {
+            rename_relation(r, &mut names[i], &rename);
+        }
+    }
+}
+
+/// The relations of a part the paper says is dimensionless (`units.dimensionless`), each
+/// symbol renamed `x_dimL` (L the part's first line): the letters there are the part's own, not
+/// the quantities they name elsewhere, and no unit reaches them from outside (a units file's
+/// or the words'); only the part's own relations tie them.
+pub fn scope_dimensionless(
+    inputs: &mut [Option<Relation>],
+    lines: &[Option<usize>],
+    names: &mut [Vec<String>],
+    units: &crate::paper::units::declared::Units,
+) {
+    let span = |line: usize| crate::paper::units::declared::span_of(&units.dimensionless, line);
+    for (i, r) in relations_at(inputs, lines, |line| span(line).is_some()) {
+        let from = r_line(lines, i).and_then(span).unwrap_or_default();
+        let rename = |n: &str| -> Option<String> {
+            use crate::algebra::units::{ELLIPSIS, INFINITY, OPERAND, WRITTEN_UNIT};
+            // the reader's own marks keep their meaning
+            if [ELLIPSIS, INFINITY, OPERAND, WRITTEN_UNIT].contains(&n) {
+                return None;
+            }
+            let base = unit_name(n);
+            let new = format!("{base}_dim{from}");
+            Some(if n == base {
+                new
+            } else {
+                n.replacen(&base, &new, 1)
+            })
+        };
+        rename_relation(r, &mut names[i], &rename);
+    }
+}
+
+/// The line of relation `i`.
+fn r_line(lines: &[Option<usize>], i: usize) -> Option<usize> {
+    lines.get(i).copied().flatten()
+}
+
+/// The relations read whose line `pick` accepts, with their indices.
+fn relations_at<'a>(
+    inputs: &'a mut [Option<Relation>],
+    lines: &'a [Option<usize>],
+    pick: impl Fn(usize) -> bool + 'a,
+) -> impl Iterator<Item = (usize, &'a mut Relation)> + 'a {
+    inputs.iter_mut().enumerate().filter_map(move |(i, r)| {
+        let line = r_line(lines, i)?;
+        let r = r.as_mut()?;
+        pick(line).then_some((i, r))
+    })
+}
+
+/// `r` and its `names` with each name `rename` gives a new one renamed: its sides, its dotted
+/// names and their bases.
+fn rename_relation(
+    r: &mut Relation,
+    names: &mut [String],
+    rename: &dyn Fn(&str) -> Option<String>,
+) {
+    for side in r.sides.iter_mut() {
+        *side = renamed_in(side, rename);
+    }
+    for (dotted, base, _) in r.dots.iter_mut() {
+        if let Some(d) = rename(dotted) {
+            *dotted = d;
+        }
+        if let Some(b) = rename(base) {
+            *base = b;
+        }
+    }
+    for n in names.iter_mut() {
+        if let Some(m) = rename(n) {
+            *n = m;
+        }
+    }
 }
 
 /// `e` with its symbols renamed by `rename`, a variable of a derivative or an integral too (`\int

@@ -17,6 +17,8 @@
 //! hand, as [`vocabulary`] says why.
 
 mod bare;
+mod dimensionless;
+pub use dimensionless::dimensionless_spans;
 pub mod vocabulary;
 
 use bare::bare_lists;
@@ -619,6 +621,8 @@ pub struct Words {
     /// The lines where the paper's sections open (`\section`, `\chapter`, a Markdown `#`,
     /// `##` or `###` heading).
     pub sections: Vec<usize>,
+    /// The spans of lines `[from, to)` the paper says are dimensionless ([`dimensionless_spans`]).
+    pub dimensionless: Vec<(usize, usize)>,
 }
 
 /// The lines (1-based) where sections open.
@@ -820,9 +824,11 @@ pub fn read_words(text: &str, syms: &TexSymbols, vocab: &Vocabulary) -> Words {
         }
         i = j.max(i + 1);
     }
+    let sections = section_starts(text);
     Words {
         dirac,
-        sections: section_starts(text),
+        dimensionless: dimensionless_spans(text, &sections),
+        sections,
         ..settle(found)
     }
 }

@@ -1,6 +1,7 @@
 //! The words reader on sentences written by hand, each with the unit a referee reads in it
 //! (or none, where the words do not fix one).
 
+use super::dimensionless::says_dimensionless;
 use super::vocabulary::Vocabulary;
 use super::*;
 
@@ -262,4 +263,53 @@ fn an_escaped_dollar_in_the_prose_opens_no_math() {
     );
     assert_eq!(math("$m$ is the mass"), vec!["m".to_string()]);
     assert_eq!(math("\\(x\\) and \\$ alone"), vec!["x".to_string()]);
+}
+
+#[test]
+fn a_section_that_says_it_is_dimensionless_is_a_span_to_its_end() {
+    // by hand: the words of each line, and the spans of a three-section text
+    for yes in [
+        "Choosing units so that $m = \\alpha = 1$, we thus have",
+        "Non-dimensionalizations are the same as in the previous section.",
+        "the problem in non-dimensional form reads",
+        "All quantities are non-dimensional.",
+        "with the dimensionless variables $\\xi = x/L$",
+        "the scaled equations",
+        "with the 1D non dimensional Reynolds equation",
+    ] {
+        assert!(says_dimensionless(yes), "{yes}");
+    }
+    for no in [
+        "where $\\zeta$ is the dimensionless damping ratio",
+        "a non-dimensional number",
+        "where $\\zeta$ is dimensionless",
+        "$\\zeta$ and $\\mu$ are dimensionless",
+        "the dimensionless damping ratio of the model, as in the equation",
+        "the mass $m$ of the ball",
+    ] {
+        assert!(!says_dimensionless(no), "{no}");
+    }
+    // (text, its sections, its spans), by hand: the second section of the first text from its
+    // sentence (line 6) to the third's heading (line 8), the third from the first of its two
+    // mentions (line 9) to the end; in the second, a heading that says so opens its own
+    // section's span, not the one before, in a text that opens with a heading
+    type Case = (&'static str, Vec<usize>, Vec<(usize, usize)>);
+    let cases: [Case; 2] = [
+        (
+            "intro\n\\section{Model}\nthe mass $m$\n\\section{Scaled}\nx\nin non-dimensional form\ny\n\\section{Two}\nthe dimensionless time\nz\nthe dimensionless speed\n",
+            vec![2, 4, 8],
+            vec![(6, 8), (9, usize::MAX)],
+        ),
+        (
+            "\\section{Model}\nthe mass $m$\n\\section{The non-dimensional form}\nx\n\\section{Two}\nthe dimensionless time\nz\nthe dimensionless speed\n",
+            vec![1, 3, 5],
+            vec![(3, 5), (6, usize::MAX)],
+        ),
+    ];
+    for (text, sections, spans) in cases {
+        assert_eq!(section_starts(text), sections, "{text}");
+        assert_eq!(dimensionless_spans(text, &sections), spans, "{text}");
+    }
+    // one mention alone is no span
+    assert_eq!(dimensionless_spans("the dimensionless time\n", &[]), vec![]);
 }
