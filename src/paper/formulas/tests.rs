@@ -97,6 +97,29 @@ fn reads_the_math_of_papers() {
 }
 
 #[test]
+fn a_minus_right_after_a_sums_range_opens_its_summand() {
+    // `\sum_{k=1}^{n} -x_k` is the sum of -x_k, not (an empty sum) - x_k; a minus after a
+    // summand is still a difference
+    let s = TexSymbols::default();
+    let e = read_formula(r"\sum_{k=1}^{n} -x_{k}", &s).unwrap();
+    assert_eq!(
+        e.to_string(),
+        parse("sum(-xk, k, 1, n)").unwrap().to_string()
+    );
+    use crate::algebra::expr::{Calc, Expr};
+    let e = read_formula(r"\prod_{k=1}^{n} -x_{k}", &s).unwrap();
+    assert!(
+        matches!(&e, Expr::Calc(Calc::Prod, b, k, _) if k == "k" && matches!(**b, Expr::Neg(_))),
+        "{e:?}"
+    );
+    let e = read_formula(r"\sum_{k=1}^{n} x_{k} - y", &s).unwrap();
+    assert_eq!(
+        e.to_string(),
+        parse("sum(xk, k, 1, n) - y").unwrap().to_string()
+    );
+}
+
+#[test]
 fn sums_integrals_and_derivatives() {
     let s = TexSymbols::default();
     let e = read_formula(r"\sum_{i=0}^{k} \frac{k!}{(k-i)!} t^{k-i}", &s).unwrap();

@@ -78,10 +78,21 @@ impl Reader<'_> {
         }
         // `\min_{\mathbf{x}} \quad f(\mathbf{x})` of an optimisation problem: what is
         // minimised stands apart (the operator alone is no relation)
-        let body = if self.no_operand() {
+        // `\sum_{k<k_d} -\mathrm{i} k \psi_k`: a minus right after a sum's or a product's
+        // range opens its summand, not a difference with an empty sum
+        let negated = matches!(kind, Calc::Sum | Calc::Prod) && *self.peek() == Tok::Ch('-');
+        if negated {
+            self.bump();
+        }
+        let body = if !negated && self.no_operand() {
             self.operand()
         } else {
             self.term()?
+        };
+        let body = if negated {
+            Expr::Neg(Box::new(body))
+        } else {
+            body
         };
         let ellipsis = || Expr::Sym(ELLIPSIS.into());
         Ok(match kind {
