@@ -112,6 +112,13 @@ fn a_minus_right_after_a_sums_range_opens_its_summand() {
         matches!(&e, Expr::Calc(Calc::Prod, b, k, _) if k == "k" && matches!(**b, Expr::Neg(_))),
         "{e:?}"
     );
+    // an operator with nothing after it stands for its operand (`\min_{x} \quad f` of an
+    // optimisation problem)
+    let e = read_formula(r"\min_{x}", &s).unwrap();
+    assert!(
+        matches!(&e, Expr::Calc(Calc::Min, b, _, _) if matches!(&**b, Expr::Sym(o) if o == crate::algebra::units::OPERAND)),
+        "{e:?}"
+    );
     let e = read_formula(r"\sum_{k=1}^{n} x_{k} - y", &s).unwrap();
     assert_eq!(
         e.to_string(),

@@ -80,19 +80,13 @@ impl Reader<'_> {
         // minimised stands apart (the operator alone is no relation)
         // `\sum_{k<k_d} -\mathrm{i} k \psi_k`: a minus right after a sum's or a product's
         // range opens its summand, not a difference with an empty sum
-        let negated = matches!(kind, Calc::Sum | Calc::Prod) && *self.peek() == Tok::Ch('-');
-        if negated {
+        let body = if matches!(kind, Calc::Sum | Calc::Prod) && *self.peek() == Tok::Ch('-') {
             self.bump();
-        }
-        let body = if !negated && self.no_operand() {
+            Expr::Neg(Box::new(self.term()?))
+        } else if self.no_operand() {
             self.operand()
         } else {
             self.term()?
-        };
-        let body = if negated {
-            Expr::Neg(Box::new(body))
-        } else {
-            body
         };
         let ellipsis = || Expr::Sym(ELLIPSIS.into());
         Ok(match kind {
