@@ -339,3 +339,28 @@ fn an_index_exponent_is_sums_of_letters_and_numbers_with_a_number_beside_each_pr
         assert!(!index_like(&p(no)), "{no}");
     }
 }
+
+#[test]
+fn a_symbol_given_as_a_written_number_is_a_value_in_a_unit_left_unsaid() {
+    // p0 a pressure, h a length: `p0 = 0.025` and `h = 0.125 cos(4 pi t) + 0.375` give their
+    // values in units the paper does not write, as a parameter list does
+    let d = units(&[("p0", "Pa"), ("h", "m"), ("t", "1")]);
+    for text in ["p0 = 0.025", "h = 0.125*cos(4*pi*t) + 0.375", "0.5 = h"] {
+        let inf = infer(&[rel(text)], &d);
+        assert!(
+            !matches!(inf.statuses[0], Status::Inconsistent { .. }),
+            "{text}: {:?}",
+            inf.statuses
+        );
+    }
+    // an integer is no written value (`h = 2` says h is a number), nor is a formula with a
+    // symbol outside a function (`h = 0.5 t`), nor a side of more than one symbol
+    for text in ["h = 2", "h = 0.5*t", "h*p0 = 0.5", "h = sqrt(0.5*t)"] {
+        let inf = infer(&[rel(text)], &d);
+        assert!(
+            matches!(inf.statuses[0], Status::Inconsistent { .. }),
+            "{text}: {:?}",
+            inf.statuses
+        );
+    }
+}

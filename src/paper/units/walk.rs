@@ -312,6 +312,11 @@ pub(super) fn constraints(
     for k in 1..forms.len() {
         // in a chain, a side that is a number is a value in some unit (`v = 2\pi r/T =
         // 408/1800 = 0.23\,\text{m/s}`), not a claim that the others are pure numbers
+        // a symbol given as a written number (`p_0 = 0.025`, `h(t) = 0.125 \cos(4\pi t) +
+        // 0.375`) is a value in a unit left unsaid, not a claim that it is a pure number
+        let given = |e: &Expr, other: &Expr| {
+            r.sides.len() == 2 && matches!(other, Expr::Sym(_)) && written_number(e)
+        };
         let value = |e: &Expr| r.sides.len() > 2 && e.symbols().is_empty();
         // a side that is a literal 0 has every unit; a proportionality links no units
         if all_vanish
@@ -319,6 +324,8 @@ pub(super) fn constraints(
             || every_unit(&r.sides[k - 1])
             || value(&r.sides[k])
             || value(&r.sides[k - 1])
+            || given(&r.sides[k], &r.sides[k - 1])
+            || given(&r.sides[k - 1], &r.sides[k])
             || r.rels.get(k - 1).is_some_and(|rel| !links_units(rel))
         {
             continue;
@@ -358,6 +365,26 @@ pub(super) fn constraints(
         ));
     }
     out
+}
+
+/// Whether `e` is a number as a paper writes a value: a literal with a decimal point among its
+/// numbers, and no symbol but inside a function's argument (`0.125 \cos(4\pi t) + 0.375`).
+fn written_number(e: &Expr) -> bool {
+    fn go(e: &Expr, decimal: &mut bool) -> bool {
+        match e {
+            Expr::Num(q) => {
+                *decimal |= !q.is_integer();
+                true
+            }
+            Expr::Pi => true,
+            Expr::Sym(_) | Expr::Calc(..) => false,
+            Expr::Call(f, a) => !matches!(f, Func::Sqrt | Func::Abs) || go(a, decimal),
+            Expr::Neg(a) => go(a, decimal),
+            Expr::Bin(_, a, b) => go(a, decimal) && go(b, decimal),
+        }
+    }
+    let mut decimal = false;
+    go(e, &mut decimal) && decimal
 }
 
 /// The equations of every relation ([`constraints`]; none for an unreadable one).

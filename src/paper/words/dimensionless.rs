@@ -85,3 +85,22 @@ pub fn dimensionless_spans(text: &str, sections: &[usize]) -> Vec<(usize, usize)
     }
     out
 }
+
+/// Whether the paragraph of the prose `p` around `at` calls a quantity of `head`'s kind
+/// *specific* ("the specific orbital energy $\varepsilon$ ... using the kinetic energy
+/// $\varepsilon_k$"): per unit mass there, so a plain `head` in the same paragraph is the
+/// specific one too and gives no unit.
+pub(super) fn specific_in_paragraph(p: &str, at: usize, head: &str) -> bool {
+    let start = p[..at].rfind("\n\n").map_or(0, |k| k + 2);
+    let end = p[at..].find("\n\n").map_or(p.len(), |k| at + k);
+    let words: Vec<String> = p[start..end]
+        .split(|c: char| !c.is_alphanumeric() && c != '-')
+        .filter(|w| !w.is_empty())
+        .map(str::to_lowercase)
+        .collect();
+    let head = head.to_lowercase();
+    words
+        .iter()
+        .enumerate()
+        .any(|(k, w)| w == "specific" && words[k + 1..].iter().take(3).any(|x| *x == head))
+}

@@ -811,6 +811,10 @@ pub fn read_words(text: &str, syms: &TexSymbols, vocab: &Vocabulary) -> Words {
         }
         for (tex, g) in group.iter().zip(given) {
             let Some((nm, quote)) = g else { continue };
+            let head = nm.quantity.rsplit('_').next().unwrap_or_default();
+            if dimensionless::specific_in_paragraph(&p, *off, head) {
+                continue;
+            }
             let key = in_where_clause(&p, *off) || nomenclature_line;
             found.extend(named_units(
                 tex,

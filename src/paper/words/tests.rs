@@ -313,3 +313,19 @@ fn a_section_that_says_it_is_dimensionless_is_a_span_to_its_end() {
     // one mention alone is no span
     assert_eq!(dimensionless_spans("the dimensionless time\n", &[]), vec![]);
 }
+
+#[test]
+fn a_paragraph_that_calls_its_energy_specific_gives_its_energies_no_unit() {
+    // the shape of a set of orbital-mechanics notes: the energies that make the specific
+    // orbital energy are per unit mass; a later paragraph's kinetic energy is a plain one
+    let text = "The third constant is the specific orbital energy $\\varepsilon$. It is defined \
+                using the kinetic energy $\\varepsilon_k$ and potential energy $\\varepsilon_u$.\n\n\
+                A ball of mass $m$ has the kinetic energy $E$.";
+    let w = read_words(text, &TexSymbols::default(), &vocab());
+    let unit = |s: &str| w.units.get(s).map(|u| u.unit.to_string());
+    assert_eq!(unit("epsilonk"), None);
+    assert_eq!(unit("epsilonu"), None);
+    assert_eq!(unit("epsilon"), None);
+    assert_eq!(unit("E").as_deref(), Some("kg m^2 s^-2"));
+    assert_eq!(unit("m").as_deref(), Some("kg"));
+}
