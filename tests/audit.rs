@@ -161,15 +161,7 @@ fn the_audit_finds_the_planted_error_and_no_other() {
     assert!(rels.iter().any(|r| r["number"].is_null()));
     // the units inferred, by hand: omega_n, omega_d in 1/s, t_c in s, zeta and e pure, the dotted
     // x in m/s and m/s^2
-    let sym = |n: &str| {
-        v["symbols"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .find(|s| s["name"] == n)
-            .unwrap_or_else(|| panic!("{n}"))
-            .clone()
-    };
+    let sym = |n: &str| symbol(&v, n);
     for (n, u) in [
         ("omegan", "s^-1"),
         ("omegad", "s^-1"),
@@ -651,4 +643,132 @@ fn the_suggestion_is_a_units_file_to_fill_in() {
     // --suggest and --power are one or the other
     let out = verify(&["audit", paper.to_str().unwrap(), "--suggest", "--power"]);
     assert_eq!(out.status.code(), Some(2));
+}
+
+/// The symbol `n` of an audit's JSON.
+fn symbol(v: &Value, n: &str) -> Value {
+    v["symbols"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["name"] == n)
+        .unwrap_or_else(|| panic!("{n}"))
+        .clone()
+}
+
+/// The audit of a test paper as JSON, and what it said on stderr.
+fn audit_json(paper: &str) -> (Value, String) {
+    let out = verify(&["audit", paper, "--format", "json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: Value = serde_json::from_slice(&out.stdout).expect("json");
+    (v, String::from_utf8_lossy(&out.stderr).to_string())
+}
+
+/// `(number, status, file, line)` of each relation.
+fn places(v: &Value) -> Vec<(String, String, String, u64)> {
+    v["relations"]
+        .as_array()
+        .expect("relations")
+        .iter()
+        .map(|r| {
+            (
+                r["number"].as_str().unwrap_or("-").to_string(),
+                r["status"].as_str().unwrap().to_string(),
+                r["file"].as_str().unwrap_or("").to_string(),
+                r["line"].as_u64().unwrap_or(0),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn a_paper_over_input_files_with_siunitx_and_a_nomenclature_has_its_planted_errors_found() {
+    // tests/papers/sections: every unit named only in the sections' prose, the nomenclature
+    // (units in \si) or a value written with \SI; (4) and (5) planted, by hand: (1/2) m v0 is
+    // a momentum, not the kinetic energy; pi sqrt(m k) is kg/s, not the contact time
+    let (v, err) = audit_json("tests/papers/sections/main.tex");
+    let p = places(&v);
+    let inconsistent: Vec<&str> = p
+        .iter()
+        .filter(|r| r.1 == "inconsistent")
+        .map(|r| r.0.as_str())
+        .collect();
+    assert_eq!(inconsistent, ["4", "5"], "{p:?} {err}");
+    assert!(p.iter().all(|r| r.1 != "undetermined"), "{p:?}");
+    // each display's place in its own file (model.tex: (1) opens at its line 4, (5) at 18)
+    assert_eq!(p[0].2, "sections/model.tex");
+    assert_eq!((p[0].3, p[4].3), (4, 18));
+    // each unit's source quoted with its file and line
+    let sym = |n: &str| symbol(&v, n);
+    assert_eq!(sym("m")["file"], "sections/nomenclature.tex");
+    assert_eq!(sym("m")["unit"], "kg");
+    assert_eq!(sym("k")["unit"], "kg s^-2");
+    assert_eq!(
+        (sym("k")["file"].as_str(), sym("k")["line"].as_u64()),
+        (Some("sections/model.tex"), Some(3))
+    );
+    assert!(sym("k")["quote"].as_str().unwrap().contains("N m^-1"));
+    // the scaffold numbers the relations of every file
+    let out = verify(&["init", "--paper", "drop", "tests/papers/sections/main.tex"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("equations = [\"1\", \"2\", \"3\", \"4\", \"5\"]"),
+        "{text}"
+    );
+    assert!(text.contains("sections/nomenclature.tex:3"), "{text}");
+}
+
+#[test]
+fn a_thesis_with_chapters_through_a_macro_and_a_paper_by_import_have_their_errors_found() {
+    // tests/papers/thesis: chapters brought in by \chapterinclude (the thesis's own macro
+    // around \include), rho a density in one chapter and a radial coordinate in the other;
+    // planted, by hand: F R^2 is N m^2, not an energy; 2 pi c / lambda^2 is 1/(m s)
+    let (v, err) = audit_json("tests/papers/thesis/thesis.tex");
+    let p = places(&v);
+    let status: Vec<&str> = p.iter().map(|r| r.1.as_str()).collect();
+    assert_eq!(
+        status,
+        [
+            "consistent",
+            "consistent",
+            "inconsistent",
+            "consistent",
+            "inconsistent"
+        ],
+        "{p:?} {err}"
+    );
+    assert_eq!(p[3].2, "chapters/waves.tex");
+    assert!(!err.contains("no file"), "{err}");
+    // tests/papers/imported: \import{parts/}{body}, the body's \input{detail} from parts/;
+    // planted: p = m v^2 is no momentum
+    let (v, err) = audit_json("tests/papers/imported/main.tex");
+    let p = places(&v);
+    assert_eq!(
+        p.iter().map(|r| r.1.as_str()).collect::<Vec<_>>(),
+        ["consistent", "inconsistent"],
+        "{p:?} {err}"
+    );
+    assert_eq!(p[1].2, "parts/detail.tex");
+}
+
+#[test]
+fn a_file_outside_the_papers_folder_or_missing_is_named_and_the_rest_audited() {
+    let dir = Scratch::new("audit-outside");
+    std::fs::write(
+        dir.join("paper.tex"),
+        "\\input{../elsewhere}\n\\input{gone}\nThe mass $m$ and the speed $v$ and the momentum $p$.\n\\begin{equation} p = m v^2 \\end{equation}\n",
+    )
+    .unwrap();
+    let out = verify(&["audit", dir.join("paper.tex").to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains("outside the paper's folder") && err.contains("gone"),
+        "{err}"
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).contains("inconsistent"));
 }

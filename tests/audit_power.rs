@@ -73,8 +73,10 @@ fn each_unit_error_of_a_relation_of_declared_symbols_is_caught_and_a_definition_
 fn the_seeds_keep_the_audit_power_measured() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     // (caught, misprints) measured at this test's writing, with the referee's units files
-    // (verify/tex/<paper>.units.toml): the floor is that share, and never below 90 %
-    for (paper, floor) in [("000", (95, 95)), ("001", (234, 245)), ("002", (361, 361))] {
+    // (verify/tex/<paper>.units.toml): the floor is that share, and never below 90 %; 002's
+    // (3.12) `m V_1' = 2` is a value in a unit the paper leaves unsaid, its one misprint of
+    // that side no misprint of a relation (361 of 361 before, 360 of 360 since)
+    for (paper, floor) in [("000", (95, 95)), ("001", (234, 245)), ("002", (360, 360))] {
         let j = power(
             &root.join(format!("verify/tex/{paper}.tex")),
             &root.join(format!("verify/tex/{paper}.units.toml")),

@@ -46,11 +46,14 @@ pub fn init_claims(
                 ));
             }
             (Some(u), "words") => s.push_str(&format!(
-                "{} = {}    # from the words ({}), line {}: {}\n",
+                "{} = {}    # from the words ({}), {}: {}\n",
                 key(&y.name),
                 q(u),
                 y.quantity.as_deref().unwrap_or(""),
-                y.line.unwrap_or(0),
+                match &y.file {
+                    Some(f) => format!("{f}:{}", y.line.unwrap_or(0)),
+                    None => format!("line {}", y.line.unwrap_or(0)),
+                },
                 q(y.quote.as_deref().unwrap_or(""))
             )),
             (Some(u), _) => s.push_str(&format!(

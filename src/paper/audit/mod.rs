@@ -46,9 +46,18 @@ pub struct AuditRelation {
     pub number: Option<String>,
     /// Its `\label`, if any.
     pub label: Option<String>,
-    /// The line of the paper where its display opens (`null` for a displays extract).
+    /// The line where its display opens (`null` for a displays extract): of `file` when the
+    /// display is in another file of the paper, else of the paper.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub line: Option<usize>,
+    /// The file of the paper its display is in, when not the paper's own
+    /// (`sections/model.tex`, as the paper's `\input` names it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
+    /// The line of the paper's text with its inputs followed (where sections and spans are
+    /// counted).
+    #[serde(skip)]
+    pub at: Option<usize>,
     /// The row's LaTeX.
     pub latex: String,
     /// `consistent`, `inconsistent`, `undetermined` or `unreadable`.
@@ -107,9 +116,12 @@ pub struct AuditSymbol {
     /// For a unit from the words: the words, quoted.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub quote: Option<String>,
-    /// For a unit from the words: their line in the paper.
+    /// For a unit from the words: their line in the paper (in `file`, when given).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub line: Option<usize>,
+    /// For a unit from the words in another file of the paper: that file.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
     /// For a declared unit the words gave another: what they said, and where.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub overrides: Option<String>,
@@ -121,7 +133,10 @@ impl AuditSymbol {
     pub fn provenance(&self) -> String {
         let mut s = self.source.to_string();
         if let (Some(l), Some(q)) = (self.line, &self.quote) {
-            s.push_str(&format!(", line {l}: \"{q}\""));
+            match &self.file {
+                Some(f) => s.push_str(&format!(", {f}:{l}: \"{q}\"")),
+                None => s.push_str(&format!(", line {l}: \"{q}\"")),
+            }
         }
         if !self.from.is_empty() {
             s.push_str(&format!(" from {}", self.from.join(", ")));
@@ -223,7 +238,14 @@ pub(super) fn read_relations(
     let mut rels: Vec<AuditRelation> = Vec::new();
     let mut inputs: Vec<Option<Relation>> = Vec::new();
     for (k, (after, tex)) in blocks.iter().enumerate() {
-        let line = doc.and_then(|d| d.displays.get(k)).map(|d| d.line);
+        let at = doc.and_then(|d| d.displays.get(k)).map(|d| d.line);
+        let (file, line) = match (doc, at) {
+            (Some(d), Some(l)) => {
+                let (f, n) = d.place(l);
+                ((!f.is_empty()).then(|| f.to_string()), Some(n))
+            }
+            _ => (None, at),
+        };
         let mut in_display = 0;
         for row in read_display(tex, &syms) {
             let number = row.tag.clone().or_else(|| after.clone());
@@ -238,6 +260,8 @@ pub(super) fn read_relations(
                     number: number.clone(),
                     label: label.clone(),
                     line,
+                    file: file.clone(),
+                    at,
                     latex: row.tex.clone(),
                     status: "unreadable",
                     detail: String::new(),
@@ -254,7 +278,11 @@ pub(super) fn read_relations(
                 };
                 match rel {
                     Err(e) => {
-                        let place = line.map_or_else(String::new, |l| format!("line {l}, "));
+                        let place = match (&file, line) {
+                            (Some(f), Some(l)) => format!("{f}:{l}, "),
+                            (None, Some(l)) => format!("line {l}, "),
+                            _ => String::new(),
+                        };
                         rels.push(AuditRelation {
                             detail: format!("the LaTeX reader: {place}{e}"),
                             ..base
@@ -315,7 +343,7 @@ pub(super) fn judge_relations(
 ) -> Audit {
     let original_words = &units.words;
     // a symbol named in passing is that quantity in its own section only
-    let lines: Vec<Option<usize>> = rels.iter().map(|r| r.line).collect();
+    let lines: Vec<Option<usize>> = rels.iter().map(|r| r.at).collect();
     let mut names: Vec<Vec<String>> = rels.iter().map(|r| r.names.clone()).collect();
     let scoped =
         crate::paper::units::with_words::scope_passing(&mut inputs, &lines, &mut names, units);
@@ -323,6 +351,9 @@ pub(super) fn judge_relations(
     crate::paper::units::with_words::scope_redefined(&mut inputs, &lines, &mut names, units);
     // a part the paper says is dimensionless: its letters its own
     crate::paper::units::with_words::scope_dimensionless(&mut inputs, &lines, &mut names, units);
+    // a thesis's chapters: each its own notation
+    let scoped =
+        crate::paper::units::with_words::scope_chapters(&mut inputs, &lines, &mut names, &scoped);
     let units = &scoped;
     let (inf, weak, aside) = if units.words.is_empty() {
         (
@@ -384,7 +415,8 @@ pub(super) fn judge_relations(
                 },
                 quantity: words.map(|w| w.quantity.clone()),
                 quote: words.map(|w| w.quote.clone()),
-                line: words.map(|w| w.line),
+                line: words.map(|w| w.file.as_ref().map_or(w.line, |f| f.1)),
+                file: words.and_then(|w| w.file.as_ref().map(|f| f.0.clone())),
                 overrides: units
                     .overridden
                     .get(&s.name)
@@ -718,8 +750,9 @@ pub fn to_markdown(a: &Audit, title: &str) -> String {
     }
     s.push_str("\n## Symbols\n\n| symbol | unit | source | from |\n|---|---|---|---|\n");
     for y in &a.symbols {
-        let source = match (&y.quote, y.line) {
-            (Some(q), Some(l)) => format!("words, line {l}: \"{q}\""),
+        let source = match (&y.quote, y.line, &y.file) {
+            (Some(q), Some(l), Some(f)) => format!("words, {f}:{l}: \"{q}\""),
+            (Some(q), Some(l), None) => format!("words, line {l}: \"{q}\""),
             _ => y.source.to_string(),
         };
         let source = match &y.overrides {

@@ -5,7 +5,7 @@
 
 use super::{Audit, Units};
 use crate::paper::PaperError;
-use crate::paper::source::blocks::{OUTSIDE, blocks_at, numbers};
+use crate::paper::source::blocks::{blocks_at, numbers};
 use crate::paper::words::vocabulary::Vocabulary;
 use std::path::{Path, PathBuf};
 
@@ -119,10 +119,9 @@ pub fn audit_paper(
         macros.push('\n');
     }
     let (blocks, doc) = blocks_at(&text, paper.parent(), &macros);
+    // a file that cannot be followed (missing, outside the paper's folder) is named, and the
+    // rest of the paper read
     for problem in doc.iter().flat_map(|d| &d.problems) {
-        if problem.contains(OUTSIDE) {
-            anyhow::bail!("{}: {problem}", paper.display());
-        }
         say(format!("{}: {problem}", paper.display()));
     }
     if blocks.is_empty() {
@@ -138,10 +137,22 @@ pub fn audit_paper(
         say(format!("{none}: the audit is empty"));
     }
     // the units the paper's words give its symbols (a displays extract has no words)
-    let units = if doc.is_some() {
-        let expanded = crate::paper::source::macros::expand_with(&text, &macros)
-            .map_or_else(|_| text.clone(), |e| e.0);
-        let words = super::paper_words(&expanded, &blocks, &units, &vocab);
+    let units = if let Some(d) = &doc {
+        // the prose of every file of the paper, its lines those of the displays
+        let expanded = crate::paper::source::macros::expand_with(&d.text, &macros)
+            .map_or_else(|_| d.text.clone(), |e| e.0);
+        let mut words = super::paper_words(&expanded, &blocks, &units, &vocab);
+        if d.has_inputs() {
+            for w in words.units.values_mut() {
+                let (f, l) = d.place(w.line);
+                let f = if f.is_empty() {
+                    name_of(paper)
+                } else {
+                    f.to_string()
+                };
+                w.file = Some((f, l));
+            }
+        }
         for note in &words.notes {
             say(format!("{}: {note}", paper.display()));
         }
@@ -150,9 +161,7 @@ pub fn audit_paper(
         units
     };
     let audit = super::audit(&blocks, doc.as_ref(), &units);
-    let name = paper
-        .file_name()
-        .map_or_else(String::new, |n| n.to_string_lossy().to_string());
+    let name = name_of(paper);
     Ok(PaperAudit {
         audit,
         name,
@@ -164,9 +173,28 @@ pub fn audit_paper(
     })
 }
 
+/// The file name of `paper`.
+fn name_of(paper: &Path) -> String {
+    paper
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().to_string())
+}
+
 /// The claims file `verify init` prints for an audited paper, its claims' ids starting `id`.
 pub fn init_claims(p: &PaperAudit, id: &str) -> String {
-    let numbers = numbers(&p.name, &p.text);
+    // the numbers of every file of the paper, as LaTeX gives them
+    let numbers = match &p.doc {
+        Some(d) if p.name.ends_with(".tex") => {
+            let mut out: Vec<String> = Vec::new();
+            for n in &d.numbers {
+                if !out.contains(n) {
+                    out.push(n.clone());
+                }
+            }
+            out
+        }
+        _ => numbers(&p.name, &p.text),
+    };
     let title = if p.document {
         super::title_of(&p.text)
     } else {

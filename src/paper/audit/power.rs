@@ -545,6 +545,7 @@ mod tests {
             quote: "the acceleration $a$".into(),
             line: 1,
             key: true,
+            file: None,
         };
         words.words.insert("a".into(), w);
         assert_eq!(reachable(3, &m3, &inputs, &words), vec![0, 1, 2, 3]);

@@ -673,3 +673,21 @@ fn an_increment_across_a_thin_space() {
         assert_eq!(e.symbols().len(), 1, "{t} read as {e}");
     }
 }
+
+#[test]
+fn an_empty_column_parts_two_relations_of_one_row() {
+    // `&&` opens a new pair of columns: two relations, as the paper prints them side by side
+    let rows = read_display(
+        "\\begin{align}\n u_2 = (1-\\delta) u_0 + \\delta u_1 && \\delta = \\frac{a - b}{c} \n\\end{align}",
+        &TexSymbols::default(),
+    );
+    assert_eq!(rows.len(), 1);
+    assert_eq!(rows[0].relations.len(), 2, "{rows:?}");
+    let r = rows[0].relations[1].as_ref().expect("reads");
+    assert_eq!(r.sides[0].to_string(), "delta");
+    // one `&` aligns and parts nothing; an escaped `\&` is no tab
+    for row in ["x &= y + z", "x &= y \\& & z"] {
+        let rows = read_display(row, &TexSymbols::default());
+        assert_eq!(rows[0].relations.len(), 1, "{row}: {rows:?}");
+    }
+}

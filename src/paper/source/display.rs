@@ -296,7 +296,8 @@ pub fn read_display(block: &str, syms: &TexSymbols) -> Vec<TexRow> {
     let text = drop_environments(&text);
     let mut rows: Vec<String> = Vec::new();
     for raw in rows_of(&text) {
-        let row = cases_row(&raw).replace('&', " ");
+        // `&&` opens a new pair of columns: `u_2 = .. && \delta = ..` are two relations
+        let row = empty_columns_apart(&cases_row(&raw)).replace('&', " ");
         // an empty row (`\\\\` twice) is no relation for the next row to continue
         if row.trim().is_empty() {
             continue;
@@ -352,6 +353,27 @@ pub fn read_display(block: &str, syms: &TexSymbols) -> Vec<TexRow> {
 }
 
 /// What separates the relations of a row at its top level.
+/// `row` with each `&&` (two alignment tabs with only spaces between: an empty column, so
+/// that what follows starts a new pair of columns) made a `\quad`, which parts relations.
+fn empty_columns_apart(row: &str) -> String {
+    let mut out = String::with_capacity(row.len());
+    let mut rest = row;
+    while let Some(k) = rest.find('&') {
+        let after = rest[k + 1..].trim_start();
+        let escaped = rest[..k].ends_with('\\');
+        out.push_str(&rest[..k]);
+        if !escaped && after.starts_with('&') {
+            out.push_str(" \\quad ");
+            rest = &after[1..];
+        } else {
+            out.push('&');
+            rest = &rest[k + 1..];
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
 const RELATION_SEPARATORS: &[&str] = &[
     ";",
     ",",

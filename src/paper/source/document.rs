@@ -44,9 +44,25 @@ pub struct Document {
     /// What could not be read as LaTeX reads it (an `\input` refused or missing, a macro
     /// that does not expand), each naming the place; the rest is read all the same.
     pub problems: Vec<String>,
+    /// The paper's text as LaTeX reads it: its inputs followed, comments dropped, macros not
+    /// yet expanded (the prose of every file, for its words and quotes).
+    pub text: String,
+    /// Where each line of [`Document::text`] comes from ([`super::files::place`]).
+    pub spans: Vec<super::files::Span>,
 }
 
 impl Document {
+    /// Where line `line` of the paper's text (its inputs followed) is: the file (`""`: the
+    /// paper's own) and its line there.
+    pub fn place(&self, line: usize) -> (&str, usize) {
+        super::files::place(&self.spans, line)
+    }
+
+    /// Whether the paper's text spans more than its own file.
+    pub fn has_inputs(&self) -> bool {
+        self.spans.iter().any(|s| !s.file.is_empty())
+    }
+
     /// The number a `\label{..}` names.
     pub fn number_of(&self, label: &str) -> Option<&str> {
         self.labels
@@ -77,7 +93,7 @@ const NUMBERED: &[(&str, bool)] = &[
 ];
 
 /// Text without its comments: `%` to the end of the line, unless escaped (`\%`).
-fn strip_comments(text: &str) -> String {
+pub(super) fn strip_comments(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     for line in text.split_inclusive('\n') {
         let mut prev = ' ';
@@ -104,7 +120,7 @@ fn strip_comments(text: &str) -> String {
 
 /// The argument of the command whose name ends at `at` (`\label{x}` with `at` after
 /// `\label`): the text inside the braces and the index after the closing brace.
-fn braced(text: &str, at: usize) -> Option<(String, usize)> {
+pub(super) fn braced(text: &str, at: usize) -> Option<(String, usize)> {
     let rest = &text[at..];
     let open = rest.find(|c: char| !c.is_whitespace())?;
     if !rest[open..].starts_with('{') {
@@ -409,98 +425,6 @@ pub fn read_document(source: &str) -> Document {
 /// folder is refused by the caller's loader, naming it).
 pub type Loader<'a> = &'a dyn Fn(&str) -> Result<String, String>;
 
-/// The deepest `\input` inside `\input` followed.
-const MAX_INPUT_DEPTH: usize = 8;
-
-/// `text` (comments dropped) with each `\input{..}`, `\include{..}` and `\subfile{..}` replaced
-/// by the text `load` gives (comments dropped, its own inputs followed); each one that cannot
-/// be read is left out and named in `problems`.
-fn inline_inputs(text: &str, load: Loader, depth: usize, problems: &mut Vec<String>) -> String {
-    let text = strip_comments(text);
-    let mut out = String::with_capacity(text.len());
-    let mut pos = 0;
-    while let Some(k) = text[pos..].find('\\') {
-        let at = pos + k;
-        let word: String = text[at + 1..]
-            .chars()
-            .take_while(char::is_ascii_alphabetic)
-            .collect();
-        let after = at + 1 + word.len();
-        // a class or package of the paper's own folder (`\usepackage{mymacros}` beside the
-        // paper) is read for its macros, as LaTeX reads it; the others are LaTeX's
-        if matches!(
-            word.as_str(),
-            "usepackage" | "RequirePackage" | "documentclass"
-        ) {
-            let mut end = after;
-            let rest = &text[after..];
-            let opts = rest.trim_start();
-            if opts.starts_with('[') {
-                end += rest.len() - opts.len() + opts.find(']').map_or(0, |k| k + 1);
-            }
-            out.push_str(&text[pos..after]);
-            pos = after;
-            if let Some((names, close)) = braced(&text, end) {
-                let ext = if word == "documentclass" {
-                    "cls"
-                } else {
-                    "sty"
-                };
-                out.push_str(&text[after..close]);
-                pos = close;
-                for name in names.split(',').map(str::trim).filter(|n| !n.is_empty()) {
-                    if depth < MAX_INPUT_DEPTH
-                        && let Ok(inner) = load(&format!("{name}.{ext}"))
-                    {
-                        // on one line, so that the paper's lines keep their numbers
-                        let inner = inline_inputs(&inner, load, depth + 1, problems);
-                        out.push(' ');
-                        out.push_str(&inner.replace('\n', " "));
-                        out.push(' ');
-                    }
-                }
-            }
-            continue;
-        }
-        if !matches!(word.as_str(), "input" | "include" | "subfile") {
-            out.push_str(&text[pos..after]);
-            pos = after;
-            continue;
-        }
-        let (name, end) = match braced(&text, after) {
-            Some(b) => b,
-            // `\input file` without braces: the name up to the next space
-            None if word == "input" && text[after..].starts_with(' ') => {
-                let rest = &text[after + 1..];
-                let len = rest
-                    .find(|c: char| c.is_whitespace() || c == '\\' || c == '}')
-                    .unwrap_or(rest.len());
-                (rest[..len].to_string(), after + 1 + len)
-            }
-            None => {
-                out.push_str(&text[pos..after]);
-                pos = after;
-                continue;
-            }
-        };
-        out.push_str(&text[pos..at]);
-        let line = text[..at].matches('\n').count() + 1;
-        if depth >= MAX_INPUT_DEPTH {
-            problems.push(format!(
-                "line {line}: `\\{word}{{{name}}}`: inputs nested deeper than {MAX_INPUT_DEPTH}"
-            ));
-        } else {
-            match load(name.trim()) {
-                Ok(inner) => out.push_str(&inline_inputs(&inner, load, depth + 1, problems)),
-                Err(e) => problems.push(format!("line {line}: {e}")),
-            }
-        }
-        pos = end;
-    }
-    out.push_str(&text[pos..]);
-    out
-}
-
 /// Reads a paper's source as LaTeX does: comments dropped, every `\input` read through `load`,
 /// the paper's macros expanded ([`super::macros`]), then every display with its numbers and
 /// labels.
@@ -511,9 +435,11 @@ pub fn read_document_with(source: &str, load: Loader) -> Document {
 /// As [`read_document_with`], with the macros of `preamble` (its definitions only: a file of
 /// macros the paper uses without holding them).
 pub fn read_document_full(source: &str, preamble: &str, load: Loader) -> Document {
-    let mut problems = Vec::new();
-    let text = inline_inputs(source, load, 0, &mut problems);
-    let preamble = inline_inputs(preamble, load, 0, &mut problems);
+    let (text, spans, mut problems) = super::files::assemble(source, load);
+    // units as siunitx writes them, in the forms the readers take
+    let text = super::siunitx::plain(&text);
+    let assembled = text.clone();
+    let preamble = super::files::inline_inputs(preamble, load, &mut problems);
     let text = drop_verbatim(&text);
     let text = match super::macros::expand_with(&text, &preamble) {
         Ok((expanded, _, short)) => {
@@ -532,6 +458,8 @@ pub fn read_document_full(source: &str, preamble: &str, load: Loader) -> Documen
         sub: None,
         doc: Document {
             problems,
+            text: assembled,
+            spans,
             ..Document::default()
         },
     };
@@ -705,21 +633,6 @@ mod tests {
         let rows: Vec<&str> = d.displays.iter().map(|x| x.latex.trim()).collect();
         assert_eq!(rows, ["a = b", "e = f"], "{:?}", d.displays);
         assert_eq!(d.displays[1].line, 3);
-    }
-
-    #[test]
-    fn an_unbraced_input_is_replaced_by_its_file_and_nothing_of_its_name_stays() {
-        // by hand: `\input chap` is the file's text; what follows the name is kept as it was
-        let load = |_: &str| Ok("c = d".to_string());
-        let mut problems = Vec::new();
-        let text = inline_inputs("\\input chap\nX", &load, 0, &mut problems);
-        assert_eq!(text, "c = d\nX");
-        assert!(problems.is_empty(), "{problems:?}");
-        // a file that cannot be read is named with the line of its `\input` (here the third)
-        let missing = |name: &str| Err(format!("no file {name}"));
-        let text = inline_inputs("a\nb\n\\input{gone}\nc", &missing, 0, &mut problems);
-        assert_eq!(problems, ["line 3: no file gone"]);
-        assert_eq!(text, "a\nb\n\nc");
     }
 
     #[test]

@@ -30,6 +30,8 @@ pub struct Units {
     /// The spans of lines `[from, to)` the paper says are dimensionless: no unit of the words
     /// holds there, and the symbols of their relations are their own.
     pub dimensionless: Vec<(usize, usize)>,
+    /// The lines where a thesis's numbered chapters open: each chapter's letters are its own.
+    pub chapters: Vec<usize>,
 }
 
 /// The first line of the span of `spans` (each `[from, to)`) that holds `line`.
@@ -47,6 +49,7 @@ impl Units {
         self.dirac.extend(words.dirac);
         self.sections = words.sections;
         self.dimensionless = words.dimensionless;
+        self.chapters = words.chapters;
         for (name, w) in words.units {
             // a unit from the words of a dimensionless part holds nowhere
             if span_of(&self.dimensionless, w.line).is_some() {

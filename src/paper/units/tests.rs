@@ -353,9 +353,24 @@ fn a_symbol_given_as_a_written_number_is_a_value_in_a_unit_left_unsaid() {
             inf.statuses
         );
     }
-    // an integer is no written value (`h = 2` says h is a number), nor is a formula with a
-    // symbol outside a function (`h = 0.5 t`), nor a side of more than one symbol
-    for text in ["h = 2", "h = 0.5*t", "h*p0 = 0.5", "h = sqrt(0.5*t)"] {
+    // a number alone is a value too (`h = 2`, a term `+ 4`), but not 1 (`h = 1 + t` says h is
+    // a pure number), nor a formula with a symbol outside a function (`h = 0.5 t`), nor a
+    // decimal in a product of more than one symbol
+    for text in ["h = 2", "h = 4 + 2*h", "12 = 16*h + 4"] {
+        let inf = infer(&[rel(text)], &d);
+        assert!(
+            !matches!(inf.statuses[0], Status::Inconsistent { .. }),
+            "{text}: {:?}",
+            inf.statuses
+        );
+    }
+    for text in [
+        "h = 1",
+        "h = 1 + t",
+        "h = 0.5*t",
+        "h*p0 = 0.5*t",
+        "h = sqrt(0.5*t)",
+    ] {
         let inf = infer(&[rel(text)], &d);
         assert!(
             matches!(inf.statuses[0], Status::Inconsistent { .. }),

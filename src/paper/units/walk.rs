@@ -218,8 +218,9 @@ pub(super) fn walk_in(
             };
             match op {
                 Op::Add | Op::Sub => {
-                    // a literal 0 has every unit
-                    let zero = every_unit;
+                    // a literal 0 has every unit; a number other than 1 alone as a term is a
+                    // value in a unit left unsaid (a worked example's `16 I + 4`)
+                    let zero = |e: &Expr| every_unit(e) || unsaid(e);
                     if zero(a) {
                         return fb;
                     }
@@ -315,7 +316,7 @@ pub(super) fn constraints(
         // a symbol given as a written number (`p_0 = 0.025`, `h(t) = 0.125 \cos(4\pi t) +
         // 0.375`) is a value in a unit left unsaid, not a claim that it is a pure number
         let given = |e: &Expr, other: &Expr| {
-            r.sides.len() == 2 && matches!(other, Expr::Sym(_)) && written_number(e)
+            r.sides.len() == 2 && matches!(other, Expr::Sym(_)) && written_number(e) || unsaid(e)
         };
         let value = |e: &Expr| r.sides.len() > 2 && e.symbols().is_empty();
         // a side that is a literal 0 has every unit; a proportionality links no units
@@ -365,6 +366,17 @@ pub(super) fn constraints(
         ));
     }
     out
+}
+
+/// Whether `e` is a number other than 0 and 1 standing alone (`12`, `-4`, `0.5`): where a
+/// term or a side is expected, a value in a unit the paper leaves unsaid (`12 = 16 I + 4` of a
+/// worked example), where `1 + x` says that x is a pure number.
+fn unsaid(e: &Expr) -> bool {
+    match e {
+        Expr::Num(q) => !q.is_zero() && !q.is_one(),
+        Expr::Neg(a) => unsaid(a),
+        _ => false,
+    }
 }
 
 /// Whether `e` is a number as a paper writes a value: a literal with a decimal point among its

@@ -238,21 +238,78 @@ pub fn scope_dimensionless(
     let span = |line: usize| crate::paper::units::declared::span_of(&units.dimensionless, line);
     for (i, r) in relations_at(inputs, lines, |line| span(line).is_some()) {
         let from = r_line(lines, i).and_then(span).unwrap_or_default();
-        let rename = |n: &str| -> Option<String> {
-            use crate::algebra::units::{ELLIPSIS, INFINITY, OPERAND, WRITTEN_UNIT};
-            // the reader's own marks keep their meaning
-            if [ELLIPSIS, INFINITY, OPERAND, WRITTEN_UNIT].contains(&n) {
-                return None;
-            }
-            let base = unit_name(n);
-            let new = format!("{base}_dim{from}");
-            Some(if n == base {
-                new
-            } else {
-                n.replacen(&base, &new, 1)
-            })
+        rename_relation(r, &mut names[i], &every_letter(format!("_dim{from}")));
+    }
+}
+
+/// A thesis's numbered chapters each have their own notation (`\rho` a density in one, a
+/// radial coordinate in another): from the first chapter on, every letter of a relation is
+/// its chapter's own (`x_ch3`), with the unit a units file declares for the letter, or the
+/// words give it in that chapter or before the first (a nomenclature, the front matter); the
+/// relations before the first chapter keep their letters. A text with fewer than two chapters
+/// is left as it is.
+pub fn scope_chapters(
+    inputs: &mut [Option<Relation>],
+    lines: &[Option<usize>],
+    names: &mut [Vec<String>],
+    units: &crate::paper::units::declared::Units,
+) -> crate::paper::units::declared::Units {
+    let mut out = units.clone();
+    let chapters = &units.chapters;
+    let Some(&first) = chapters.first() else {
+        return out;
+    };
+    if chapters.len() < 2 {
+        return out;
+    }
+    let chapter = |line: usize| chapters.iter().rposition(|&c| c <= line);
+    for (i, r) in relations_at(inputs, lines, |line| line >= first) {
+        let Some(k) = r_line(lines, i).and_then(chapter) else {
+            continue;
         };
-        rename_relation(r, &mut names[i], &rename);
+        rename_relation(r, &mut names[i], &every_letter(format!("_ch{}", k + 1)));
+        for n in names[i].clone() {
+            let Some(base) = n.strip_suffix(&format!("_ch{}", k + 1)) else {
+                continue;
+            };
+            let Some(&unit) = units.symbols.get(base) else {
+                continue;
+            };
+            match units.words.get(base) {
+                // the words' unit holds in their chapter and from before the first
+                Some(w) if w.line < first || chapter(w.line) == Some(k) => {
+                    out.words.insert(
+                        n.clone(),
+                        crate::paper::words::WordUnit {
+                            symbol: n.clone(),
+                            ..w.clone()
+                        },
+                    );
+                }
+                Some(_) => continue,
+                None => {}
+            }
+            out.symbols.insert(n, unit);
+        }
+    }
+    out
+}
+
+/// A renaming of every letter to its own with `suffix` (`x` to `x_ch3`, `xd` to `x_ch3d`); the
+/// reader's own marks keep their meaning.
+fn every_letter(suffix: String) -> impl Fn(&str) -> Option<String> {
+    move |n: &str| {
+        use crate::algebra::units::{ELLIPSIS, INFINITY, OPERAND, WRITTEN_UNIT};
+        if [ELLIPSIS, INFINITY, OPERAND, WRITTEN_UNIT].contains(&n) {
+            return None;
+        }
+        let base = unit_name(n);
+        let new = format!("{base}{suffix}");
+        Some(if n == base {
+            new
+        } else {
+            n.replacen(&base, &new, 1)
+        })
     }
 }
 

@@ -18,7 +18,9 @@
 
 mod bare;
 mod dimensionless;
+mod written;
 pub use dimensionless::dimensionless_spans;
+pub use written::written_unit;
 pub mod vocabulary;
 
 use bare::bare_lists;
@@ -45,11 +47,14 @@ pub struct WordUnit {
     pub quantity: String,
     /// The words that named it, quoted from the paper.
     pub quote: String,
-    /// The line of the paper.
+    /// The line of the paper (of its text with its inputs followed).
     pub line: usize,
     /// Whether the words are the paper's key to a display ("where $x$ is ...", a
     /// nomenclature), not a mention in passing: a key is never set aside.
     pub key: bool,
+    /// For a paper over several files: the file the words are in and their line there.
+    #[serde(skip)]
+    pub file: Option<(String, usize)>,
 }
 
 fn as_text<S: serde::Serializer>(u: &Unit, s: S) -> Result<S::Ok, S::Error> {
@@ -57,9 +62,13 @@ fn as_text<S: serde::Serializer>(u: &Unit, s: S) -> Result<S::Ok, S::Error> {
 }
 
 impl WordUnit {
-    /// `line 38: "$\rho$ is the density of plate"`.
+    /// `line 38: "$\rho$ is the density of plate"`, or `sections/model.tex:3: ".."` for words
+    /// in another file of the paper.
     pub fn source(&self) -> String {
-        format!("line {}: \"{}\"", self.line, self.quote)
+        match &self.file {
+            Some((f, l)) => format!("{f}:{l}: \"{}\"", self.quote),
+            None => format!("line {}: \"{}\"", self.line, self.quote),
+        }
     }
 }
 
@@ -338,6 +347,7 @@ fn named_units(
             quote: quote.to_string(),
             line,
             key,
+            file: None,
         })
         .collect()
 }
@@ -345,72 +355,6 @@ fn named_units(
 /// Whether the text between two math spans joins them into one list (`$a$, $b$ and $c$`).
 fn is_joiner(t: &str) -> bool {
     matches!(t.trim(), "" | "," | "and" | ", and" | ",and" | "&") && !t.contains('\n')
-}
-
-/// A unit as a paper writes it (`Pa`, `kg m$^{-3}$`, `\mathrm{m\,s^{-1}}`, `N·m`, `-`), or
-/// `None` when the text is no unit (a citation `[1]`, an equation's number `(3)`).
-pub fn written_unit(text: &str) -> Option<Unit> {
-    let mut t = text.trim().to_string();
-    for (from, to) in [
-        ("\\mathrm", ""),
-        ("\\text", ""),
-        ("\\rm", ""),
-        ("\\,", " "),
-        ("\\;", " "),
-        ("\\ ", " "),
-        ("\\cdot", " "),
-        ("\\times", " "),
-        ("·", " "),
-        ("⋅", " "),
-        ("~", " "),
-        ("$", ""),
-        ("{", ""),
-        ("}", ""),
-        ("²", "^2"),
-        ("³", "^3"),
-        ("⁻¹", "^-1"),
-        ("−", "-"),
-    ] {
-        t = t.replace(from, to);
-    }
-    let mut t = t.trim().to_string();
-    while t.contains(" ^") || t.contains("^ ") {
-        t = t.replace(" ^", "^").replace("^ ", "^");
-    }
-    let t = t.as_str();
-    if matches!(t, "-" | "--" | "---" | "—" | "–") {
-        return Unit::parse("1").ok();
-    }
-    // a citation `[1]`, an equation's number `(1.3)`, a variable `(t)`: no unit
-    if !t.chars().any(|c| c.is_ascii_alphabetic()) || t.len() == 1 && t != "m" && t != "s" {
-        return None;
-    }
-    if !t
-        .chars()
-        .all(|c| c.is_ascii_alphanumeric() || " /^-*.()".contains(c))
-    {
-        return None;
-    }
-    // `m s^-1`: a negative power without parentheses
-    let mut fixed = String::new();
-    let mut chars = t.chars().peekable();
-    while let Some(c) = chars.next() {
-        fixed.push(c);
-        if c == '^' && chars.peek() == Some(&'-') {
-            fixed.push('(');
-            fixed.push(chars.next()?);
-            while let Some(d) = chars
-                .peek()
-                .copied()
-                .filter(|d| d.is_ascii_digit() || *d == '.')
-            {
-                fixed.push(d);
-                chars.next();
-            }
-            fixed.push(')');
-        }
-    }
-    Unit::parse(&fixed).ok()
 }
 
 /// What the words give a symbol of a list: the quantity (or `written`), its unit and the words.
@@ -623,6 +567,8 @@ pub struct Words {
     pub sections: Vec<usize>,
     /// The spans of lines `[from, to)` the paper says are dimensionless ([`dimensionless_spans`]).
     pub dimensionless: Vec<(usize, usize)>,
+    /// The lines where numbered chapters open (`\chapter{..}`, not `\chapter*`).
+    pub chapters: Vec<usize>,
 }
 
 /// The lines (1-based) where sections open.
@@ -774,7 +720,7 @@ pub fn read_words(text: &str, syms: &TexSymbols, vocab: &Vocabulary) -> Words {
         {
             given[0] = None;
         }
-        if given[0].is_none() {
+        if given.first().is_some_and(Option::is_none) {
             let tail = clause_tail(prev);
             let lower = tail.to_ascii_lowercase();
             let subject = [
@@ -828,10 +774,50 @@ pub fn read_words(text: &str, syms: &TexSymbols, vocab: &Vocabulary) -> Words {
         }
         i = j.max(i + 1);
     }
+    // a value written with its unit for a symbol (`$E^* = \SI{115}{GPa}$`, `$L = 2$ m`)
+    for (k, (off, item)) in its.iter().enumerate() {
+        let Item::Math(m) = item else { continue };
+        let Some((lhs, unit)) = written::value_unit(m, text_at(k + 1)) else {
+            continue;
+        };
+        let nm = Named {
+            unit,
+            quantity: "written".into(),
+            words: String::new(),
+        };
+        // the words after the math quoted when they hold the unit
+        let words_after = if written::value_unit(m, "").is_some() {
+            ""
+        } else {
+            text_at(k + 1)
+                .split(['.', ',', ';', '\n'])
+                .next()
+                .unwrap_or_default()
+        };
+        let quote = collapse(&format!("${m}$ {}", words_after.trim()));
+        found.extend(named_units(
+            lhs,
+            syms,
+            false,
+            &nm,
+            quote.trim(),
+            line_of(*off),
+            true,
+        ));
+    }
     let sections = section_starts(text);
     Words {
         dirac,
         dimensionless: dimensionless_spans(text, &sections),
+        chapters: text
+            .lines()
+            .enumerate()
+            .filter(|(_, l)| {
+                let t = l.trim_start();
+                t.starts_with("\\chapter{") || t.starts_with("\\chapter[")
+            })
+            .map(|(k, _)| k + 1)
+            .collect(),
         sections,
         ..settle(found)
     }

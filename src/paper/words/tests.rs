@@ -329,3 +329,75 @@ fn a_paragraph_that_calls_its_energy_specific_gives_its_energies_no_unit() {
     assert_eq!(unit("E").as_deref(), Some("kg m^2 s^-2"));
     assert_eq!(unit("m").as_deref(), Some("kg"));
 }
+
+#[test]
+fn a_value_written_with_its_unit_gives_its_symbol_the_unit() {
+    use super::written::value_unit;
+    let unit =
+        |m: &str, after: &str| value_unit(m, after).map(|(s, u)| (s.to_string(), u.to_string()));
+    // by hand: GPa is a pressure, kg/m^3 a density, 2 mm a length, 1.5 kN a force
+    assert_eq!(
+        unit("E^* = 115.4\\,\\mathrm{GPa}", ""),
+        Some(("E^*".into(), "kg m^-1 s^-2".into()))
+    );
+    assert_eq!(
+        unit("\\rho \\approx 7.8\\times10^{3}\\,\\text{kg/m^3},", ""),
+        Some(("\\rho".into(), "kg m^-3".into()))
+    );
+    assert_eq!(unit("L = 2", " mm and"), Some(("L".into(), "m".into())));
+    assert_eq!(
+        unit("F=1.5", "~kN."),
+        Some(("F".into(), "kg m s^-2".into()))
+    );
+    assert_eq!(
+        unit("m = 3\\,\\mathrm{g}", ""),
+        Some(("m".into(), "kg".into()))
+    );
+    // no unit apart from the number: a product of symbols, a bare number, a number and words
+    assert_eq!(unit("F = 2 m g", ""), None);
+    assert_eq!(unit("x = 2\\pi", ""), None);
+    assert_eq!(unit("n = 3", " is odd"), None);
+    assert_eq!(unit("t = 0", ""), None);
+    assert_eq!(unit("a = b", " m"), None);
+    // and in a paper's words, with the quote
+    let w = read_words(
+        "The modulus is $E = \\SI{200}{\\giga\\pascal}$ and the rod is long, $L = 2$ m.",
+        &TexSymbols::default(),
+        &vocab(),
+    );
+    assert_eq!(
+        w.units.get("L").map(|u| u.unit.to_string()).as_deref(),
+        Some("m")
+    );
+    assert_eq!(w.units["L"].quote, "$L = 2$ m");
+}
+
+#[test]
+fn written_units_with_prefixes_and_units_outside_si() {
+    let u = |t: &str| written_unit(t).map(|u| u.to_string());
+    assert_eq!(u("GPa").as_deref(), Some("kg m^-1 s^-2"));
+    assert_eq!(u("mm").as_deref(), Some("m"));
+    assert_eq!(u("um").as_deref(), Some("m"));
+    assert_eq!(u("kN m").as_deref(), Some("kg m^2 s^-2"));
+    assert_eq!(u("g/cm^3").as_deref(), Some("kg m^-3"));
+    assert_eq!(u("daN").as_deref(), Some("kg m s^-2"));
+    assert_eq!(u("min").as_deref(), Some("s"));
+    assert_eq!(u("L").as_deref(), None, "one letter is a symbol");
+    assert_eq!(u("mL").as_deref(), Some("m^3"));
+    // no prefix on a unit outside SI but the gram, the litre, the bar and the electronvolt
+    assert_eq!(u("kmin"), None);
+    assert_eq!(u("xm"), None);
+}
+
+#[test]
+fn an_empty_math_span_in_the_prose_names_nothing() {
+    for text in [
+        "where $ $ is",
+        "a $\\,$ b",
+        "the mass $,$ of",
+        "$$ $$ and $m$ is the mass",
+    ] {
+        let w = read_words(text, &TexSymbols::default(), &vocab());
+        assert!(w.units.len() <= 1, "{text}: {:?}", w.units);
+    }
+}
