@@ -17,6 +17,8 @@
 //! `\%`) are dropped first.
 
 use super::display::{continues, ends_open, lead, rows_of, split_top};
+pub use super::files::Loader;
+use super::files::braced;
 
 /// One display of a document: its LaTeX with every number as a `\tag{..}`, and the label
 /// printed on the line after it (`(2.10)` after a `$$` block), if any.
@@ -91,57 +93,6 @@ const NUMBERED: &[(&str, bool)] = &[
     ("alignat", true),
     ("flalign", true),
 ];
-
-/// Text without its comments: `%` to the end of the line, unless escaped (`\%`).
-pub(super) fn strip_comments(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for line in text.split_inclusive('\n') {
-        let mut prev = ' ';
-        let mut cut = None;
-        for (i, c) in line.char_indices() {
-            if c == '%' && prev != '\\' {
-                cut = Some(i);
-                break;
-            }
-            prev = c;
-        }
-        match cut {
-            Some(i) => {
-                out.push_str(&line[..i]);
-                if line.ends_with('\n') {
-                    out.push('\n');
-                }
-            }
-            None => out.push_str(line),
-        }
-    }
-    out
-}
-
-/// The argument of the command whose name ends at `at` (`\label{x}` with `at` after
-/// `\label`): the text inside the braces and the index after the closing brace.
-pub(super) fn braced(text: &str, at: usize) -> Option<(String, usize)> {
-    let rest = &text[at..];
-    let open = rest.find(|c: char| !c.is_whitespace())?;
-    if !rest[open..].starts_with('{') {
-        return None;
-    }
-    let mut depth = 0;
-    for (i, c) in rest[open..].char_indices() {
-        match c {
-            '{' => depth += 1,
-            '}' => {
-                depth -= 1;
-                if depth == 0 {
-                    let inner = rest[open + 1..open + i].to_string();
-                    return Some((inner, at + open + i + 1));
-                }
-            }
-            _ => {}
-        }
-    }
-    None
-}
 
 /// `row` without each `\name{..}` and the arguments taken out.
 fn take_command(row: &str, name: &str) -> (String, Vec<String>) {
@@ -420,10 +371,6 @@ pub fn read_document(source: &str) -> Document {
         Err(format!("`\\input{{{name}}}`: no folder to read it from"))
     })
 }
-
-/// How a paper's `\input{name}` is read: its text, or why not (a path outside the paper's
-/// folder is refused by the caller's loader, naming it).
-pub type Loader<'a> = &'a dyn Fn(&str) -> Result<String, String>;
 
 /// Reads a paper's source as LaTeX does: comments dropped, every `\input` read through `load`,
 /// the paper's macros expanded ([`super::macros`]), then every display with its numbers and
@@ -741,7 +688,10 @@ $$ q = r \tag{B} $$
 
     #[test]
     fn comments_go_but_an_escaped_percent_stays() {
-        assert_eq!(strip_comments("a % b\nc \\% d\n"), "a \nc \\% d\n");
+        assert_eq!(
+            super::super::files::strip_comments("a % b\nc \\% d\n"),
+            "a \nc \\% d\n"
+        );
     }
 
     #[test]

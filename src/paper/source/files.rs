@@ -7,7 +7,60 @@
 //! too deep) is left out and named in the problems with the `file:line` of the command; the
 //! rest is read all the same.
 
-use super::document::{Loader, braced, strip_comments};
+/// How a paper's `\input{name}` is read: its text, or why not (a path outside the paper's
+/// folder is refused by the caller's loader, naming it).
+pub type Loader<'a> = &'a dyn Fn(&str) -> Result<String, String>;
+
+/// Text without its comments: `%` to the end of the line, unless escaped (`\%`).
+pub(super) fn strip_comments(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for line in text.split_inclusive('\n') {
+        let mut prev = ' ';
+        let mut cut = None;
+        for (i, c) in line.char_indices() {
+            if c == '%' && prev != '\\' {
+                cut = Some(i);
+                break;
+            }
+            prev = c;
+        }
+        match cut {
+            Some(i) => {
+                out.push_str(&line[..i]);
+                if line.ends_with('\n') {
+                    out.push('\n');
+                }
+            }
+            None => out.push_str(line),
+        }
+    }
+    out
+}
+
+/// The argument of the command whose name ends at `at` (`\label{x}` with `at` after
+/// `\label`): the text inside the braces and the index after the closing brace.
+pub(super) fn braced(text: &str, at: usize) -> Option<(String, usize)> {
+    let rest = &text[at..];
+    let open = rest.find(|c: char| !c.is_whitespace())?;
+    if !rest[open..].starts_with('{') {
+        return None;
+    }
+    let mut depth = 0;
+    for (i, c) in rest[open..].char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' => {
+                depth -= 1;
+                if depth == 0 {
+                    let inner = rest[open + 1..open + i].to_string();
+                    return Some((inner, at + open + i + 1));
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
 
 /// Where a run of lines of the assembled text comes from: from its line `from` on, the lines of
 /// `file` (`""`: the paper's own file) from `line` on.

@@ -8,7 +8,7 @@
 //! one (`kg.m/s^2`, `m s^{-1}`, `GPa`). Written by hand: no crate reads siunitx, and the rewrite
 //! is a small table.
 
-use super::document::braced;
+use super::files::braced;
 
 /// The prefixes, as siunitx names them, with their symbols (`u` for micro, as the unit reader
 /// takes it).

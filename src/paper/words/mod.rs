@@ -774,7 +774,34 @@ pub fn read_words(text: &str, syms: &TexSymbols, vocab: &Vocabulary) -> Words {
         }
         i = j.max(i + 1);
     }
-    // a value written with its unit for a symbol (`$E^* = \SI{115}{GPa}$`, `$L = 2$ m`)
+    found.extend(written_values(&its, &p, syms));
+    let sections = section_starts(text);
+    Words {
+        dirac,
+        dimensionless: dimensionless_spans(text, &sections),
+        chapters: text
+            .lines()
+            .enumerate()
+            .filter(|(_, l)| {
+                let t = l.trim_start();
+                t.starts_with("\\chapter{") || t.starts_with("\\chapter[")
+            })
+            .map(|(k, _)| k + 1)
+            .collect(),
+        sections,
+        ..settle(found)
+    }
+}
+
+/// The units of values written with their units for a symbol (`$E^* = \SI{115}{GPa}$`, `$L =
+/// 2$ m`) in the prose `p` cut into `its`.
+fn written_values(its: &[(usize, Item)], p: &str, syms: &TexSymbols) -> Vec<WordUnit> {
+    let line_of = |off: usize| p[..off].matches('\n').count() + 1;
+    let text_at = |k: usize| match its.get(k) {
+        Some((_, Item::Text(t))) => t.as_str(),
+        _ => "",
+    };
+    let mut found = Vec::new();
     for (k, (off, item)) in its.iter().enumerate() {
         let Item::Math(m) = item else { continue };
         let Some((lhs, unit)) = written::value_unit(m, text_at(k + 1)) else {
@@ -805,22 +832,7 @@ pub fn read_words(text: &str, syms: &TexSymbols, vocab: &Vocabulary) -> Words {
             true,
         ));
     }
-    let sections = section_starts(text);
-    Words {
-        dirac,
-        dimensionless: dimensionless_spans(text, &sections),
-        chapters: text
-            .lines()
-            .enumerate()
-            .filter(|(_, l)| {
-                let t = l.trim_start();
-                t.starts_with("\\chapter{") || t.starts_with("\\chapter[")
-            })
-            .map(|(k, _)| k + 1)
-            .collect(),
-        sections,
-        ..settle(found)
-    }
+    found
 }
 
 /// The verb a description opens with, as written (`is`, `are, respectively,`), for the quote.
