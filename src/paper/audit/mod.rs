@@ -795,6 +795,38 @@ pub fn title_of(text: &str) -> Option<String> {
 pub(super) mod tests {
     use super::*;
 
+    #[test]
+    fn a_symbols_provenance_names_its_relations_only_when_it_has_some() {
+        let y = AuditSymbol {
+            name: "v".into(),
+            unit: Some("m s^-1".into()),
+            source: "inferred",
+            from: vec![],
+            quantity: None,
+            quote: None,
+            line: None,
+            file: None,
+            overrides: None,
+        };
+        assert_eq!(y.provenance(), "inferred");
+        let y = AuditSymbol {
+            from: vec!["(3)".into(), "(5)".into()],
+            ..y
+        };
+        assert_eq!(y.provenance(), "inferred from (3), (5)");
+        let y = AuditSymbol {
+            source: "words",
+            from: vec![],
+            quote: Some("the speed $v$".into()),
+            line: Some(4),
+            file: Some("a.tex".into()),
+            ..y
+        };
+        assert_eq!(y.provenance(), "words, a.tex:4: \"the speed $v$\"");
+        let y = AuditSymbol { file: None, ..y };
+        assert_eq!(y.provenance(), "words, line 4: \"the speed $v$\"");
+    }
+
     pub(super) fn units(pairs: &[(&str, &str)]) -> Units {
         let texts: BTreeMap<String, String> = pairs
             .iter()

@@ -569,4 +569,29 @@ mod tests {
         // the first symbol with a unit other than 1, declared first
         assert_eq!(multiplier(&a).as_deref(), Some("F"));
     }
+
+    #[test]
+    fn the_text_lists_the_relations_with_a_misprint_that_survived_and_no_other() {
+        let rel = |name: &str, misprints: usize, caught: usize| RelationPower {
+            relation: name.into(),
+            index: 0,
+            misprints,
+            caught,
+            survived: vec!["`m` squared".into(); misprints - caught],
+            why: None,
+        };
+        let p = AuditPower {
+            consistent: 2,
+            measured: 2,
+            misprints: 7,
+            caught: 6,
+            relations: vec![rel("(1)", 4, 4), rel("(2)", 3, 2)],
+        };
+        let text = to_text(&p);
+        assert!(
+            text.contains("(2)        2/3 caught; survived: `m` squared"),
+            "{text}"
+        );
+        assert!(!text.contains("(1) "), "{text}");
+    }
 }

@@ -379,3 +379,41 @@ fn a_symbol_given_as_a_written_number_is_a_value_in_a_unit_left_unsaid() {
         );
     }
 }
+
+#[test]
+fn a_product_over_bounds_has_its_factors_unit_that_many_times() {
+    // by hand: \prod_{k=2}^{3} x is x x, m^2 for x in m; bounds that give no count leave the
+    // power open
+    let tex = |t: &str| {
+        crate::paper::formulas::read_formula(t, &crate::paper::formulas::TexSymbols::default())
+            .expect("reads")
+    };
+    let rel_tex = |l: &str, r: &str| {
+        Some(Relation {
+            sides: vec![tex(l), tex(r)],
+            dots: vec![],
+            rels: vec!["=".into()],
+        })
+    };
+    let d = units(&[("P", "m^2"), ("Q", "m^3"), ("x", "m")]);
+    let inf = infer(&[rel_tex("P", "\\prod_{k=2}^{3} x")], &d);
+    assert_eq!(inf.statuses[0], Status::Consistent);
+    let inf = infer(&[rel_tex("Q", "\\prod_{k=2}^{3} x")], &d);
+    assert!(
+        matches!(inf.statuses[0], Status::Inconsistent { .. }),
+        "{:?}",
+        inf.statuses
+    );
+}
+
+#[test]
+fn a_number_in_a_chain_is_a_value_on_either_side() {
+    // `a = 2 pi = b`: 2 pi a value in some unit, so a (m) and b (s) are not set equal through it
+    let d = units(&[("a", "m"), ("b", "s")]);
+    let inf = infer(&[rel("a = 2*pi = b")], &d);
+    assert!(
+        !matches!(inf.statuses[0], Status::Inconsistent { .. }),
+        "{:?}",
+        inf.statuses
+    );
+}
