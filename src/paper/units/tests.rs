@@ -392,7 +392,7 @@ fn a_product_over_bounds_has_its_factors_unit_that_many_times() {
         Some(Relation {
             sides: vec![tex(l), tex(r)],
             dots: vec![],
-            rels: vec!["=".into()],
+            rels: vec!["="],
         })
     };
     let d = units(&[("P", "m^2"), ("Q", "m^3"), ("x", "m")]);
