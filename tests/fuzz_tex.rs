@@ -147,6 +147,56 @@ fn run(source: &str) {
     }
 }
 
+/// The pipeline on a paper of several files held in memory (`a`..`d`), `main` the first.
+fn run_files(files: &[String]) {
+    let load = |name: &str| {
+        let key = name.trim_end_matches(".tex").trim_start_matches("./");
+        ["a", "b", "c", "d"]
+            .iter()
+            .position(|n| *n == key)
+            .and_then(|k| files.get(k + 1).cloned())
+            .ok_or_else(|| format!("no {name}"))
+    };
+    let doc = read_document_with(&files[0], &load);
+    let _ = (doc.numbers.len(), doc.place(doc.text.lines().count() + 3));
+    let a = audit(&doc_blocks(&doc), Some(&doc), &Units::default());
+    for r in &a.relations {
+        assert!(!r.status.is_empty());
+    }
+}
+
+/// A document's displays as the audit takes them.
+fn doc_blocks(
+    doc: &impactcheck::paper::source::document::Document,
+) -> Vec<(Option<String>, String)> {
+    doc.displays
+        .iter()
+        .map(|d| (d.after.clone(), d.latex.clone()))
+        .collect()
+}
+
+/// The commands that bring in another file of the paper, each naming one of `a`..`d`.
+const INPUTS: &[&str] = &[
+    "\\input{a}",
+    "\\input{b}",
+    "\\input c ",
+    "\\include{d}",
+    "\\subfile{a}",
+    "\\import{./}{b}",
+    "\\subimport{}{c}",
+    "\\newcommand{\\inc}[1]{\\input{#1}}",
+    "\\inc{d}",
+    "\\input{a}\\input{a}",
+];
+
+fn file_body() -> impl Strategy<Value = String> {
+    prop::collection::vec(
+        prop_oneof![prop::sample::select(PIECES), prop::sample::select(INPUTS)],
+        0..30,
+    )
+    .prop_map(|v| v.concat())
+}
+
 fn glued() -> impl Strategy<Value = String> {
     prop::collection::vec(prop::sample::select(PIECES), 0..60).prop_map(|v| v.concat())
 }
@@ -159,6 +209,12 @@ proptest! {
         run(&body);
         run(&format!("\\begin{{align}}{body}\\end{{align}}"));
         run(&format!("$${body}$$"));
+    }
+
+    #[test]
+    fn papers_of_several_files_input_at_random(files in prop::collection::vec(file_body(), 5)) {
+        // cycles, files that input themselves, inputs twice over: no panic, no hang
+        run_files(&files);
     }
 
     #[test]
@@ -176,6 +232,24 @@ proptest! {
         run(&paper[..cut]);
         run(&paper[cut..]);
     }
+}
+
+#[test]
+fn files_that_input_themselves_and_each_other_end_quickly() {
+    // each file inputs the next twice and itself: without a stop, 2^depth copies
+    let twice = |next: &str, me: &str| {
+        format!("\\input{{{next}}}\\input{{{next}}}\\input{{{me}}}\n$$ x_{me} = y $$\n")
+    };
+    let files = vec![
+        twice("a", "main"),
+        twice("b", "a"),
+        twice("c", "b"),
+        twice("d", "c"),
+        twice("a", "d"),
+    ];
+    let started = std::time::Instant::now();
+    run_files(&files);
+    assert!(started.elapsed().as_secs() < 30, "{:?}", started.elapsed());
 }
 
 #[test]

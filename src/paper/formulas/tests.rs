@@ -691,3 +691,18 @@ fn an_empty_column_parts_two_relations_of_one_row() {
         assert_eq!(rows[0].relations.len(), 1, "{row}: {rows:?}");
     }
 }
+
+#[test]
+fn a_letter_and_its_subscript_that_spell_a_greek_letter_stay_apart() {
+    // `P_i` (a nodal force) and `\Pi` (a potential energy) are two symbols; so are `x_i`, `\xi`
+    let syms = TexSymbols::default();
+    let name = |t: &str| read_formula(t, &syms).expect("reads").to_string();
+    assert_eq!(name("P_i"), "P_i");
+    assert_eq!(name("\\Pi"), "Pi");
+    assert_eq!(name("x_i"), "x_i");
+    assert_eq!(name("\\xi"), "xi");
+    assert_eq!(name("x_{j}"), "xj");
+    assert_eq!(name("E_s"), "Es");
+    assert_eq!(name("\\vec{\\bm{P}}_i"), "P_i");
+    assert_eq!(name("\\mathbf{x}_i"), "x_i");
+}

@@ -593,6 +593,7 @@ pub fn section_of(sections: &[usize], line: usize) -> usize {
 /// Reads the prose of `text` (LaTeX or Markdown with `$..$`) for the units it gives its
 /// symbols.
 pub fn read_words(text: &str, syms: &TexSymbols, vocab: &Vocabulary) -> Words {
+    let text = &written::nomenclature_rows(text);
     let p = prose(text);
     let its = items(&p);
     let line_of = |off: usize| p[..off].matches('\n').count() + 1;
@@ -627,6 +628,8 @@ pub fn read_words(text: &str, syms: &TexSymbols, vocab: &Vocabulary) -> Words {
         }
     }
     let mut i = 0;
+    // whether the math before was described after a verb, so that a list may go on without one
+    let mut listing = false;
     while i < its.len() {
         let (off, Item::Math(first)) = &its[i] else {
             i += 1;
@@ -674,22 +677,13 @@ pub fn read_words(text: &str, syms: &TexSymbols, vocab: &Vocabulary) -> Words {
         let mut given: Vec<Option<(Named, String)>> = vec![None; n];
         let from_nomenclature = nomenclature(prev, next, n, vocab);
         let nomenclature_line = from_nomenclature.is_some();
-        let from_next = from_nomenclature.or_else(|| {
-            after_verb(next).map(|rest| {
-                let (desc, unit) = clause(rest, n);
-                describe_all(desc, n, unit, vocab)
-            })
-        });
-        let from_next = from_next.or_else(|| {
-            let lower = prev.trim_end().to_ascii_lowercase();
-            ["denote by", "denoting by", "designate by"]
-                .iter()
-                .any(|d| lower.ends_with(d) && !lower.ends_with(&format!("is {d}")))
-                .then(|| {
-                    let (desc, unit) = clause(next, n);
-                    describe_all(desc, n, unit, vocab)
-                })
-        });
+        // after a verb; in a list that said its verb once ("where $E$ is the modulus, $R$ the
+        // radius"); after "denote by"
+        let from_next = from_nomenclature
+            .or_else(|| after_verb(next).map(|rest| described(rest, n, vocab)))
+            .or_else(|| elided(prev, next, listing).map(|d| described(d, n, vocab)))
+            .or_else(|| denoted_by(prev).then(|| described(next, n, vocab)));
+        listing = after_verb(next).is_some() || listing && elided(prev, next, true).is_some();
         // a verb in the singular describes the last symbol only
         let from_next = from_next.map(|mut v| {
             if n > 1 && singular_verb(next) {
@@ -833,6 +827,41 @@ fn written_values(its: &[(usize, Item)], p: &str, syms: &TexSymbols) -> Vec<Word
         ));
     }
     found
+}
+
+/// What the words `d` say of the `n` symbols before them: each one's quantity and unit.
+fn described(d: &str, n: usize, vocab: &Vocabulary) -> Vec<Option<Named>> {
+    let (desc, unit) = clause(d, n);
+    describe_all(desc, n, unit, vocab)
+}
+
+/// Whether the words before a symbol end in "denote by" (not "is denote by").
+fn denoted_by(prev: &str) -> bool {
+    let lower = prev.trim_end().to_ascii_lowercase();
+    ["denote by", "denoting by", "designate by"]
+        .iter()
+        .any(|d| lower.ends_with(d) && !lower.ends_with(&format!("is {d}")))
+}
+
+/// The description of a symbol in a list whose verb was said once ("where $E$ is the modulus,
+/// $R$ the radius and $m$ the mass"): after a comma, "and" or a semicolon, while `listing`,
+/// the words from a determiner to the next comma or "and".
+fn elided<'a>(prev: &str, next: &'a str, listing: bool) -> Option<&'a str> {
+    let p = prev.trim_end();
+    let joined = [",", ";", " and"].iter().any(|j| p.ends_with(j)) || p.trim() == "and";
+    let t = next.trim_start();
+    let det = ["the ", "a ", "an ", "its "]
+        .iter()
+        .any(|d| t.starts_with(d));
+    if !(listing && joined && det) {
+        return None;
+    }
+    let end = [t.find(','), t.find(" and "), t.find(" and\n")]
+        .into_iter()
+        .flatten()
+        .min()
+        .unwrap_or(t.len());
+    Some(&t[..end])
 }
 
 /// The verb a description opens with, as written (`is`, `are, respectively,`), for the quote.

@@ -401,3 +401,33 @@ fn an_empty_math_span_in_the_prose_names_nothing() {
         assert!(w.units.len() <= 1, "{text}: {:?}", w.units);
     }
 }
+
+#[test]
+fn the_entries_of_the_nomencl_package_are_rows_of_a_nomenclature() {
+    let text = "\\nomenclature{$p$}{Roll rate [rad/s]}\n\\nomenclature[A]{$m$}{Mass of the rider\\nomunit{kg}}\n\\nomenclature{$V$}{Forward\n speed}\n\\nomenclature{$x$}{Position}";
+    let w = read_words(text, &TexSymbols::default(), &vocab());
+    let unit = |s: &str| w.units.get(s).map(|u| u.unit.to_string());
+    assert_eq!(unit("p").as_deref(), Some("s^-1"));
+    assert_eq!(unit("m").as_deref(), Some("kg"));
+    assert_eq!(unit("V").as_deref(), Some("m s^-1"));
+    assert_eq!(unit("x").as_deref(), Some("m"));
+    // its lines kept: the speed's entry opens on the third line, the position's on the fifth
+    assert_eq!(w.units["V"].line, 3);
+    assert_eq!(w.units["x"].line, 5);
+}
+
+#[test]
+fn a_list_that_says_its_verb_once_names_every_symbol() {
+    let w = read_words(
+        "where $E^*$ is the effective modulus, $R^*$ the effective radius and $m^*$ the effective mass. Then $x$, the force $F$ and $y$ follow.",
+        &TexSymbols::default(),
+        &vocab(),
+    );
+    let unit = |s: &str| w.units.get(s).map(|u| u.unit.to_string());
+    assert_eq!(unit("Estar").as_deref(), Some("kg m^-1 s^-2"));
+    assert_eq!(unit("Rstar").as_deref(), Some("m"));
+    assert_eq!(unit("mstar").as_deref(), Some("kg"));
+    // a new sentence says no verb for the symbols after it
+    assert_eq!(unit("x"), None);
+    assert_eq!(unit("y"), None);
+}

@@ -182,3 +182,71 @@ pub(super) fn value_unit<'a>(math: &'a str, after: &str) -> Option<(&'a str, Uni
     };
     Some((lhs.trim(), unit))
 }
+
+/// `text` with each entry of the nomencl package (`\nomenclature[a]{$p$}{Roll rate}`, a unit in
+/// `\nomunit{..}` or brackets) written as a row of a nomenclature table (`\\ $p$ & Roll rate
+/// \\`), as the words read one; its lines kept.
+pub(super) fn nomenclature_rows(text: &str) -> String {
+    const CMD: &str = "\\nomenclature";
+    if !text.contains(CMD) {
+        return text.to_string();
+    }
+    let group = |s: &str, at: usize| -> Option<(String, usize)> {
+        let rest = &s[at..];
+        let open = rest.find(|c: char| !c.is_whitespace())?;
+        if !rest[open..].starts_with('{') {
+            return None;
+        }
+        let mut depth = 0;
+        for (i, c) in rest[open..].char_indices() {
+            match c {
+                '{' => depth += 1,
+                '}' => {
+                    depth -= 1;
+                    if depth == 0 {
+                        return Some((rest[open + 1..open + i].to_string(), at + open + i + 1));
+                    }
+                }
+                _ => {}
+            }
+        }
+        None
+    };
+    let mut out = String::with_capacity(text.len());
+    let mut pos = 0;
+    while let Some(k) = text[pos..].find(CMD) {
+        let at = pos + k;
+        let mut end = at + CMD.len();
+        if text[end..].starts_with('[') {
+            end += text[end..].find(']').map_or(0, |c| c + 1);
+        }
+        let (Some((sym, mid)), true) = (
+            group(text, end),
+            !text[end..].starts_with(|c: char| c.is_ascii_alphabetic()),
+        ) else {
+            out.push_str(&text[pos..end]);
+            pos = end;
+            continue;
+        };
+        let Some((desc, close)) = group(text, mid) else {
+            out.push_str(&text[pos..end]);
+            pos = end;
+            continue;
+        };
+        out.push_str(&text[pos..at]);
+        let desc = match desc.find("\\nomunit") {
+            Some(u) => match group(&desc, u + "\\nomunit".len()) {
+                Some((unit, _)) => format!("{} & [{unit}]", &desc[..u]),
+                None => desc.clone(),
+            },
+            None => desc.clone(),
+        };
+        let row = format!("\\\\ {} & {} \\\\", sym.trim(), desc.trim());
+        out.push_str(&row.replace('\n', " "));
+        // the lines the entry took, kept
+        out.push_str(&"\n".repeat(text[at..close].matches('\n').count()));
+        pos = close;
+    }
+    out.push_str(&text[pos..]);
+    out
+}

@@ -570,8 +570,9 @@ impl<'a> Reader<'a> {
             if suffix.is_empty() && inner.chars().all(|c| c.is_ascii_digit()) {
                 return num(&inner).map_or_else(|| self.err("a number"), Ok);
             }
-            let tail = self.name_tail(String::new())?;
-            let name = format!("{inner}{suffix}{tail}");
+            // the tail read after the name so far (`\vec{P}_i` is no `\Pi`)
+            let name = self.name_tail(format!("{inner}{suffix}"))?;
+            let tail = name[inner.len() + suffix.len()..].to_string();
             // a dotted name is the time derivative of its base
             let order = ["dot", "ddot", "dddot"].iter().position(|d| *d == c);
             if let Some(k) = order {

@@ -111,6 +111,11 @@ impl Reader<'_> {
                     self.bump();
                     let save = self.pos;
                     match self.name_text() {
+                        // `P_i`, `x_i`, `N_u` spell `\Pi`, `\xi`, `\Nu` when joined: kept apart
+                        Ok(part) if is_greek_name(&format!("{name}{part}")) => {
+                            name.push('_');
+                            name.push_str(&part);
+                        }
                         Ok(part) => name.push_str(&part),
                         // a subscript that is a label of another kind (`P_{\left|a\right\rangle}`,
                         // `\mu_{\text{at rest}}`): its letters name it
@@ -247,4 +252,15 @@ impl Reader<'_> {
         matches!(self.toks.get(self.pos + 1), Some((Tok::Open, _)))
             && matches!(self.toks.get(self.pos + 2), Some((Tok::Cmd(c), _)) if c == "prime")
     }
+}
+
+/// Whether `name` is the name the reader gives a Greek letter (`xi`, `Pi`, `nu`).
+fn is_greek_name(name: &str) -> bool {
+    const GREEK: &[&str] = &[
+        "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa",
+        "lambda", "mu", "nu", "xi", "omicron", "pi", "rho", "sigma", "tau", "upsilon", "phi",
+        "chi", "psi", "omega",
+    ];
+    let lower = name.to_lowercase();
+    GREEK.contains(&lower.as_str()) && name.chars().skip(1).all(|c| c.is_lowercase())
 }
