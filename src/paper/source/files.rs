@@ -39,7 +39,7 @@ pub(super) fn strip_comments(text: &str) -> String {
 
 /// The argument of the command whose name ends at `at` (`\label{x}` with `at` after
 /// `\label`): the text inside the braces and the index after the closing brace.
-pub(super) fn braced(text: &str, at: usize) -> Option<(String, usize)> {
+pub(crate) fn braced(text: &str, at: usize) -> Option<(String, usize)> {
     let rest = &text[at..];
     let open = rest.find(|c: char| !c.is_whitespace())?;
     if !rest[open..].starts_with('{') {

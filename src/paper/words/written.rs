@@ -191,27 +191,7 @@ pub(super) fn nomenclature_rows(text: &str) -> String {
     if !text.contains(CMD) {
         return text.to_string();
     }
-    let group = |s: &str, at: usize| -> Option<(String, usize)> {
-        let rest = &s[at..];
-        let open = rest.find(|c: char| !c.is_whitespace())?;
-        if !rest[open..].starts_with('{') {
-            return None;
-        }
-        let mut depth = 0;
-        for (i, c) in rest[open..].char_indices() {
-            match c {
-                '{' => depth += 1,
-                '}' => {
-                    depth -= 1;
-                    if depth == 0 {
-                        return Some((rest[open + 1..open + i].to_string(), at + open + i + 1));
-                    }
-                }
-                _ => {}
-            }
-        }
-        None
-    };
+    let group = crate::paper::source::files::braced;
     let mut out = String::with_capacity(text.len());
     let mut pos = 0;
     while let Some(k) = text[pos..].find(CMD) {
