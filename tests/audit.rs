@@ -772,3 +772,54 @@ fn a_file_outside_the_papers_folder_or_missing_is_named_and_the_rest_audited() {
     );
     assert!(String::from_utf8_lossy(&out.stdout).contains("inconsistent"));
 }
+
+#[test]
+fn a_folders_audit_is_a_row_per_paper_equal_to_its_own_audit() {
+    let out = verify(&["audit", "tests/papers", "--format", "json"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("[1/"), "progress on stderr: {err}");
+    let v: Value = serde_json::from_slice(&out.stdout).expect("json");
+    let rows = v["papers"].as_array().expect("papers");
+    // every test paper with \documentclass, found whatever its folder
+    let names: Vec<&str> = rows.iter().map(|r| r["paper"].as_str().unwrap()).collect();
+    for p in [
+        "sections/main.tex",
+        "thesis/thesis.tex",
+        "imported/main.tex",
+        "spring_dashpot/paper.tex",
+    ] {
+        assert!(names.contains(&p), "{names:?}");
+    }
+    // the parts a paper inputs are no papers
+    assert!(!names.iter().any(|n| n.contains("chapters/")), "{names:?}");
+    let mut relations = 0;
+    for r in rows {
+        let (one, _) = audit_json(&format!("tests/papers/{}", r["paper"].as_str().unwrap()));
+        let rels = one["relations"].as_array().unwrap();
+        let count = |s: &str| rels.iter().filter(|x| x["status"] == s).count() as u64;
+        assert_eq!(r["relations"].as_u64(), Some(rels.len() as u64), "{r}");
+        assert_eq!(
+            r["inconsistent"].as_u64(),
+            Some(count("inconsistent")),
+            "{r}"
+        );
+        assert_eq!(
+            r["undetermined"].as_u64(),
+            Some(count("undetermined")),
+            "{r}"
+        );
+        assert_eq!(
+            r["read"].as_u64(),
+            Some(rels.len() as u64 - count("unreadable")),
+            "{r}"
+        );
+        relations += rels.len() as u64;
+    }
+    assert_eq!(v["total"]["relations"].as_u64(), Some(relations));
+    // a csv and a refusal of csv for one paper
+    let out = verify(&["audit", "tests/papers", "--format", "csv"]);
+    assert!(String::from_utf8_lossy(&out.stdout).starts_with("paper,relations,read,"));
+    let out = verify(&["audit", PAPER, "--format", "csv"]);
+    assert!(!out.status.success());
+}

@@ -6,7 +6,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 use impactcheck::{paper, report, verify};
 use std::collections::BTreeMap;
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 /// mimalloc: small allocations (a sweep's rows and solver vectors, the algebra's big
@@ -33,6 +33,8 @@ enum AuditFmt {
     Text,
     Json,
     Markdown,
+    /// One row per paper (a folder's audit only).
+    Csv,
 }
 
 #[derive(Subcommand)]
@@ -43,7 +45,9 @@ enum Command {
     /// relations.
     Audit {
         /// The paper: its LaTeX source (.tex), a text with display math ($$ ... $$), or a
-        /// displays extract of `%% block N` sections (verify/tex/*.tex).
+        /// displays extract of `%% block N` sections (verify/tex/*.tex). A folder: every paper
+        /// under it (a .tex with \documentclass, a .md with display math) audited, a row each
+        /// and the totals (text, json, csv or markdown), progress on stderr.
         paper: PathBuf,
         /// A TOML file with [symbols] (name = "unit") and optionally [tex_symbols]; a claims
         /// file serves as it is.
@@ -550,6 +554,16 @@ fn run_paper(command: &Command) -> Result<bool> {
             ..
         } => (paper, units, preamble, vocabulary),
     };
+    if paper.is_dir()
+        && let Command::Audit {
+            format,
+            power: false,
+            suggest: false,
+            ..
+        } = command
+    {
+        return audit_folder(paper, units.as_deref(), preamble, vocabulary, *format);
+    }
     let p = paper::audit::paper::audit_paper(
         paper,
         units.as_deref(),
@@ -580,6 +594,9 @@ fn run_paper(command: &Command) -> Result<bool> {
                         })?
                     ),
                 },
+                AuditFmt::Csv => anyhow::bail!(
+                    "--format csv gives a row per paper of a folder: give a folder, or json for one paper"
+                ),
                 AuditFmt::Markdown => {
                     print!("{}", paper::audit::to_markdown(a, name));
                     if let Some(pw) = &power {
@@ -589,6 +606,69 @@ fn run_paper(command: &Command) -> Result<bool> {
             }
         }
         Command::Init { id, .. } => print!("{}", paper::audit::paper::init_claims(&p, id)),
+    }
+    Ok(true)
+}
+
+/// `verify audit DIR`: every paper under the folder audited (two at a time), a row each, the
+/// totals last; a paper that cannot be read a row with its error.
+fn audit_folder(
+    dir: &Path,
+    units: Option<&Path>,
+    preamble: &[PathBuf],
+    vocabulary: &[PathBuf],
+    format: AuditFmt,
+) -> Result<bool> {
+    use paper::audit::shelf;
+    use rayon::prelude::*;
+    let papers =
+        shelf::papers_in(dir).with_context(|| format!("reading the folder {}", dir.display()))?;
+    if papers.is_empty() {
+        anyhow::bail!(
+            "{}: no paper (a .tex with \\documentclass or a .md with display math)",
+            dir.display()
+        );
+    }
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let rows: Vec<shelf::ShelfRow> = papers
+        .par_iter()
+        .map(|p| {
+            let name = p
+                .strip_prefix(dir)
+                .unwrap_or(p)
+                .to_string_lossy()
+                .to_string();
+            let row = match paper::audit::paper::audit_paper(
+                p,
+                units,
+                preamble,
+                vocabulary,
+                false,
+                &mut |_| {},
+            ) {
+                Ok(a) => shelf::row_of(name.clone(), &a.audit),
+                Err(e) => shelf::ShelfRow {
+                    paper: name.clone(),
+                    error: Some(format!("{e:#}")),
+                    ..Default::default()
+                },
+            };
+            let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            eprintln!("verify: [{k}/{}] {name}", papers.len());
+            row
+        })
+        .collect();
+    match format {
+        AuditFmt::Text => print!("{}", shelf::to_text(&rows)),
+        AuditFmt::Json => println!(
+            "{}",
+            serde_json::to_string_pretty(&serde_json::json!({
+                "papers": rows,
+                "total": shelf::total(&rows),
+            }))?
+        ),
+        AuditFmt::Csv => print!("{}", shelf::table(&rows, false)),
+        AuditFmt::Markdown => print!("{}", shelf::table(&rows, true)),
     }
     Ok(true)
 }

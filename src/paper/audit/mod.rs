@@ -25,6 +25,7 @@ use std::collections::BTreeMap;
 pub mod init;
 pub mod paper;
 pub mod power;
+pub mod shelf;
 
 /// The units a paper's words give its symbols ([`crate::paper::words`]), its symbols named as the
 /// audit of `blocks` names them.
