@@ -209,18 +209,24 @@ mod tests {
             relations: n,
             read,
             consistent_in_a_unit: unit,
+            consistent_pure: 1,
             inconsistent: bad,
-            ..ShelfRow::default()
+            undetermined: read - unit - bad - 1,
+            error: None,
         };
         let rows = [row("a.tex", 10, 8, 4, 1), row("b,c.tex", 2, 2, 1, 0)];
         let t = total(&rows);
-        assert_eq!(
-            (t.relations, t.read, t.consistent_in_a_unit, t.inconsistent),
-            (12, 10, 5, 1)
+        let all = (
+            t.relations,
+            t.read,
+            t.consistent_in_a_unit,
+            t.consistent_pure,
         );
+        assert_eq!(all, (12, 10, 5, 2));
+        assert_eq!((t.inconsistent, t.undetermined), (1, 2));
         let csv = table(&rows, false);
-        assert!(csv.contains("\"b,c.tex\",2,2,1,0,0,0,\n"), "{csv}");
-        assert!(csv.ends_with("all (2 papers),12,10,5,0,1,0,\n"), "{csv}");
+        assert!(csv.contains("\"b,c.tex\",2,2,1,1,0,0,\n"), "{csv}");
+        assert!(csv.ends_with("all (2 papers),12,10,5,2,1,2,\n"), "{csv}");
         let md = table(&rows, true);
         assert!(
             md.contains("| a.tex | 10 | 8 (80.0 %) | 4 (40.0 %) |"),
