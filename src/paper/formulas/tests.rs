@@ -705,4 +705,8 @@ fn a_letter_and_its_subscript_that_spell_a_greek_letter_stay_apart() {
     assert_eq!(name("E_s"), "Es");
     assert_eq!(name("\\vec{\\bm{P}}_i"), "P_i");
     assert_eq!(name("\\mathbf{x}_i"), "x_i");
+    // a dotted name's base too: `\dot{x}_i` is the rate of `x_i`, not of `\xi`
+    let rows = read_display("\\dot{x}_i = v", &syms);
+    let r = rows[0].relations[0].as_ref().expect("reads");
+    assert_eq!(r.links, [("xdi".to_string(), "x_i".to_string(), 1)]);
 }

@@ -576,7 +576,12 @@ impl<'a> Reader<'a> {
             // a dotted name is the time derivative of its base
             let order = ["dot", "ddot", "dddot"].iter().position(|d| *d == c);
             if let Some(k) = order {
-                let base = format!("{inner}{tail}");
+                // the base kept apart from a Greek letter as the name is (`\dot{x}_i` is no `\xi`)
+                let base = if names::is_greek_name(&format!("{inner}{tail}")) {
+                    format!("{inner}_{tail}")
+                } else {
+                    format!("{inner}{tail}")
+                };
                 let link = (name.clone(), base, k as u32 + 1);
                 if !self.links.contains(&link) {
                     self.links.push(link);

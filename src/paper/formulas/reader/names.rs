@@ -255,7 +255,7 @@ impl Reader<'_> {
 }
 
 /// Whether `name` is the name the reader gives a Greek letter (`xi`, `Pi`, `nu`).
-fn is_greek_name(name: &str) -> bool {
+pub(super) fn is_greek_name(name: &str) -> bool {
     const GREEK: &[&str] = &[
         "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa",
         "lambda", "mu", "nu", "xi", "omicron", "pi", "rho", "sigma", "tau", "upsilon", "phi",
