@@ -105,6 +105,7 @@ def has_display(path: Path) -> bool:
     return any(m in text for m in TEX_MARKERS)
 
 
+SEARCH = re.compile(r"\\input@path\s*\{((?:\{[^{}]*\})*)\}")
 INPUT = re.compile(r"\\(?:input|include|subfile)\s*\{([^}]*)\}")
 
 
@@ -124,7 +125,11 @@ def included(main: Path) -> set[Path]:
         except OSError:
             continue
         for name in INPUT.findall(text):
-            for cand in (main.parent / name.strip(), main.parent / (name.strip() + ".tex")):
+            # a path macro (`\\mainpath/Header`): the paper's folder on its author's machine
+            name = re.sub(r"\\[A-Za-z]+\s*/?", "", name).lstrip("/")
+            dirs = [""] + re.findall(r"\{([^{}]*)\}", (SEARCH.findall(text) or [""])[0])
+            cands = [main.parent / d / n for d in dirs for n in (name.strip(), name.strip() + ".tex")]
+            for cand in cands:
                 if cand.is_file() and cand not in seen:
                     seen.add(cand)
                     todo.append(cand)
@@ -148,7 +153,8 @@ def macro_files(source_dir: Path) -> list[Path]:
 
 
 def find_documents(corpus: Path) -> list[Doc]:
-    """Every document as its author compiles it: each `.tex` with `\\documentclass` (its
+    """Every document as its author compiles it: each `.tex` with `\\documentclass` or
+    `\\begin{document}` that no other reads (its
     `\\input` files read through it, not again alone), each other `.tex` with a display that
     no main document reads, and each `.md` with a display (with its source's macro files as
     `--preamble`)."""
@@ -157,7 +163,8 @@ def find_documents(corpus: Path) -> list[Doc]:
     for p in files:
         if p.suffix.lower() == ".tex":
             text = strip_comments(p.read_text(encoding="utf-8", errors="replace"))
-            if "\\documentclass" in text:
+            # a main file: its class, or its document (a class given in an `\\input` header)
+            if "\\documentclass" in text or "\\begin{document}" in text:
                 mains.append(p)
     read_by_main: set[Path] = set()
     for m in mains:

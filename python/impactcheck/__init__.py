@@ -5,7 +5,9 @@ sweep``, ``impact describe``, ``verify --format json``) and returns what that co
 Python objects: dicts for outcomes and verdicts, NumPy arrays named with their units for a run's
 path (``Run``: the twin of ``impact run --trace``), a ``pandas.DataFrame`` for a sweep (one row per
 point, the outcome's numbers as columns), frames of an audit's relations and of a claims file's
-claims (``Audit``, ``Claims``). Bad input raises ``ImpactcheckError`` with the command line's
+claims (``Audit``, ``Claims``), and a frame of every paper under a folder audited
+(``audit_many``: one row per paper, the twin of ``verify audit FOLDER``; on a Dask cluster,
+``impactcheck.dask.audit_many``). Bad input raises ``ImpactcheckError`` with the command line's
 message (the file, the line, the key); so does a panic of the library, which would be a bug.
 
 A scene is a path, a TOML text or a dict of the same tables (SI units, as in ``scenes/``).
@@ -21,6 +23,8 @@ from typing import Any, Mapping, Optional, Sequence, Union
 
 from ._impactcheck import (
     audit_json,
+    audit_row_json,
+    papers_in,
     init_text,
     ImpactcheckError,
     describe_json,
@@ -37,6 +41,7 @@ __all__ = [
     "ImpactcheckError",
     "Run",
     "audit",
+    "audit_many",
     "describe",
     "init",
     "run",
@@ -115,6 +120,53 @@ def audit(paper, units=None, preamble=None, vocabulary=None) -> Audit:
             audit_json(str(paper), None if units is None else str(units), _paths(preamble), _paths(vocabulary))
         )
     )
+
+
+# The counts of a row of ``verify audit FOLDER --format json``, after its ``paper``; ``error``,
+# which the command writes only for a paper that could not be read, is the last column.
+_SHELF_COUNTS = (
+    "relations",
+    "read",
+    "consistent_in_a_unit",
+    "consistent_pure",
+    "inconsistent",
+    "undetermined",
+)
+
+
+def _shelf_frame(rows: list):
+    """The rows of ``verify audit FOLDER --format json`` (dicts, in the papers' order) as a frame
+    indexed by ``paper``, with the command's ``total`` in ``attrs["total"]``."""
+    import pandas as pd
+
+    frame = pd.DataFrame(
+        [{**r, "error": r.get("error")} for r in rows],
+        columns=["paper", *_SHELF_COUNTS, "error"],
+    ).set_index("paper")
+    frame.attrs["total"] = {
+        "paper": f"all ({len(rows)} papers)",
+        **{k: sum(r[k] for r in rows) for k in _SHELF_COUNTS},
+    }
+    return frame
+
+
+def audit_many(folder, units=None, preamble=(), vocabulary=()):
+    """Every paper under ``folder`` audited (``verify audit FOLDER --format json``), as a
+    ``pandas.DataFrame``: one row per paper in the command's order, indexed by ``paper`` (its path
+    under the folder), with the command's counts as columns (``relations``, ``read``,
+    ``consistent_in_a_unit``, ``consistent_pure``, ``inconsistent``, ``undetermined``) and
+    ``error`` (why a paper could not be read, else ``None``). ``frame.attrs["total"]`` is the
+    command's ``total`` as a dict. The papers are audited on a thread per core, as the command
+    audits them; ``units``, ``preamble`` and ``vocabulary`` apply to every paper."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    folder = str(folder)
+    options = (None if units is None else str(units), _paths(preamble), _paths(vocabulary))
+    papers = papers_in(folder)
+    # each audit releases the interpreter, so the threads run at once
+    with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+        texts = list(pool.map(lambda p: audit_row_json(folder, p, *options), papers))
+    return _shelf_frame([json.loads(t) for t in texts])
 
 
 class Claims(str):

@@ -4,7 +4,9 @@
 //! `impactcheck.ImpactcheckError` with the command line's message (file, line, key); so does a
 //! panic ([`guarded`]), which never unwinds into the interpreter.
 
+use anyhow::Context;
 use impactcheck::cli::{self, Format};
+use impactcheck::paper::audit::shelf;
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
@@ -222,6 +224,64 @@ fn audit_json(
     })
 }
 
+/// The papers `verify audit FOLDER` audits, in its order: paths under `folder` as given. A
+/// folder without a paper is an error, as for the command.
+#[pyfunction]
+fn papers_in(py: Python<'_>, folder: PathBuf) -> PyResult<Vec<String>> {
+    guarded(py, || {
+        let papers = shelf::papers_in(&folder)
+            .with_context(|| format!("reading the folder {}", folder.display()))?;
+        if papers.is_empty() {
+            anyhow::bail!(
+                "{}: no paper (a .tex with \\documentclass or a .md with display math)",
+                folder.display()
+            );
+        }
+        Ok(papers
+            .iter()
+            .map(|p| p.to_string_lossy().into_owned())
+            .collect())
+    })
+}
+
+/// One row of `verify audit FOLDER --format json`: `paper` (a path `papers_in(folder)` gave)
+/// audited and named by its path under `folder`; a paper that cannot be read is a row with its
+/// error, as in the command.
+#[pyfunction]
+#[pyo3(signature = (folder, paper, units=None, preamble=vec![], vocabulary=vec![]))]
+fn audit_row_json(
+    py: Python<'_>,
+    folder: PathBuf,
+    paper: PathBuf,
+    units: Option<PathBuf>,
+    preamble: Vec<PathBuf>,
+    vocabulary: Vec<PathBuf>,
+) -> PyResult<String> {
+    guarded(py, || {
+        let name = paper
+            .strip_prefix(&folder)
+            .unwrap_or(&paper)
+            .to_string_lossy()
+            .into_owned();
+        let row = match impactcheck::paper::audit::paper::audit_paper(
+            &paper,
+            units.as_deref(),
+            &preamble,
+            &vocabulary,
+            false,
+            &mut |_| {},
+        ) {
+            Ok(p) => shelf::row_of(name, &p.audit),
+            Err(e) => shelf::ShelfRow {
+                paper: name,
+                error: Some(format!("{e:#}")),
+                ..Default::default()
+            },
+        };
+        serde_json::to_string(&row)
+    })
+}
+
 /// `verify init PAPER --paper ID [--units FILE] ...`: the claims file to start from, as text.
 #[pyfunction]
 #[pyo3(signature = (paper, id, units=None, preamble=vec![], vocabulary=vec![]))]
@@ -263,6 +323,8 @@ fn _impactcheck(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(series_json, m)?)?;
     m.add_function(wrap_pyfunction!(audit_json, m)?)?;
     m.add_function(wrap_pyfunction!(init_text, m)?)?;
+    m.add_function(wrap_pyfunction!(papers_in, m)?)?;
+    m.add_function(wrap_pyfunction!(audit_row_json, m)?)?;
     m.add_function(wrap_pyfunction!(_panic_for_test, m)?)?;
     Ok(())
 }

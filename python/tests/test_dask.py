@@ -1,5 +1,6 @@
 """Sweeps on a Dask LocalCluster of 2 worker processes (issue 55): the same rows as the local
-sweep, row for row; and a worker killed mid-run, the result still complete and the same."""
+sweep, row for row; and a worker killed mid-run, the result still complete and the same. A folder
+of papers audited on the cluster (issue 66): the same frame as the local audit."""
 
 import os
 import signal
@@ -37,6 +38,16 @@ def test_a_sweep_on_two_workers_is_the_local_sweep_row_for_row(client):
     numbers = [c for c in whole.columns if c != "warnings"]
     assert frame[numbers].equals(whole[numbers])
     assert list(frame.index) == list(range(5000))
+
+
+def test_a_folder_audited_on_two_workers_is_the_local_audit(client):
+    folder = ROOT / "tests" / "papers"
+    local = ic.audit_many(folder)
+    frame = icd.audit_many(folder, client)
+    assert len(frame) > 1
+    assert frame.equals(local)
+    assert list(frame.index) == list(local.index)
+    assert frame.attrs["total"] == local.attrs["total"]
 
 
 def test_a_worker_killed_mid_run_loses_no_row(client):

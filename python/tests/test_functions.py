@@ -105,6 +105,44 @@ def test_audit_and_init_of_the_test_paper_are_the_command_lines():
         ic.audit(ROOT / "no" / "paper.tex")
 
 
+def shelf_rows(frame):
+    """The frame of ``audit_many`` as the rows of ``verify audit FOLDER --format json``."""
+    return [
+        {k: v for k, v in r.items() if not (k == "error" and v is None)}
+        for r in frame.reset_index().to_dict("records")
+    ]
+
+
+def test_audit_many_of_the_test_papers_is_the_command_lines_row_by_row(monkeypatch):
+    # the folder as the command is given it, from the same place
+    monkeypatch.chdir(ROOT)
+    want = json.loads(cli("verify", "audit", "tests/papers", "--format", "json"))
+    frame = ic.audit_many("tests/papers")
+    assert frame.index.name == "paper"
+    # the command's keys (its JSON sorts them), `error` a column even where no paper has one
+    assert {"paper", *frame.columns} == {*want["papers"][0], "error"}
+    assert len(frame) == len(want["papers"]) > 1
+    assert shelf_rows(frame) == want["papers"]
+    assert frame.attrs["total"] == want["total"]
+
+
+def test_audit_many_gives_a_paper_it_cannot_read_its_error_as_the_command_does(tmp_path):
+    paper = "\\documentclass{article}\n\\begin{document}\n$$E = m c^2$$\n\\end{document}\n"
+    for name in ("a.tex", "b/c.tex"):
+        (tmp_path / name).parent.mkdir(exist_ok=True)
+        (tmp_path / name).write_text(paper)
+    units = str(tmp_path / "no-units.toml")
+    want = json.loads(cli("verify", "audit", str(tmp_path), "--units", units, "--format", "json"))
+    frame = ic.audit_many(tmp_path, units=units)
+    assert [r.get("error") for r in want["papers"]] == list(frame["error"])
+    assert all(frame["error"]) and (frame["relations"] == 0).all()
+    assert shelf_rows(frame) == want["papers"]
+    assert frame.attrs["total"] == want["total"]
+    (tmp_path / "empty").mkdir()
+    with pytest.raises(ic.ImpactcheckError, match="no paper"):
+        ic.audit_many(tmp_path / "empty")
+
+
 def test_verify_gives_the_command_lines_verdicts():
     want = json.loads(cli("verify", "--only", "classics", "--format", "json"))
     got = ic.verify(only="classics")
@@ -258,7 +296,12 @@ def test_a_panic_becomes_impactcheck_error_and_the_interpreter_lives():
 
 def test_the_dask_submodule_is_there_after_importing_the_package_alone():
     # a fresh interpreter, so that no other test has imported impactcheck.dask first
-    code = "import impactcheck as ic; print(ic.dask.sweep.__name__); ic.nothing"
+    # nor is the submodule, or Dask, imported until it is used
+    code = (
+        "import sys, impactcheck as ic; "
+        "print([m for m in ('impactcheck.dask', 'dask', 'distributed') if m in sys.modules]); "
+        "print(ic.dask.sweep.__name__, ic.dask.audit_many.__name__); ic.nothing"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
-    assert out.stdout.strip() == "sweep", out.stderr
+    assert out.stdout.splitlines() == ["[]", "sweep audit_many"], out.stderr
     assert "AttributeError: module 'impactcheck' has no attribute 'nothing'" in out.stderr

@@ -104,7 +104,7 @@ pub fn audit_paper(
             })?;
         vocab = vocab.extended(more);
     }
-    let text = std::fs::read_to_string(paper)
+    let text = crate::paper::source::files::read_text(paper)
         .with_context(|| format!("reading the paper {}", paper.display()))?;
     let units = match units {
         Some(u) => super::read_units(u)?,
@@ -113,7 +113,7 @@ pub fn audit_paper(
     let mut macros = String::new();
     for p in preamble {
         macros.push_str(
-            &std::fs::read_to_string(p)
+            &crate::paper::source::files::read_text(p)
                 .with_context(|| format!("reading the preamble {}", p.display()))?,
         );
         macros.push('\n');
@@ -139,8 +139,10 @@ pub fn audit_paper(
     // the units the paper's words give its symbols (a displays extract has no words)
     let units = if let Some(d) = &doc {
         // the prose of every file of the paper, its lines those of the displays
-        let expanded = crate::paper::source::macros::expand_with(&d.text, &macros)
-            .map_or_else(|_| d.text.clone(), |e| e.0);
+        let known = crate::paper::source::packages::preamble_of(&format!("{}\n{macros}", d.text));
+        let expanded =
+            crate::paper::source::macros::expand_with(&d.text, &format!("{known}{macros}"))
+                .map_or_else(|_| d.text.clone(), |e| e.0);
         let mut words = super::paper_words(&expanded, &blocks, &units, &vocab);
         if d.has_inputs() {
             for w in words.units.values_mut() {

@@ -1,6 +1,7 @@
 //! `verify audit DIR` (issue 66): every paper under a folder audited, one row each and the
-//! totals. A paper is a `.tex` file that opens a document (`\documentclass`), or a `.md` note
-//! with display math; the files a paper inputs are read as its parts, not as papers.
+//! totals. A paper is a `.tex` file that opens a document (`\documentclass` or
+//! `\begin{document}`, its class perhaps in an input header) that no other paper inputs, or a
+//! `.md` note with display math; the files a paper inputs are read as its parts, not as papers.
 
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -27,8 +28,9 @@ pub struct ShelfRow {
     pub error: Option<String>,
 }
 
-/// The papers under `dir`, sorted: `.tex` files with `\documentclass`, `.md` files with display
-/// math. Hidden folders are passed over.
+/// The papers under `dir`, sorted: `.tex` files with `\documentclass` or `\begin{document}`
+/// that no other such file inputs (a header with the class, a chapter of `subfiles`), `.md`
+/// files with display math. Hidden folders are passed over.
 pub fn papers_in(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     let mut out = Vec::new();
     let mut stack = vec![dir.to_path_buf()];
@@ -49,11 +51,14 @@ pub fn papers_in(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
                 continue;
             }
             let ext = p.extension().and_then(|e| e.to_str()).unwrap_or("");
-            let Ok(text) = std::fs::read_to_string(&p) else {
+            let Ok(text) = crate::paper::source::files::read_text(&p) else {
                 continue;
             };
             let paper = match ext {
-                "tex" => text.contains("\\documentclass"),
+                "tex" => {
+                    let text = crate::paper::source::files::strip_comments(&text);
+                    text.contains("\\documentclass") || text.contains("\\begin{document}")
+                }
                 "md" => text.contains("$$") || text.contains("\\begin{equation"),
                 _ => false,
             };
@@ -63,7 +68,32 @@ pub fn papers_in(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
         }
     }
     out.sort();
+    // a file another paper reads is a part of that paper
+    let mut parts = std::collections::BTreeSet::new();
+    for p in &out {
+        if p.extension().is_some_and(|e| e == "tex") {
+            parts.extend(inputs_of(p));
+        }
+    }
+    out.retain(|p| !parts.contains(p));
     Ok(out)
+}
+
+/// The files the paper `p` reads through its inputs (as the audit follows them), as paths
+/// beside `p`.
+fn inputs_of(p: &Path) -> Vec<PathBuf> {
+    let Ok(text) = crate::paper::source::files::read_text(p) else {
+        return Vec::new();
+    };
+    let dir = p.parent().unwrap_or(Path::new("."));
+    let load = crate::paper::source::blocks::folder_loader(dir);
+    let (_, spans, _) = crate::paper::source::files::assemble(&text, &load);
+    spans
+        .iter()
+        .filter(|s| !s.file.is_empty())
+        .map(|s| dir.join(&s.file))
+        .filter(|f| f != p)
+        .collect()
 }
 
 /// The row of an audit.

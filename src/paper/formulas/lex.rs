@@ -41,7 +41,41 @@ pub(super) fn lex(src: &str, syms: &TexSymbols) -> Vec<(Tok, usize)> {
             if j == start && j < chars.len() {
                 j += 1;
             }
-            out.push((Tok::Cmd(chars[start..j].iter().collect()), col));
+            let mut name: String = chars[start..j].iter().collect();
+            // `\` before a line break or a tab: TeX's control space
+            if !name.is_empty() && name.chars().all(char::is_whitespace) {
+                name = " ".into();
+            }
+            // `\mkern-3mu`, `\kern 0.2em`: a space of the length that follows
+            if matches!(name.as_str(), "mkern" | "kern" | "mskip" | "hskip") {
+                let mut k = j;
+                while k < chars.len() && chars[k] == ' ' {
+                    k += 1;
+                }
+                if k < chars.len() && (chars[k] == '-' || chars[k] == '+') {
+                    k += 1;
+                }
+                let digits = k;
+                while k < chars.len() && (chars[k].is_ascii_digit() || chars[k] == '.') {
+                    k += 1;
+                }
+                if k > digits && k + 1 < chars.len() && chars[k].is_ascii_alphabetic() {
+                    i = k + 2;
+                    continue;
+                }
+            }
+            // `\text{,}`, `\mbox{ .}`: the sentence's punctuation, no part of the formula
+            if matches!(name.as_str(), "text" | "mbox" | "textrm" | "mathrm")
+                && chars.get(j) == Some(&'{')
+                && let Some(len) = chars[j + 1..].iter().position(|c| *c == '}')
+                && chars[j + 1..j + 1 + len]
+                    .iter()
+                    .all(|c| " ,.;:".contains(*c))
+            {
+                i = j + len + 2;
+                continue;
+            }
+            out.push((Tok::Cmd(name), col));
             i = j;
         } else if c.is_ascii_digit()
             || (c == '.' && chars.get(i + 1).is_some_and(char::is_ascii_digit))
@@ -90,6 +124,38 @@ pub(super) fn lex(src: &str, syms: &TexSymbols) -> Vec<(Tok, usize)> {
         }
     }
     out.push((Tok::End, chars.len() + 1));
+    unstyled_operators(out)
+}
+
+/// `\mathrm{\partial}`, `\mathrm{\infty}` (a macro's `\pd` made upright): the operator itself,
+/// a font changing nothing of what a symbol that is no letter means; `\limits` and `\nolimits`
+/// dropped.
+fn unstyled_operators(toks: Vec<(Tok, usize)>) -> Vec<(Tok, usize)> {
+    let mut out = Vec::with_capacity(toks.len());
+    let mut i = 0;
+    while i < toks.len() {
+        // `\int\limits_{0}^{x}`, `\sum\nolimits_i`: where the bounds are printed, not what
+        if matches!(&toks[i].0, Tok::Cmd(c) if c == "limits" || c == "nolimits") {
+            i += 1;
+            continue;
+        }
+        if let [
+            (Tok::Cmd(f), _),
+            (Tok::Open, _),
+            (Tok::Cmd(c), col),
+            (Tok::Close, _),
+            ..,
+        ] = &toks[i..]
+            && accent_suffix(f) == Some("")
+            && matches!(c.as_str(), "partial" | "infty" | "nabla")
+        {
+            out.push((Tok::Cmd(c.clone()), *col));
+            i += 4;
+            continue;
+        }
+        out.push(toks[i].clone());
+        i += 1;
+    }
     out
 }
 

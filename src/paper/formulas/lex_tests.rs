@@ -289,3 +289,56 @@ fn a_comma_at_the_top_of_a_superscript_makes_a_label() {
     );
     assert!(read("p^{a} + q").contains('^'));
 }
+
+#[test]
+fn an_upright_partial_or_infinity_is_the_operator_itself() {
+    // by hand: `\mathrm{\partial}` is `\partial` (a macro `\pd` made upright), and so on
+    for font in ["mathrm", "mathit", "text", "boldsymbol"] {
+        for c in ["partial", "infty", "nabla"] {
+            let tex = format!("\\{font}{{\\{c}}} x");
+            assert_eq!(toks(&tex)[0], Tok::Cmd(c.into()), "{tex}");
+        }
+    }
+    // a letter in a font stays a letter in a font
+    assert_eq!(toks("\\mathrm{d} x")[0], Tok::Cmd("mathrm".into()));
+    // the derivative it writes reads as the one with `\partial`
+    assert_eq!(
+        read("\\frac{\\mathrm{\\partial} T}{\\mathrm{\\partial} t}"),
+        read("\\frac{\\partial T}{\\partial t}")
+    );
+}
+
+#[test]
+fn limits_only_place_the_bounds() {
+    // by hand: the same integral and sum with and without `\limits`
+    assert_eq!(
+        read("\\int\\limits_{0}^{x} t^{2} dt"),
+        read("\\int_{0}^{x} t^{2} dt")
+    );
+    assert_eq!(
+        read("\\sum\\nolimits_{i=0}^{n} a_i"),
+        read("\\sum_{i=0}^{n} a_i")
+    );
+}
+
+#[test]
+fn a_kern_and_its_length_are_a_space() {
+    // by hand: `a\mkern-3mu b` is `a b`; the length's unit is two letters (mu, pt, em)
+    assert_eq!(read("a \\mkern-3mu b"), read("a b"));
+    assert_eq!(read("a \\kern 0.2em b"), read("a b"));
+    assert_eq!(read("x\\mskip 2mu+y"), read("x+y"));
+}
+
+#[test]
+fn punctuation_in_text_is_no_part_of_the_formula() {
+    // by hand: `a + b\text{,}` is `a + b`; a word in text is kept (and read as before)
+    assert_eq!(read("a + b\\text{,}"), read("a + b"));
+    assert_eq!(read("a + b \\mbox{ .}"), read("a + b"));
+    assert_ne!(toks("\\text{if} x").len(), toks("x").len());
+}
+
+#[test]
+fn a_backslash_before_a_line_break_is_a_space() {
+    assert_eq!(read("a +\\\n b"), read("a + b"));
+    assert_eq!(read("a +\\\t b"), read("a + b"));
+}

@@ -337,6 +337,14 @@ fn a_multi_digit_script_is_refused_and_a_subscript_on_a_group_marks_it() {
         (r"(a b)^\dagger", "marked(a*b)"),
         (r"\mathrm{Im}[a b]", "marked(a*b)"),
         (r"\Re\left(a\right)", "marked(a)"),
+        (r"\mathrm{Re}(a)", "marked(a)"),
+        // a one-sided value, the side marked by a bare sign
+        (
+            r"\left(\frac{\partial T}{\partial q}\right)^+",
+            "marked(diff(T, q))",
+        ),
+        ("(a b)^{-}", "marked(a*b)"),
+        ("(a b)^{'}", "marked(a*b)"),
     ] {
         let e = read_formula(tex, &s).unwrap();
         assert_eq!(e.to_string(), read, "{tex}");
@@ -346,6 +354,10 @@ fn a_multi_digit_script_is_refused_and_a_subscript_on_a_group_marks_it() {
     // an effective modulus, is a quantity of its own)
     let e = read_formula(r"u^\dagger + A^\top + E^*", &s).unwrap();
     assert_eq!(e.to_string(), "marked(u) + marked(A) + Estar");
+    // `\mathrm{Re}` without an argument is a name (the Reynolds number), as `0^+` is 0 marked
+    same(r"\mathrm{Re}_p^{1/2}", "Rep^(1/2)");
+    let e = read_formula(r"(x y)^- + y^{-1} + 0^+", &s).unwrap();
+    assert_eq!(e.to_string(), "marked(x*y) + y^-1 + marked(0)");
 }
 
 #[test]
@@ -455,6 +467,51 @@ fn a_phantom_is_space_even_unclosed() {
     assert_eq!(
         rows[0].relations[0].as_ref().expect("reads").sides[1].to_string(),
         "b"
+    );
+}
+
+#[test]
+fn a_frame_written_before_a_name_is_part_of_the_name() {
+    // by hand: `{}^N\omega` is one name, the angular velocity in N
+    same(r"{}^N\boldsymbol{\omega}", "Nomega");
+    same(r"^{A}\mathbf{R} + x", "AR + x");
+    // a power after a name stays a power
+    same(r"a^{2}", "a^2");
+}
+
+#[test]
+fn an_integral_over_a_named_region_without_a_differential_is_over_its_measure() {
+    // by hand: `\int_\Omega N f` integrates over the measure of Omega, one symbol per region
+    let s = TexSymbols::default();
+    let e = read_formula(r"\int_\Omega N f + \int_\Omega g", &s).expect("reads");
+    let syms = e.symbols();
+    assert!(syms.contains(&"{measure Omega}".to_string()), "{syms:?}");
+    assert_eq!(syms.len(), 4, "{syms:?}");
+    // with no region named there is no measure to take: refused
+    assert!(read_formula(r"\int N f", &s).is_err());
+}
+
+#[test]
+fn a_half_index_is_part_of_the_name() {
+    // by hand: the grid values at i - 1/2 and i + 1/2 are two names
+    same(
+        r"a_{i-\frac{1}{2}} + a_{i+\frac{1}{2}}",
+        "aiminus1over2 + aiplus1over2",
+    );
+}
+
+#[test]
+fn spacing_after_the_last_comma_of_a_row_is_no_relation() {
+    // by hand: two relations, the `\,` after the last comma nothing
+    let rows = read_display(
+        r"\hat{x} = \frac{x}{L},\, \hat{u} = \frac{u}{U},\,",
+        &TexSymbols::default(),
+    );
+    assert_eq!(rows[0].relations.len(), 2, "{:?}", rows[0].relations);
+    assert!(
+        rows[0].relations.iter().all(Result::is_ok),
+        "{:?}",
+        rows[0].relations
     );
 }
 

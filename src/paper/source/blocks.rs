@@ -61,7 +61,7 @@ pub fn folder_loader(dir: &std::path::Path) -> impl Fn(&str) -> Result<String, S
         if !real.starts_with(&root) {
             return Err(refuse());
         }
-        std::fs::read_to_string(&real)
+        super::files::read_text(&real)
             .map_err(|e| format!("`\\input{{{name}}}`: {}: {e}", real.display()))
     }
 }

@@ -337,7 +337,7 @@ pub fn read_display(block: &str, syms: &TexSymbols) -> Vec<TexRow> {
                         .trim()
                         .to_string()
                 })
-                .filter(|p| !p.is_empty())
+                .filter(|p| !blank(p))
                 .flat_map(|p| colon_split(&p))
                 .flat_map(|p| unwrap_condition(&p))
                 .flat_map(|p| branches(&p))
@@ -350,6 +350,16 @@ pub fn read_display(block: &str, syms: &TexSymbols) -> Vec<TexRow> {
             }
         })
         .collect()
+}
+
+/// Whether a piece of a row holds nothing but spacing and punctuation (`\,` after the last
+/// comma of `\hat{u} = u/U,\,`): no relation.
+fn blank(piece: &str) -> bool {
+    let mut rest = piece.to_string();
+    for space in ["\\qquad", "\\quad", "\\,", "\\;", "\\:", "\\!", "\\ ", "~"] {
+        rest = rest.replace(space, "");
+    }
+    rest.chars().all(|c| c.is_whitespace() || ",.;".contains(c))
 }
 
 /// What separates the relations of a row at its top level.

@@ -317,6 +317,38 @@ enum Next {
     Sub(usize, bool),
 }
 
+/// Where the first `$$` of `rest` that opens a display is: not one inside inline math, where
+/// two formulas meet (`${d\delta}$$/{dt} > 0$` closes one and opens the next). Inline math ends
+/// at a blank line, as TeX's does.
+fn display_dollars(rest: &str) -> Option<usize> {
+    let b = rest.as_bytes();
+    let mut inline = false;
+    let mut i = 0;
+    while i < b.len() {
+        match b[i] {
+            b'\\' => i += 1,
+            b'$' if b.get(i + 1) == Some(&b'$') => {
+                if !inline {
+                    return Some(i);
+                }
+                i += 1;
+            }
+            b'$' => inline = !inline,
+            b'\n'
+                if inline
+                    && rest[i + 1..]
+                        .trim_start_matches([' ', '\t'])
+                        .starts_with('\n') =>
+            {
+                inline = false;
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    None
+}
+
 fn next_item(text: &str, from: usize) -> Option<Next> {
     let rest = &text[from..];
     let mut best: Option<(usize, Next)> = None;
@@ -325,7 +357,7 @@ fn next_item(text: &str, from: usize) -> Option<Next> {
             best = Some((i, n));
         }
     };
-    if let Some(i) = rest.find("$$") {
+    if let Some(i) = display_dollars(rest) {
         offer(from + i, Next::Dollars(from + i));
     }
     if let Some(i) = rest.find("\\[") {
@@ -387,6 +419,11 @@ pub fn read_document_full(source: &str, preamble: &str, load: Loader) -> Documen
     let text = super::siunitx::plain(&text);
     let assembled = text.clone();
     let preamble = super::files::inline_inputs(preamble, load, &mut problems);
+    // the macros of the packages it loads first, then the preamble's
+    let preamble = format!(
+        "{}{preamble}",
+        super::packages::preamble_of(&format!("{text}\n{preamble}"))
+    );
     let text = drop_verbatim(&text);
     let text = match super::macros::expand_with(&text, &preamble) {
         Ok((expanded, _, short)) => {
@@ -551,6 +588,18 @@ fn line_of(text: &str, at: usize) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn two_inline_formulas_back_to_back_are_no_display() {
+        // by hand: `$a$$b$` is two inline formulas; the display after them is the only one
+        let d = read_document("we have ${d\\delta}$$/{dt} > 0$ while $x$.\n$$ a = b $$\nthen $y$");
+        let latex: Vec<&str> = d.displays.iter().map(|x| x.latex.trim()).collect();
+        assert_eq!(latex, ["a = b"], "{:?}", d.displays);
+        // a `$` left open ends with its paragraph; an escaped dollar opens nothing
+        let d = read_document("costs \\$5 and $x\n\n$$ c = d $$");
+        let latex: Vec<&str> = d.displays.iter().map(|x| x.latex.trim()).collect();
+        assert_eq!(latex, ["c = d"], "{:?}", d.displays);
+    }
 
     #[test]
     fn an_unbraced_input_is_read_but_no_unbraced_include() {

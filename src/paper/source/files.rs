@@ -7,12 +7,22 @@
 //! too deep) is left out and named in the problems with the `file:line` of the command; the
 //! rest is read all the same.
 
+/// A file's text: UTF-8, or else Latin-1 (each byte its character), as the TeX sources
+/// written before UTF-8 (`\usepackage[latin1]{inputenc}`) are.
+pub fn read_text(path: &std::path::Path) -> std::io::Result<String> {
+    let bytes = std::fs::read(path)?;
+    Ok(match String::from_utf8(bytes) {
+        Ok(s) => s,
+        Err(e) => e.into_bytes().iter().map(|&b| char::from(b)).collect(),
+    })
+}
+
 /// How a paper's `\input{name}` is read: its text, or why not (a path outside the paper's
 /// folder is refused by the caller's loader, naming it).
 pub type Loader<'a> = &'a dyn Fn(&str) -> Result<String, String>;
 
 /// Text without its comments: `%` to the end of the line, unless escaped (`\%`).
-pub(super) fn strip_comments(text: &str) -> String {
+pub fn strip_comments(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     for line in text.split_inclusive('\n') {
         let mut prev = ' ';
@@ -94,6 +104,10 @@ const MAX_FILES: usize = 2000;
 struct Assembly<'a> {
     load: Loader<'a>,
     wrappers: Vec<(String, String)>,
+    /// The paper's macros without arguments whose body is a path (`\newcommand{\mainpath}{..}`).
+    paths: Vec<(String, String)>,
+    /// The folders `\def\input@path{{chapters/}{parts/}}` adds to the search for an input.
+    search: Vec<String>,
     files: usize,
     stack: Vec<String>,
     problems: Vec<String>,
@@ -102,9 +116,13 @@ struct Assembly<'a> {
 /// `text` (comments dropped) with every input replaced by its file's text (its own inputs
 /// followed), the runs of lines of each file, and what could not be followed.
 pub fn assemble(text: &str, load: Loader) -> (String, Vec<Span>, Vec<String>) {
+    let clean = strip_comments(text);
+    let (wrappers, paths) = wrappers(&clean);
     let mut a = Assembly {
         load,
-        wrappers: wrappers(&strip_comments(text)),
+        wrappers,
+        paths,
+        search: input_path(&clean),
         files: 0,
         stack: Vec::new(),
         problems: Vec::new(),
@@ -120,11 +138,16 @@ pub(super) fn inline_inputs(text: &str, load: Loader, problems: &mut Vec<String>
     out
 }
 
+/// Pairs of names and texts.
+type Pairs = Vec<(String, String)>;
+
 /// The paper's macros of one argument whose body inputs a file named by it
 /// (`\newcommand{\chapterinclude}[1]{\include{chapters/#1}}`, `\def\sec#1{\input{#1}}`): each
-/// name with the file its argument names (`chapters/#1`).
-fn wrappers(text: &str) -> Vec<(String, String)> {
+/// name with the file its argument names (`chapters/#1`); and its macros without argument whose
+/// body is a path (`\newcommand{\mainpath}{/home/me/thesis/}`), each name with its path.
+fn wrappers(text: &str) -> (Pairs, Pairs) {
     let mut out = Vec::new();
+    let mut paths = Vec::new();
     for def in [
         "\\newcommand",
         "\\renewcommand",
@@ -150,6 +173,18 @@ fn wrappers(text: &str) -> Vec<(String, String)> {
             let Some((body, _)) = braced(text, body_at) else {
                 continue;
             };
+            // no parameter, no command in the body: a path, perhaps
+            if tail[..open]
+                .trim()
+                .trim_start_matches('}')
+                .trim()
+                .is_empty()
+                && !name.is_empty()
+                && !body.contains(['\\', '#', '$', ' '])
+                && !body.is_empty()
+            {
+                paths.push((name.to_string(), body.clone()));
+            }
             for cmd in ["\\input", "\\include", "\\subfile"] {
                 if let Some(j) = body.find(cmd)
                     && let Some((file, _)) = braced(&body, j + cmd.len())
@@ -161,7 +196,60 @@ fn wrappers(text: &str) -> Vec<(String, String)> {
             }
         }
     }
+    (out, paths)
+}
+
+/// The folders of `\def\input@path{{a/}{b/}}` (or `\makeatletter\def\input@path..`), in order.
+fn input_path(text: &str) -> Vec<String> {
+    let Some(k) = text.find("\\input@path") else {
+        return Vec::new();
+    };
+    let Some((list, _)) = braced(text, k + "\\input@path".len()) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    let mut at = 0;
+    while let Some((dir, end)) = braced(&list, at) {
+        out.push(dir.trim().to_string());
+        at = end;
+    }
     out
+}
+
+/// A file name with the paper's path macros in it (`\mainpath/Header`) as a path of the paper's
+/// folder: a macro whose path is relative is its path; one whose path is absolute (the folder
+/// of the paper on its author's machine) or that the paper does not define is dropped.
+fn resolved(name: &str, paths: &[(String, String)]) -> String {
+    if !name.contains('\\') {
+        return name.to_string();
+    }
+    let mut out = String::new();
+    let mut rest = name;
+    while let Some(k) = rest.find('\\') {
+        out.push_str(&rest[..k]);
+        let after = &rest[k + 1..];
+        let len = after
+            .find(|c: char| !c.is_ascii_alphabetic())
+            .unwrap_or(after.len());
+        let word = &after[..len];
+        if let Some((_, body)) = paths.iter().find(|(n, _)| n == word)
+            && !body.starts_with(['/', '~'])
+            && !body.contains(':')
+        {
+            out.push_str(body);
+        }
+        rest = after[len..]
+            .strip_prefix(['{', ' '])
+            .unwrap_or(&after[len..]);
+        rest = rest.strip_prefix('}').unwrap_or(rest);
+    }
+    out.push_str(rest);
+    // `/Header` after a dropped folder, `a//b` after a path that ends with `/`
+    let mut clean = out.replace("//", "/");
+    while clean.contains("//") {
+        clean = clean.replace("//", "/");
+    }
+    clean.trim_start_matches('/').to_string()
 }
 
 /// The file named `dir` + `file` as a path of the paper's folder (`./a/` and `b` give `a/b`).
@@ -271,7 +359,9 @@ impl Assembly<'_> {
             };
             // a macro's parameter (`\include{chapters/#1}` in the definition of a wrapper) names
             // no file
-            let target = target.filter(|(name, ..)| !name.contains('#'));
+            let target = target
+                .filter(|(name, ..)| !name.contains('#'))
+                .map(|(name, b, end)| (resolved(&name, &self.paths), b, end));
             let Some((name, inner_base, end)) = target else {
                 out.push_str(&text[pos..after]);
                 pos = after;
@@ -299,7 +389,14 @@ impl Assembly<'_> {
             if let Some(p) = refused {
                 self.problems.push(p);
             } else {
-                match (self.load)(name.trim()) {
+                // not beside the paper: in a folder of `\input@path`
+                let found = (self.load)(name.trim()).or_else(|e| {
+                    self.search
+                        .iter()
+                        .find_map(|d| (self.load)(&joined(d, name.trim())).ok())
+                        .ok_or(e)
+                });
+                match found {
                     Ok(inner) => {
                         self.files += 1;
                         self.stack.push(name_shown.clone());
@@ -452,5 +549,42 @@ mod tests {
         let (text, _, p) = assemble("\\input{a}", &load);
         assert_eq!(text.trim(), "A B");
         assert_eq!(p.len(), 1, "{p:?}");
+    }
+
+    #[test]
+    fn a_latin1_file_is_read_byte_by_byte() {
+        let dir = std::env::temp_dir().join(format!("latin1-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temp dir");
+        let f = dir.join("a.tex");
+        // "Gr\xf6\xdfe $x$" in Latin-1 is no UTF-8
+        std::fs::write(&f, b"Gr\xf6\xdfe $x$").expect("write");
+        assert_eq!(read_text(&f).expect("read"), "Gr\u{f6}\u{df}e $x$");
+        std::fs::write(&f, "Gr\u{f6}\u{df}e".as_bytes()).expect("write");
+        assert_eq!(read_text(&f).expect("read"), "Gr\u{f6}\u{df}e");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn a_path_macro_in_an_input_is_its_relative_path_or_dropped_when_absolute() {
+        let load = folder(&[("Header.tex", "H"), ("sub/x.tex", "X")]);
+        // the author's absolute folder: dropped, the file read from the paper's folder
+        let (text, _, p) = assemble(
+            "\\newcommand{\\mainpath}{/home/me/thesis/}\n\\input{\\mainpath/Header}",
+            &load,
+        );
+        assert!(p.is_empty(), "{p:?}");
+        assert_eq!(text.lines().last(), Some("H"));
+        // a relative folder: kept; `\def` alike
+        let (text, _, p) = assemble("\\def\\sub{sub/}\n\\input{\\sub x}", &load);
+        assert!(p.is_empty(), "{p:?}");
+        assert_eq!(text.lines().last(), Some("X"));
+        // a macro of one argument is no path
+        assert_eq!(resolved("\\a/b", &[]), "b");
+        let (_, paths) = wrappers("\\newcommand{\\f}[1]{x#1}\\newcommand{\\g}{\\alpha}");
+        assert!(paths.is_empty(), "{paths:?}");
+        // the folders LaTeX searches, `\input@path`
+        let (text, _, p) = assemble("\\def\\input@path{{none/}{sub/}}\n\\input{x}", &load);
+        assert!(p.is_empty(), "{p:?}");
+        assert_eq!(text.lines().last(), Some("X"));
     }
 }

@@ -59,6 +59,9 @@ pub fn expand_with(source: &str, preamble: &str) -> Result<Expanded, MacroError>
     let (_, mut defs) = collect(preamble)?;
     let (text, own) = collect(source)?;
     defs.extend(own);
+    // a body that uses its own name (`\renewcommand\Large{\@setsize\Large{20pt}..}` of a class
+    // file, where TeX takes the name as a token) would expand without end: left undefined
+    defs.retain(|name, mac| !uses(&mac.body, name));
     let names = defs.keys().cloned().collect();
     let mut problems = Vec::new();
     if defs.is_empty() {
@@ -66,6 +69,21 @@ pub fn expand_with(source: &str, preamble: &str) -> Result<Expanded, MacroError>
     }
     let text = expand_uses(&text, &defs, &mut problems)?;
     Ok((text, names, problems))
+}
+
+/// Whether `body` holds the control word `\name` (not as the start of a longer one).
+fn uses(body: &str, name: &str) -> bool {
+    let pat = format!("\\{name}");
+    let mut from = 0;
+    while let Some(k) = body[from..].find(&pat) {
+        let end = from + k + pat.len();
+        let word = name.chars().all(|c| c.is_ascii_alphabetic());
+        if !word || !body[end..].starts_with(|c: char| c.is_ascii_alphabetic()) {
+            return true;
+        }
+        from = end;
+    }
+    false
 }
 
 /// The line (1-based) of byte `at` of `text`.
@@ -475,8 +493,13 @@ mod tests {
 
     #[test]
     fn a_definition_that_uses_itself_and_a_missing_argument_are_errors_naming_the_macro() {
-        let e = expand("\\def\\a{\\a x} \n $\\a$").unwrap_err();
+        // two definitions that use each other expand without end: an error naming one
+        let e = expand("\\def\\a{\\b x}\\def\\b{\\a} \n $\\a$").unwrap_err();
         assert_eq!((e.name.as_str(), e.line), ("a", 2));
+        // one that uses itself (a class file's `\Large`) stays undefined, the others expand
+        let (text, _, _) =
+            expand("\\def\\Large{\\size\\Large{20pt}}\\def\\c{y}\n$\\Large \\c \\Larger$").unwrap();
+        assert_eq!(text.trim(), "$\\Large y \\Larger$");
         // a use short of its arguments stays, named, and the others are expanded
         let (text, _, problems) = expand("\\newcommand{\\f}[2]{#1#2}\n\n\\f{a}}\\f{b}{c}").unwrap();
         assert_eq!(text.trim(), "\\f{a}}bc");

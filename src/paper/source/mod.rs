@@ -4,7 +4,8 @@
 //! macros that wrap them) with a map back to each file's lines; [`document`] reads a LaTeX
 //! source as LaTeX numbers it (its `\input` files from its folder, comments and verbatim dropped, every display with its number, `\tag` and `\label`);
 //! [`macros`] expands the paper's own macros (`\newcommand`, `\def`, `\DeclareMathOperator`)
-//! before anything is parsed; [`display`] cuts a display into rows and each row into the
+//! before anything is parsed, [`packages`] those of the packages it loads (`physics`,
+//! `commath`); [`display`] cuts a display into rows and each row into the
 //! relations the formula reader reads; [`blocks`] is the entry point: a paper's text (a LaTeX
 //! source or a displays extract of `%% block N` sections) into its displays and numbers.
 
@@ -13,4 +14,5 @@ pub mod display;
 pub mod document;
 pub mod files;
 pub mod macros;
+pub mod packages;
 pub mod siunitx;

@@ -411,8 +411,18 @@ fn after_verb(next: &str) -> Option<&str> {
 fn clause(text: &str, n: usize) -> (&str, Option<Unit>) {
     let mut end = text.len();
     let b = text.as_bytes();
+    // inside the parentheses of a unit written after a slash (`W/(m K)`)
+    let mut in_unit = false;
     for (i, &c) in b.iter().enumerate() {
         let stop = match c {
+            b'(' if i > 0 && b[i - 1] == b'/' => {
+                in_unit = true;
+                false
+            }
+            b')' if in_unit => {
+                in_unit = false;
+                false
+            }
             b';' | b'(' | b')' | b'[' | b':' | b'&' | b'|' => true,
             b',' => n == 1,
             b'.' => b.get(i + 1).is_none_or(|d| d.is_ascii_whitespace()),
@@ -432,11 +442,31 @@ fn clause(text: &str, n: usize) -> (&str, Option<Unit>) {
         desc = &desc[..k];
     }
     let rest = &text[end..];
-    let unit = [('[', ']'), ('(', ')')].iter().find_map(|(o, c)| {
-        let inner = rest.strip_prefix(*o)?;
-        written_unit(&inner[..inner.find(*c)?])
-    });
+    let unit = [('[', ']'), ('(', ')')]
+        .iter()
+        .find_map(|(o, c)| {
+            let inner = rest.strip_prefix(*o)?;
+            written_unit(&inner[..inner.find(*c)?])
+        })
+        .or_else(|| unit_said(desc));
     (desc.trim_end_matches([',', ' ', '\n']), unit)
+}
+
+/// The unit a description says in words: "measured in K", "given in W/(m K)", "expressed in
+/// N m", "in Pa" (the whole rest a written unit).
+fn unit_said(desc: &str) -> Option<Unit> {
+    let d = desc.trim();
+    let lower = d.to_ascii_lowercase();
+    let verb = ["measured in ", "given in ", "expressed in ", "in "]
+        .iter()
+        .find(|v| lower.starts_with(**v))?;
+    let unit = d[verb.len()..].trim_end_matches([',', ' ', '\n']);
+    // after "in", a unit of one capital letter is that unit ("measured in K")
+    let one = unit.len() == 1 && unit.starts_with(|c: char| c.is_ascii_uppercase());
+    if one {
+        return Unit::named(unit);
+    }
+    written_unit(unit)
 }
 
 /// A list's descriptions: "A, B and C" in three, or one for all.
@@ -752,7 +782,9 @@ pub fn read_words(text: &str, syms: &TexSymbols, vocab: &Vocabulary) -> Words {
         for (tex, g) in group.iter().zip(given) {
             let Some((nm, quote)) = g else { continue };
             let head = nm.quantity.rsplit('_').next().unwrap_or_default();
-            if dimensionless::specific_in_paragraph(&p, *off, head) {
+            // a quantity specific by its name (the specific heat) is the one named
+            let specific = nm.quantity.starts_with("specific");
+            if !specific && dimensionless::specific_in_paragraph(&p, *off, head) {
                 continue;
             }
             let key = in_where_clause(&p, *off) || nomenclature_line;
@@ -895,7 +927,13 @@ fn clause_tail(text: &str) -> &str {
             k + text[k..].chars().next().map_or(1, char::len_utf8)
         });
     let tail = &text[cut..];
-    match tail.rfind("\n\n") {
+    let tail = match tail.rfind("\n\n") {
+        Some(k) => &tail[k + 2..],
+        None => tail,
+    };
+    // a row of a table or a nomenclature ends at `\\`: the words of the row before name
+    // nothing of this one ("Fluid temperature\\ $\gamma$ & Specific heat ratio")
+    match tail.rfind("\\\\") {
         Some(k) => &tail[k + 2..],
         None => tail,
     }

@@ -431,3 +431,35 @@ fn a_list_that_says_its_verb_once_names_every_symbol() {
     assert_eq!(unit("x"), None);
     assert_eq!(unit("y"), None);
 }
+
+#[test]
+fn a_row_of_a_nomenclature_names_nothing_of_the_next_row() {
+    // by hand: T is the temperature; gamma, the ratio of specific heats, gets no kelvin from
+    // the row before it
+    let w = read_words(
+        "\\begin{tabular}{ll}\n$T$ & Fluid temperature\\\\\n$\\gamma$ & Specific heat ratio\\\\\n\\end{tabular}\n",
+        &TexSymbols::default(),
+        &vocab(),
+    );
+    let unit = |s: &str| w.units.get(s).map(|u| u.unit.to_string());
+    assert_eq!(unit("T").as_deref(), Some("K"));
+    // (a ratio, or nothing: never a temperature nor a specific heat)
+    assert!(
+        matches!(unit("gamma").as_deref(), None | Some("1")),
+        "{:?}",
+        unit("gamma")
+    );
+}
+
+#[test]
+fn a_unit_said_after_in_is_the_symbol_s_unit() {
+    // by hand: "measured in K", "given in W/(m K)" (one unit, not W/ and (m K))
+    let w = read_words(
+        "The temperature $T$ is measured in K and $k$ is given in W/(m K).",
+        &TexSymbols::default(),
+        &vocab(),
+    );
+    let unit = |s: &str| w.units.get(s).map(|u| u.unit.to_string());
+    assert_eq!(unit("T").as_deref(), Some("K"));
+    assert_eq!(unit("k").as_deref(), Some("kg m s^-3 K^-1"));
+}

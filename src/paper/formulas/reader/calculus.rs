@@ -295,8 +295,10 @@ impl Reader<'_> {
     /// d\eta`): its integrand read (so that what it holds is a formula), the whole an opaque
     /// symbol named by its text (`{\int x d \sigma}`), as a function application is. The
     /// formula language has no region: a claim maps the spelling in `[tex_symbols]`, or the
-    /// claim's reader refuses the symbol naming it.
-    pub(super) fn region_integral(&mut self) -> R<Expr> {
+    /// claim's reader refuses the symbol naming it. Over a named region without a differential
+    /// (`\int_\Omega N f`, as finite-element texts write it), the measure of that region is the
+    /// differential: one symbol per region (`{measure Omega}`), its unit the inference's.
+    pub(super) fn region_integral(&mut self, region: Option<String>) -> R<Expr> {
         self.skip_space();
         // inside the integrand `d \sigma` ends the product; the depth is restored as it was
         let outer = self.in_integral;
@@ -313,7 +315,15 @@ impl Reader<'_> {
             return Ok(Expr::Calc(Calc::Region, Box::new(body), var, vec![]));
         }
         if !self.is_differential() {
-            return self.err("the differential `d \\sigma` closing an integral over a region");
+            return match region {
+                Some(r) => Ok(Expr::Calc(
+                    Calc::Region,
+                    Box::new(body),
+                    format!("{{measure {r}}}"),
+                    vec![],
+                )),
+                None => self.err("the differential `d \\sigma` closing an integral over a region"),
+            };
         }
         while self.is_differential() {
             let power = self.skip_differential_mark();

@@ -70,10 +70,20 @@ impl Reader<'_> {
         if mark(self.at(1)) {
             return Some(2);
         }
+        // `(\partial T / \partial \dot q)^+`, `0^-`, `S^{'}`: the side or the instant taken, the
+        // quantity's unit (a bare sign before an operand, `x^-1`, is TeX's `x^{-}1`: no mark)
+        let sign = |t: Option<&Tok>| matches!(t, Some(Tok::Ch('+' | '-' | '\'')));
+        let operand = matches!(
+            self.at(2),
+            Some(Tok::Num(_) | Tok::Sym(_) | Tok::Open | Tok::Cmd(_))
+        ) || matches!(self.at(2), Some(Tok::Ch(c)) if c.is_alphanumeric() || *c == '(');
+        if sign(self.at(1)) && !operand {
+            return Some(2);
+        }
         if self.at(1) != Some(&Tok::Open) {
             return None;
         }
-        if mark(self.at(2)) && self.at(3) == Some(&Tok::Close) {
+        if (mark(self.at(2)) || sign(self.at(2))) && self.at(3) == Some(&Tok::Close) {
             return Some(4);
         }
         // `^{\mathrm{T}}`, `^{\rm T}`: a transpose

@@ -509,6 +509,18 @@ impl<'a> Reader<'a> {
                 self.maybe_applied(name)
             }
             Tok::Cmd(c) => self.command(&c, col),
+            // `{}^N\omega^B`, `^{A}\mathbf{R}`: a frame's label written before the name, part
+            // of the name (the angular velocity of B in N is a quantity of its own)
+            Tok::Ch('^')
+                if !matches!(self.peek(), Tok::End | Tok::Ch(_))
+                    || matches!(self.peek(), Tok::Ch(c) if c.is_ascii_alphanumeric()) =>
+            {
+                let label = self.name_text()?;
+                match self.atom()? {
+                    Expr::Sym(s) => Ok(Expr::Sym(format!("{label}{s}"))),
+                    other => Ok(marked(other)),
+                }
+            }
             t => {
                 self.pos -= usize::from(t != Tok::End);
                 self.err("a formula")
@@ -558,7 +570,11 @@ impl<'a> Reader<'a> {
             }
             // `\mathrm{Re}[..]`, `\operatorname{Im}(..)`: a real or imaginary part, the unit of
             // its argument
-            if suffix.is_empty() && matches!(inner.as_str(), "Re" | "Im") {
+            // (without one, `\mathrm{Re}_p`, `\mathrm{Re}^{1/2}`: the Reynolds number, a name)
+            self.skip_space();
+            let opens = matches!(self.peek(), Tok::Ch('(' | '[') | Tok::Open)
+                || matches!(self.peek(), Tok::Cmd(c) if c == "left" || c.starts_with("big") || c.starts_with("Big"));
+            if suffix.is_empty() && matches!(inner.as_str(), "Re" | "Im") && opens {
                 let arg = self.function_argument()?;
                 return Ok(marked(arg));
             }
@@ -681,15 +697,16 @@ impl<'a> Reader<'a> {
             "int" | "iint" | "iiint" | "oint" | "oiint" => {
                 // `\iiint_V`: the region named, not a bound; `\int^{t}` an antiderivative's
                 // upper end (the unit of `\int f dt` whatever it is)
+                let mut region = None;
                 if *self.peek() == Tok::Ch('_') {
                     self.bump();
-                    self.group()?;
+                    region = Some(self.group()?.to_string());
                 }
                 if *self.peek() == Tok::Ch('^') {
                     self.bump();
                     self.group()?;
                 }
-                self.region_integral()
+                self.region_integral(region)
             }
             "begin" => self.matrix(col),
             other => Err(TexError {

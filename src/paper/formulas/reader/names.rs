@@ -74,6 +74,13 @@ impl Reader<'_> {
                     self.bump();
                     out.push_str(&c[..3]);
                 }
+                // `a_{i+\frac{1}{2}}`: a half index of a grid
+                Tok::Cmd(c) if braced && matches!(c.as_str(), "frac" | "tfrac" | "dfrac") => {
+                    self.bump();
+                    let top = self.name_text()?;
+                    let bottom = self.name_text()?;
+                    out.push_str(&format!("{top}over{bottom}"));
+                }
                 Tok::Open if braced => {
                     let inner = self.name_text()?;
                     out.push_str(&inner);
