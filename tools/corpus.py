@@ -124,10 +124,17 @@ def included(main: Path) -> set[Path]:
             text = strip_comments(f.read_text(encoding="utf-8", errors="replace"))
         except OSError:
             continue
+        # the folders of `\\input@path`, in the file or in its own class or packages
+        search = SEARCH.findall(text)
+        for cls in re.findall(r"\\(?:documentclass|usepackage)(?:\[[^\]]*\])?\{([^}]*)\}", text):
+            for ext in (".cls", ".sty"):
+                own = main.parent / (cls.strip() + ext)
+                if own.is_file():
+                    search += SEARCH.findall(strip_comments(own.read_text(encoding="utf-8", errors="replace")))
         for name in INPUT.findall(text):
             # a path macro (`\\mainpath/Header`): the paper's folder on its author's machine
             name = re.sub(r"\\[A-Za-z]+\s*/?", "", name).lstrip("/")
-            dirs = [""] + re.findall(r"\{([^{}]*)\}", (SEARCH.findall(text) or [""])[0])
+            dirs = [""] + [d for found in search for d in re.findall(r"\{([^{}]*)\}", found)]
             cands = [main.parent / d / n for d in dirs for n in (name.strip(), name.strip() + ".tex")]
             for cand in cands:
                 if cand.is_file() and cand not in seen:

@@ -124,7 +124,52 @@ pub(super) fn lex(src: &str, syms: &TexSymbols) -> Vec<(Tok, usize)> {
         }
     }
     out.push((Tok::End, chars.len() + 1));
-    unstyled_operators(out)
+    bounds_in_order(unstyled_operators(out))
+}
+
+/// The index after a script's argument that starts at `k`: one token, or a group.
+fn argument_end(toks: &[(Tok, usize)], k: usize) -> Option<usize> {
+    match toks.get(k)?.0 {
+        Tok::Open => {
+            let mut depth = 0usize;
+            for (j, (t, _)) in toks.iter().enumerate().skip(k) {
+                match t {
+                    Tok::Open => depth += 1,
+                    Tok::Close => {
+                        depth -= 1;
+                        if depth == 0 {
+                            return Some(j + 1);
+                        }
+                    }
+                    Tok::End => return None,
+                    _ => {}
+                }
+            }
+            None
+        }
+        Tok::End | Tok::Close => None,
+        _ => Some(k + 1),
+    }
+}
+
+/// `\sum^n_{i=1}`, `\int^b_a`: the upper bound written first, put after the lower one (TeX
+/// takes the scripts in either order; the reader reads `_` then `^`).
+fn bounds_in_order(mut toks: Vec<(Tok, usize)>) -> Vec<(Tok, usize)> {
+    let big = |t: &Tok| matches!(t, Tok::Cmd(c) if matches!(c.as_str(), "sum" | "prod" | "int" | "iint" | "iiint" | "oint"));
+    let mut i = 0;
+    while i + 1 < toks.len() {
+        if big(&toks[i].0)
+            && toks[i + 1].0 == Tok::Ch('^')
+            && let Some(up) = argument_end(&toks, i + 2)
+            && toks.get(up).is_some_and(|t| t.0 == Tok::Ch('_'))
+            && let Some(down) = argument_end(&toks, up + 1)
+        {
+            // [^ hi][_ lo] -> [_ lo][^ hi]
+            toks[i + 1..down].rotate_left(up - (i + 1));
+        }
+        i += 1;
+    }
+    toks
 }
 
 /// `\mathrm{\partial}`, `\mathrm{\infty}` (a macro's `\pd` made upright): the operator itself,

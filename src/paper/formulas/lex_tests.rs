@@ -342,3 +342,10 @@ fn a_backslash_before_a_line_break_is_a_space() {
     assert_eq!(read("a +\\\n b"), read("a + b"));
     assert_eq!(read("a +\\\t b"), read("a + b"));
 }
+
+#[test]
+fn an_upper_bound_written_first_is_the_same_bound() {
+    // by hand: TeX's `\sum^n_{i=1}` is `\sum_{i=1}^n`
+    assert_eq!(read("\\sum^n_{i=1} a_i"), read("\\sum_{i=1}^n a_i"));
+    assert_eq!(read("\\int^{b}_{a} x dx"), read("\\int_{a}^{b} x dx"));
+}

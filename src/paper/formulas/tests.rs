@@ -492,6 +492,57 @@ fn an_integral_over_a_named_region_without_a_differential_is_over_its_measure() 
 }
 
 #[test]
+fn a_group_opening_an_align_is_its_first_row_and_alignat_s_count_is_not() {
+    // by hand: `{{F}_{n}} = k` is the row; `{2}` after alignat its column count
+    let rows = read_display(
+        r"\begin{align} {{F}_{n}} = k \end{align}",
+        &TexSymbols::default(),
+    );
+    assert_eq!(rows[0].tex, "{{F}_{n}} = k");
+    let rows = read_display(
+        r"\begin{alignat}{2} a &= b \end{alignat}",
+        &TexSymbols::default(),
+    );
+    assert_eq!(rows[0].tex, "a  = b");
+}
+
+#[test]
+fn a_note_under_a_brace_does_not_part_the_row() {
+    // by hand: one relation, the notes `\text{Centrif.}`, `\text{Coriolis}` dropped
+    let rows = read_display(
+        r"m a + ( k \underbrace{-\,m \Omega^2}_{\text{Centrif.}} ) d = F \underbrace{-\,2 m \Omega v}_{\text{Coriolis}}",
+        &TexSymbols::default(),
+    );
+    assert_eq!(rows[0].relations.len(), 1, "{:?}", rows[0].relations);
+    let r = rows[0].relations[0].as_ref().expect("reads");
+    assert_eq!(r.sides[1].to_string(), "F - 2*m*Omega*v");
+}
+
+#[test]
+fn a_set_of_elements_has_their_unit() {
+    // by hand: the set of v in H with v >= 0 holds values of v; what follows `\in` and the
+    // condition are no value
+    let s = TexSymbols::default();
+    let r = read_relation(r"K = \{ v \in H : v \geq 0 \}", &s).expect("reads");
+    assert_eq!(r.sides[1].to_string(), "marked(v)");
+    let r = read_relation(r"R = \{ x \mid \{ y \} , x > 0 \}", &s).expect("reads");
+    assert_eq!(r.sides[1].to_string(), "marked(x)");
+    // a set left open is refused
+    assert!(read_relation(r"K = \{ v \in H : v \geq 0", &s).is_err());
+}
+
+#[test]
+fn a_sequence_at_an_index_is_no_product() {
+    // by hand: `y[k-1]` is the sequence y at k - 1 (k a count, m a mass elsewhere: no
+    // relation between them); a bracket apart from the name is a product
+    let s = TexSymbols::default();
+    let e = read_formula(r"a_1 y[k-1] + b_0 u[k-m]", &s).expect("reads");
+    assert_eq!(e.to_string(), "a1*{y[k-1]} + b0*{u[k-m]}");
+    same(r"m [v - w]", "m*(v - w)");
+    same(r"m[v_1 - v_2]", "m*(v1 - v2)");
+}
+
+#[test]
 fn a_half_index_is_part_of_the_name() {
     // by hand: the grid values at i - 1/2 and i + 1/2 are two names
     same(

@@ -44,7 +44,15 @@ pub(crate) fn drop_environments(text: &str) -> String {
             let rest = &text[end..];
             let arg = rest.trim_start();
             let close = match arg.chars().next() {
-                Some('{') if env.starts_with("align") => arg.find('}'),
+                // (only alignat's column count: `{{F}_{n}} = ..` opening an align is its row)
+                Some('{')
+                    if env.starts_with("align")
+                        && arg.find('}').is_some_and(|k| {
+                            k > 1 && arg[1..k].trim().chars().all(|c| c.is_ascii_digit())
+                        }) =>
+                {
+                    arg.find('}')
+                }
                 Some('[') if ["[t]", "[b]", "[c]"].iter().any(|p| arg.starts_with(p)) => Some(2),
                 _ => None,
             };
@@ -277,7 +285,7 @@ pub(crate) fn split_top(text: &str, seps: &[&str]) -> Vec<String> {
 /// read as its two branches.
 pub fn read_display(block: &str, syms: &TexSymbols) -> Vec<TexRow> {
     // a `$` inside a display (`\colorbox{..}{$\displaystyle ..$}`) only switches modes
-    let mut text = drop_styling(&drop_phantoms(block)).replace('$', " ");
+    let mut text = drop_styling(&drop_phantoms(&brace_notes_dropped(block))).replace('$', " ");
     // rows of an array, often braced by \left\{ ... \right.: the brace and the column
     // specification go
     if text.contains("\\begin{array}") {
@@ -599,6 +607,45 @@ fn drop_styling(tex: &str) -> String {
             }
             out.replace_range(at..end, " ");
             from = at;
+        }
+    }
+    out
+}
+
+/// `tex` with each `\underbrace{X}_{note}` and `\overbrace{X}^{note}` the group `{X}` (or `X`
+/// when it opens with a sign): the note is words about the term (`\text{Coriolis}`), which must
+/// not part the row as words do.
+fn brace_notes_dropped(tex: &str) -> String {
+    let mut out = tex.to_string();
+    for (cmd, mark) in [("\\underbrace", '_'), ("\\overbrace", '^')] {
+        let mut from = 0;
+        while let Some(k) = out[from..].find(cmd) {
+            let at = from + k;
+            let after = at + cmd.len();
+            let Some((body, end)) = super::macros::group(&out, after) else {
+                from = after;
+                continue;
+            };
+            let rest = out[end..].trim_start();
+            let mut stop = end;
+            if let Some(note) = rest.strip_prefix(mark) {
+                let note_at = out.len() - note.len();
+                stop = match super::macros::group(&out, note_at) {
+                    Some((_, e)) => e,
+                    // `_x`: one character
+                    None => note_at + note.chars().next().map_or(0, char::len_utf8),
+                };
+            }
+            // a term that opens with its sign (`k \underbrace{-m\Omega^2}_{..}`) is added, as
+            // printed; any other stays one factor
+            let signed = body.trim_start().starts_with(['-', '+']);
+            let term = if signed {
+                format!(" {body} ")
+            } else {
+                format!("{{{body}}}")
+            };
+            out.replace_range(at..stop, &term);
+            from = at + 1;
         }
     }
     out

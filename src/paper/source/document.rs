@@ -360,8 +360,16 @@ fn next_item(text: &str, from: usize) -> Option<Next> {
     if let Some(i) = display_dollars(rest) {
         offer(from + i, Next::Dollars(from + i));
     }
-    if let Some(i) = rest.find("\\[") {
-        offer(from + i, Next::Bracket(from + i));
+    // `\[` opens a display; `\\[2pt]` is a line break with its space
+    let mut search = 0;
+    while let Some(i) = rest[search..].find("\\[") {
+        let at = search + i;
+        let escaped = rest[..at].chars().rev().take_while(|c| *c == '\\').count() % 2 == 1;
+        if !escaped {
+            offer(from + at, Next::Bracket(from + at));
+            break;
+        }
+        search = at + 2;
     }
     let mut search = 0;
     while let Some(i) = rest[search..].find("\\begin{") {
@@ -588,6 +596,14 @@ fn line_of(text: &str, at: usize) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_line_break_with_its_space_opens_no_display() {
+        // by hand: `\\[2pt]` in prose (or in a class's macro put into the text) is no `\[`
+        let d = read_document("A\\\\[2pt] B\\\\[\\affilsep] C\n\\[ a = b \\]\n$$ c = d $$");
+        let latex: Vec<&str> = d.displays.iter().map(|x| x.latex.trim()).collect();
+        assert_eq!(latex, ["a = b", "c = d"], "{:?}", d.displays);
+    }
 
     #[test]
     fn two_inline_formulas_back_to_back_are_no_display() {

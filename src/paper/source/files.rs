@@ -453,6 +453,8 @@ impl Assembly<'_> {
                 && !self.stack.contains(&file)
                 && let Ok(inner) = (self.load)(&file)
             {
+                // a class may say where the paper's chapters are (`\def\input@path{{chapters/}}`)
+                self.search.extend(input_path(&strip_comments(&inner)));
                 self.stack.push(file.clone());
                 let (inner, _) = self.inline(&inner, &file, "");
                 self.stack.pop();
@@ -582,8 +584,12 @@ mod tests {
         assert_eq!(resolved("\\a/b", &[]), "b");
         let (_, paths) = wrappers("\\newcommand{\\f}[1]{x#1}\\newcommand{\\g}{\\alpha}");
         assert!(paths.is_empty(), "{paths:?}");
-        // the folders LaTeX searches, `\input@path`
+        // the folders LaTeX searches, `\input@path`, in the paper or in its class
         let (text, _, p) = assemble("\\def\\input@path{{none/}{sub/}}\n\\input{x}", &load);
+        assert!(p.is_empty(), "{p:?}");
+        assert_eq!(text.lines().last(), Some("X"));
+        let load = folder(&[("sub/x.tex", "X"), ("th.cls", "\\def\\input@path{{sub/}}")]);
+        let (text, _, p) = assemble("\\documentclass{th}\n\\input{x}", &load);
         assert!(p.is_empty(), "{p:?}");
         assert_eq!(text.lines().last(), Some("X"));
     }

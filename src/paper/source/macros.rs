@@ -175,6 +175,28 @@ fn argument(text: &str, at: usize) -> Option<(String, usize)> {
     Some((c.to_string(), start + c.len_utf8()))
 }
 
+/// LaTeX's structure, which a class redefines for its layout: never expanded.
+const STRUCTURE: &[&str] = &[
+    "section",
+    "subsection",
+    "subsubsection",
+    "chapter",
+    "paragraph",
+    "part",
+    "begin",
+    "end",
+    "label",
+    "tag",
+    "ref",
+    "eqref",
+    "input",
+    "include",
+    "item",
+    "par",
+    "left",
+    "right",
+];
+
 /// The definitions of `source` in order (a later `\renewcommand` replaces, a
 /// `\providecommand` of a defined name does nothing), and the source without them.
 fn collect(source: &str) -> Result<(String, BTreeMap<String, Macro>), MacroError> {
@@ -193,6 +215,17 @@ fn collect(source: &str) -> Result<(String, BTreeMap<String, Macro>), MacroError
             _ => None,
         };
         match def {
+            // a class's internals (`\def\\{..}`, `\def\@makefntext`) and its layout of LaTeX's
+            // structure (`\renewcommand\section{\@startsection..}`) are no macros of the paper's
+            // formulas: taken out, never expanded
+            Some((name, _, end))
+                if !name.chars().all(|c| c.is_ascii_alphabetic())
+                    || STRUCTURE.contains(&name.as_str()) =>
+            {
+                out.push_str(&source[pos..at]);
+                out.push_str(&"\n".repeat(source[at..end].matches('\n').count()));
+                pos = end;
+            }
             Some((name, mac, end)) => {
                 out.push_str(&source[pos..at]);
                 // the definition's newlines stay, so that lines keep their numbers
@@ -506,6 +539,17 @@ mod tests {
         let e = &problems[0];
         assert_eq!((e.name.as_str(), e.line), ("f", 3));
         assert!(e.problem.contains("2 argument"), "{e}");
+    }
+
+    #[test]
+    fn a_class_s_internals_and_its_layout_of_the_structure_are_no_macros() {
+        // by hand: `\def\\{..}` and `\renewcommand\section{..}` of a class leave the rows and
+        // the sections as they are; a macro of letters is expanded
+        let (text, _, _) = expand(
+            "\\def\\\\{, }\\renewcommand\\section{\\@startsection}\\def\\v{x}\n\\section{A} $a \\\\ \\v$",
+        )
+        .unwrap();
+        assert_eq!(text.trim(), "\\section{A} $a \\\\ x$");
     }
 
     #[test]

@@ -35,6 +35,9 @@ impl Reader<'_> {
             let applied = self.maybe_applied(name)?;
             return Ok(power(applied, p));
         }
+        if let Some(e) = self.indexed(&name) {
+            return Ok(e);
+        }
         let open = match (self.peek(), self.toks.get(self.pos + 1)) {
             (Tok::Ch('('), _) => 1,
             (Tok::Cmd(l), Some((Tok::Ch('('), _))) if l == "left" => 2,
@@ -76,6 +79,33 @@ impl Reader<'_> {
         }
         self.pos = k + 1;
         Ok(Expr::Sym(format!("{{{name}({})}}", args.join(","))))
+    }
+
+    /// `y[k]`, `u[k-m]`, `y[N]`: a sequence at an index, the bracket right after the name and
+    /// holding index arithmetic only (letters, whole numbers, `+`, `-`): an opaque symbol named
+    /// by its text, as a function's value is, not the name times the bracket.
+    fn indexed(&mut self, name: &str) -> Option<Expr> {
+        let (open, col) = self.toks.get(self.pos)?;
+        let (_, before) = self.toks.get(self.pos.checked_sub(1)?)?;
+        if *open != Tok::Ch('[') || *col != before + 1 {
+            return None;
+        }
+        let mut k = self.pos + 1;
+        let mut index = String::new();
+        loop {
+            match &self.toks.get(k)?.0 {
+                Tok::Ch(']') => break,
+                Tok::Ch(c) if c.is_ascii_alphabetic() || *c == '+' || *c == '-' => index.push(*c),
+                Tok::Num(n) if n.chars().all(|c| c.is_ascii_digit()) => index.push_str(n),
+                _ => return None,
+            }
+            k += 1;
+        }
+        if index.is_empty() {
+            return None;
+        }
+        self.pos = k + 1;
+        Some(Expr::Sym(format!("{{{name}[{index}]}}")))
     }
 
     /// Whether `^{..}` then `(` follow (`\omega^2(t)`).

@@ -109,6 +109,28 @@ impl Reader<'_> {
 
     pub(super) fn closing_cmd(&mut self, close: &str) -> R<Expr> {
         let e = self.expr()?;
+        // `\{x \in D : x > 0\}`, `\{v \mid v \ge 0\}`: the set of the elements `e` such that
+        // ..., in their unit; what they are taken from and the condition are no value
+        self.skip_space();
+        let builder = matches!(self.peek(), Tok::Ch(':' | '|'))
+            || matches!(self.peek(), Tok::Cmd(c) if c == "in" || c == "mid" || c == "vert");
+        if builder && close == "}" {
+            let mut depth = 0usize;
+            loop {
+                match self.peek().clone() {
+                    Tok::End => return self.err("`\\}` closing a set"),
+                    Tok::Open => depth += 1,
+                    Tok::Close => depth = depth.saturating_sub(1),
+                    Tok::Cmd(c) if c == "{" => depth += 1,
+                    Tok::Cmd(c) if c == "}" && depth == 0 => break,
+                    Tok::Cmd(c) if c == "}" => depth -= 1,
+                    _ => {}
+                }
+                self.bump();
+            }
+            self.bump();
+            return Ok(super::marks::marked(e));
+        }
         // `\{Q, P\}`: a bracket of two, opaque as a pair is
         let e = self.tuple(e)?;
         self.expect(Tok::Cmd(close.into()), &format!("`\\{close}`"))?;
