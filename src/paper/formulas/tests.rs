@@ -507,6 +507,39 @@ fn a_group_opening_an_align_is_its_first_row_and_alignat_s_count_is_not() {
 }
 
 #[test]
+fn a_condition_in_parentheses_after_a_relation_is_apart() {
+    // by hand: Hamilton's equation and its range of alpha; the value at a point stays
+    let rows = read_display(
+        r"\dot{q}_\alpha = \dfrac{\partial H}{\partial p_\alpha} (\alpha = 1,2,\cdots,s)",
+        &TexSymbols::default(),
+    );
+    let first = rows[0].relations[0].as_ref().expect("reads");
+    assert_eq!(first.sides[1].to_string(), "diff(H, palpha)");
+    // after a word and spacing: a condition too
+    let rows = read_display(
+        r"Q_\alpha = C_\alpha = \text{const} \,\, (\alpha=1,2,\cdots,s)",
+        &TexSymbols::default(),
+    );
+    assert!(
+        rows[0].relations.iter().all(Result::is_ok),
+        "{:?}",
+        rows[0].relations
+    );
+    let rows = read_display(r"v = \dot{x}(t=0)", &TexSymbols::default());
+    assert_eq!(rows[0].relations.len(), 1, "{:?}", rows[0].relations);
+}
+
+#[test]
+fn a_comma_inside_angle_brackets_parts_nothing() {
+    // by hand: one relation, `\langle f, \phi - u \rangle` one bracket
+    let rows = read_display(
+        r"B = \langle f,\phi-u\rangle, \quad C = \left\langle a, b \right\rangle",
+        &TexSymbols::default(),
+    );
+    assert_eq!(rows[0].relations.len(), 2, "{:?}", rows[0].relations);
+}
+
+#[test]
 fn a_note_under_a_brace_does_not_part_the_row() {
     // by hand: one relation, the notes `\text{Centrif.}`, `\text{Coriolis}` dropped
     let rows = read_display(

@@ -230,9 +230,11 @@ pub(crate) fn split_top(text: &str, seps: &[&str]) -> Vec<String> {
         };
         // \left\{ ... \right\} nest like the brackets they size, and an environment like
         // braces (the rows of a `cases` inside an `align` are not the align's)
-        if word("\\left") || word("\\begin") {
+        // (and `\langle f, g \rangle`, an inner product or a mean, unless sized by `\left`)
+        let sized_angle = cur.trim_end().ends_with("\\left") || cur.trim_end().ends_with("\\right");
+        if word("\\left") || word("\\begin") || (word("\\langle") && !sized_angle) {
             depth += 1;
-        } else if word("\\right") || word("\\end") {
+        } else if word("\\right") || word("\\end") || (word("\\rangle") && !sized_angle) {
             depth -= 1;
         }
         // the words of a `\text{ a) }` are no brackets: only its braces count
@@ -347,6 +349,7 @@ pub fn read_display(block: &str, syms: &TexSymbols) -> Vec<TexRow> {
                 })
                 .filter(|p| !blank(p))
                 .flat_map(|p| colon_split(&p))
+                .flat_map(|p| condition_apart(&p))
                 .flat_map(|p| unwrap_condition(&p))
                 .flat_map(|p| branches(&p))
                 .map(|p| read_relation(&p, syms))
@@ -664,11 +667,60 @@ fn drop_phantoms(tex: &str) -> String {
     out
 }
 
+/// A piece that ends in a condition in parentheses set apart by a space (`\dot q_\alpha =
+/// \partial H / \partial p_\alpha (\alpha = 1,2,\cdots,s)`): the relation and the condition, two
+/// pieces; `\dot x(t=0)`, a value at a point, stays.
+fn condition_apart(piece: &str) -> Vec<String> {
+    let t = piece.trim_end();
+    if !t.ends_with(')') {
+        return vec![piece.to_string()];
+    }
+    // the `(` that the last `)` closes
+    let mut depth = 0i32;
+    let mut open = None;
+    for (i, c) in t.char_indices().rev() {
+        match c {
+            ')' | ']' | '}' => depth += 1,
+            '(' | '[' | '{' => {
+                depth -= 1;
+                if depth == 0 {
+                    open = Some(i);
+                    break;
+                }
+            }
+            _ => {}
+        }
+    }
+    let Some(at) = open else {
+        return vec![piece.to_string()];
+    };
+    let before = &t[..at];
+    let spaced =
+        before.ends_with([' ', '\t', '~']) || before.ends_with("\\,") || before.ends_with("\\;");
+    let cond = &t[at..];
+    if at == 0
+        || !spaced
+        || !t[at..].starts_with('(')
+        || !starts_relation(&cond[1..cond.len() - 1])
+        || !starts_relation(before)
+    {
+        return vec![piece.to_string()];
+    }
+    vec![before.to_string(), cond.to_string()]
+}
+
 /// A relation written in parentheses after another (`\quad (i = 1, 2, \ldots, n)`, `(M \gg
 /// m)`): a condition, read without its parentheses (and split at its commas); any other piece
 /// as it is.
 fn unwrap_condition(piece: &str) -> Vec<String> {
-    let t = piece.trim();
+    let mut t = piece.trim();
+    // spacing before the parenthesis (`\,\, (\alpha = 1, .., s)`)
+    while let Some(rest) = ["\\,", "\\;", "\\quad", "\\qquad", "~", "\\ "]
+        .iter()
+        .find_map(|sp| t.strip_prefix(sp))
+    {
+        t = rest.trim_start();
+    }
     let inner = if let Some(i) = t.strip_prefix('(').and_then(|r| r.strip_suffix(')')) {
         i
     } else if let Some(i) = t.strip_prefix("\\left(").and_then(|r| {
