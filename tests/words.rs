@@ -303,7 +303,9 @@ fn the_seeds_from_their_words() {
     let cases = [
         ("000", "verify/000_cone_plate.toml", [39, 3, 6, 3]),
         ("001", "verify/001_disk.toml", [75, 1, 20, 1]),
-        ("002", "verify/002_constrained_impact.toml", [78, 3, 57, 3]),
+        // 002: the adjoint row with `\tilde{B}^{'}` (line 307) is read since the bare-sign
+        // superscript is a mark; nothing in the words gives B a unit, so it is undetermined
+        ("002", "verify/002_constrained_impact.toml", [78, 3, 58, 2]),
     ];
     for (paper, claims, want) in cases {
         let file = std::fs::read_dir(&seeds)
