@@ -777,6 +777,56 @@ fn a_thesis_as_its_authors_machine_builds_it_has_its_error_found() {
 }
 
 #[test]
+fn a_section_no_file_reads_is_read_with_the_preamble_of_its_main_file() {
+    // tests/papers/subfiles/chapters/draft.tex: read by no file of the thesis; alone, its
+    // macros are unknown commands; with `--preamble main.tex` (the main file: its preamble,
+    // its inputs from its own folder) it reads as the thesis would. Planted, by hand:
+    // q = -k A dT/dx is W, not a heat flux; `A\flux` (\flux being q) is A times q
+    let draft = "tests/papers/subfiles/chapters/draft.tex";
+    let (v, _) = audit_json(draft);
+    let p = places(&v);
+    assert!(p.iter().all(|r| r.1 == "unreadable"), "{p:?}");
+    let out = verify(&[
+        "audit",
+        draft,
+        "--preamble",
+        "tests/papers/subfiles/main.tex",
+        "--format",
+        "json",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(!err.contains("no file"), "{err}");
+    let v: Value = serde_json::from_slice(&out.stdout).expect("json");
+    let p = places(&v);
+    assert_eq!(
+        p.iter().map(|r| r.1.as_str()).collect::<Vec<_>>(),
+        ["consistent", "inconsistent", "consistent"],
+        "{p:?} {err}"
+    );
+    assert_eq!(v["relations"][2]["latex"], "P = A q", "{v}");
+    // a `subfiles` chapter audited alone reads its main file's preamble, as LaTeX builds it
+    // (`\documentclass[../main.tex]{subfiles}`): `\pdfrac` is known, the planted error found
+    let (v, err) = audit_json("tests/papers/subfiles/chapters/heat.tex");
+    assert_eq!(
+        places(&v).iter().map(|r| r.1.as_str()).collect::<Vec<_>>(),
+        ["consistent", "inconsistent"],
+        "{v} {err}"
+    );
+    // a file of macros given as a preamble is read whole, as before
+    let out = verify(&[
+        "audit",
+        draft,
+        "--preamble",
+        "tests/papers/subfiles/macros.tex",
+        "--format",
+        "json",
+    ]);
+    let v: Value = serde_json::from_slice(&out.stdout).expect("json");
+    assert_eq!(places(&v)[0].1, "consistent", "{v}");
+}
+
+#[test]
 fn a_file_outside_the_papers_folder_or_missing_is_named_and_the_rest_audited() {
     let dir = Scratch::new("audit-outside");
     std::fs::write(
@@ -847,4 +897,68 @@ fn a_folders_audit_is_a_row_per_paper_equal_to_its_own_audit() {
     assert!(String::from_utf8_lossy(&out.stdout).starts_with("paper,relations,read,"));
     let out = verify(&["audit", PAPER, "--format", "csv"]);
     assert!(!out.status.success());
+}
+
+#[test]
+fn notations_of_real_papers_are_read_and_their_unit_errors_found() {
+    // each notation twice, as printed (consistent) and with a unit error (inconsistent), the
+    // units given in a units file; by hand:
+    // - `w(z = h)` is w at a point: a speed (h a length, t a time);
+    // - `(u.\nabla) u` is a dot product typed as a period: m/s * 1/m * m/s = m/s^2;
+    // - `\Omega \setminus \omega` and `A \cap B` join sets of one kind (areas here);
+    // - `\hat{\imath}` is the unit vector i (in 1);
+    // - `\|f(\cdot, t)\|` is f with its variable left free (in f's unit);
+    // - `q^{{}_{(4)}}` is a name (q in m), `\textbf{\texttau}_b` the torque tau_b (N m)
+    let dir = Scratch::new("audit-notations");
+    let rows = [
+        r"w(z=h) = \frac{\partial h}{\partial t}",
+        r"w(z=h) = \frac{\partial h}{\partial t} h",
+        r"\frac{\partial u}{\partial t} = -(u.\nabla) u",
+        r"\frac{\partial u}{\partial t} = -(u.\nabla) u h",
+        r"S = \Omega \setminus \omega + A \cap B",
+        r"S = \Omega \setminus \omega + A \cap h",
+        r"\tau_b = h F \hat{\imath}",
+        r"\tau_b = F \hat{\imath}",
+        r"\|f(\cdot, t)\| = F",
+        r"\|f(\cdot, t)\| = F h",
+        r"q^{{}_{(4)}} = h",
+        r"q^{{}_{(4)}} = h^2",
+        r"\textbf{\tau}_b = h F",
+        r"\textbf{\tau}_b = F",
+    ];
+    let text: String = rows.iter().map(|r| format!("$$\n{r}\n$$\n\n")).collect();
+    std::fs::write(dir.join("note.md"), text).unwrap();
+    std::fs::write(
+        dir.join("units.toml"),
+        "[symbols]\nw = \"m/s\"\nh = \"m\"\nt = \"s\"\nu = \"m/s\"\nS = \"m^2\"\nOmega = \"m^2\"\n\
+         omega = \"m^2\"\nA = \"m^2\"\nB = \"m^2\"\ntau_b = \"N m\"\nF = \"N\"\nf = \"N\"\n\
+         q4 = \"m\"\ntaub = \"N m\"\nnabla = \"1/m\"\nih = \"1\"\n",
+    )
+    .unwrap();
+    let out = verify(&[
+        "audit",
+        dir.join("note.md").to_str().unwrap(),
+        "--units",
+        dir.join("units.toml").to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let v: Value = serde_json::from_slice(&out.stdout).expect("json");
+    let p = places(&v);
+    let want: Vec<&str> = (0..rows.len())
+        .map(|i| {
+            if i % 2 == 0 {
+                "consistent"
+            } else {
+                "inconsistent"
+            }
+        })
+        .collect();
+    assert_eq!(
+        p.iter().map(|r| r.1.as_str()).collect::<Vec<_>>(),
+        want,
+        "{v:#}"
+    );
 }

@@ -107,6 +107,10 @@ def has_display(path: Path) -> bool:
 
 SEARCH = re.compile(r"\\input@path\s*\{((?:\{[^{}]*\})*)\}")
 INPUT = re.compile(r"\\(?:input|include|subfile)\s*\{([^}]*)\}")
+# `\import{dir}{file}` (from the main file's folder) and `\subimport{dir}{file}` (from the
+# folder of the file that holds it)
+IMPORT = re.compile(r"\\(sub)?(?:import|inputfrom|includefrom)\s*\{([^}]*)\}\s*\{([^}]*)\}")
+SUBFILES = re.compile(r"\\documentclass\s*\[[^\]]*\]\s*\{subfiles\}")
 
 
 def strip_comments(text: str) -> str:
@@ -131,6 +135,14 @@ def included(main: Path) -> set[Path]:
                 own = main.parent / (cls.strip() + ext)
                 if own.is_file():
                     search += SEARCH.findall(strip_comments(own.read_text(encoding="utf-8", errors="replace")))
+        for sub, folder, name in IMPORT.findall(text):
+            base = f.parent if sub else main.parent
+            for n in (name.strip(), name.strip() + ".tex"):
+                cand = base / folder.strip() / n
+                if cand.is_file() and cand not in seen:
+                    seen.add(cand)
+                    todo.append(cand)
+                    break
         for name in INPUT.findall(text):
             # a path macro (`\\mainpath/Header`): the paper's folder on its author's machine
             name = re.sub(r"\\[A-Za-z]+\s*/?", "", name).lstrip("/")
@@ -159,12 +171,25 @@ def macro_files(source_dir: Path) -> list[Path]:
     return out
 
 
+def nearest_main(p: Path, top: Path, mains: list[Path]) -> list[Path]:
+    """The main file in `p`'s folder or the nearest folder above it, up to `top` (the first by
+    name when a folder holds several), as a list of none or one."""
+    d = p.parent
+    while True:
+        here = sorted(m for m in mains if m.parent == d)
+        if here:
+            return here[:1]
+        if d == top or top not in d.parents:
+            return []
+        d = d.parent
+
+
 def find_documents(corpus: Path) -> list[Doc]:
     """Every document as its author compiles it: each `.tex` with `\\documentclass` or
     `\\begin{document}` that no other reads (its
     `\\input` files read through it, not again alone), each other `.tex` with a display that
-    no main document reads, and each `.md` with a display (with its source's macro files as
-    `--preamble`)."""
+    no main document reads (with the main file nearest above it as `--preamble`), and each
+    `.md` with a display (with its source's macro files as `--preamble`)."""
     files = [p for p in sorted(corpus.rglob("*")) if p.is_file()]
     mains = []
     for p in files:
@@ -176,6 +201,10 @@ def find_documents(corpus: Path) -> list[Doc]:
     read_by_main: set[Path] = set()
     for m in mains:
         read_by_main |= included(m)
+    # the main files that are papers of their own (not read by another, not a `subfiles`
+    # chapter, which the audit reads with its own main file's preamble)
+    whole = [m for m in mains if m not in read_by_main and not SUBFILES.search(strip_comments(
+        m.read_text(encoding="utf-8", errors="replace")))]
     preambles: dict[str, list[Path]] = {}
     docs = []
     for p in files:
@@ -189,6 +218,10 @@ def find_documents(corpus: Path) -> list[Doc]:
             continue
         if p in mains or has_display(p):
             doc = Doc(path=p, rel=rel, source=source)
+            if p.suffix.lower() == ".tex" and p not in mains:
+                # a section no main file reads (a draft, a chapter left out): read with the
+                # preamble of the main file nearest above it, as it was written to be
+                doc.preambles = nearest_main(p, corpus / source, whole)
             if p.suffix.lower() == ".md":
                 if source not in preambles:
                     preambles[source] = macro_files(corpus / source)

@@ -55,7 +55,9 @@ enum Command {
         units: Option<PathBuf>,
         /// A file of LaTeX macros the paper uses without holding them (a Markdown note's
         /// `\newcommand`s kept apart); repeat for more. The paper's own preamble and its
-        /// `\input` files (inside its folder) are read without it.
+        /// `\input` files (inside its folder) are read without it. A main file given here (one
+        /// with `\documentclass` or `\begin{document}`) gives its preamble, its inputs read from
+        /// its own folder: a section read alone with the macros of the paper it belongs to.
         #[arg(long, value_name = "FILE")]
         preamble: Vec<PathBuf>,
         /// A vocabulary of quantities to add to the built-in one (TOML: a table per quantity

@@ -111,11 +111,16 @@ pub fn audit_paper(
         None => Default::default(),
     };
     let mut macros = String::new();
-    for p in preamble {
-        macros.push_str(
-            &crate::paper::source::files::read_text(p)
-                .with_context(|| format!("reading the preamble {}", p.display()))?,
-        );
+    // a `subfiles` chapter built alone has its main file's preamble, as LaTeX gives it
+    let main = crate::paper::source::blocks::subfiles_main(&text, paper);
+    for p in main.iter().chain(preamble) {
+        let text = crate::paper::source::files::read_text(p)
+            .with_context(|| format!("reading the preamble {}", p.display()))?;
+        let (text, problems) = crate::paper::source::blocks::preamble_part(&text, p);
+        for problem in problems {
+            say(format!("{} (preamble): {problem}", p.display()));
+        }
+        macros.push_str(&text);
         macros.push('\n');
     }
     let (blocks, doc) = blocks_at(&text, paper.parent(), &macros);

@@ -124,7 +124,68 @@ pub(super) fn lex(src: &str, syms: &TexSymbols) -> Vec<(Tok, usize)> {
         }
     }
     out.push((Tok::End, chars.len() + 1));
-    bounds_in_order(unstyled_operators(out))
+    set_operations(empty_bases(bounds_in_order(unstyled_operators(out))))
+}
+
+/// Two operators of sets and vectors as the reader takes them: `\Omega \setminus \omega`,
+/// `A \cap B`, `A \cup B` join sets of one kind of element (as `+` joins terms of one unit);
+/// a full stop between two operands (`(\mathbf{u}.\nabla)`, `\mathbf{v}.\mathbf{n}`, a dot
+/// product typed as a period) is `\cdot`. A full stop at the end of a formula or before a
+/// closing bracket stays punctuation.
+fn set_operations(toks: Vec<(Tok, usize)>) -> Vec<(Tok, usize)> {
+    let operand_end = |t: &Tok| match t {
+        Tok::Close | Tok::Ch(')' | ']') => true,
+        Tok::Ch(c) => c.is_ascii_alphabetic(),
+        Tok::Cmd(c) => greek(c).is_some() || c == "nabla",
+        _ => false,
+    };
+    let operand_start = |t: &Tok| match t {
+        Tok::Open | Tok::Ch('(') => true,
+        Tok::Ch(c) => c.is_ascii_alphabetic(),
+        Tok::Cmd(c) => {
+            greek(c).is_some() || c == "nabla" || accent_suffix(c).is_some() || c == "hat"
+        }
+        _ => false,
+    };
+    let mut out: Vec<(Tok, usize)> = Vec::with_capacity(toks.len());
+    for (i, (t, col)) in toks.iter().enumerate() {
+        let t = match t {
+            Tok::Cmd(c) if matches!(c.as_str(), "setminus" | "cap" | "cup") => Tok::Ch('+'),
+            Tok::Ch('.')
+                if out.last().is_some_and(|(p, _)| operand_end(p))
+                    && toks.get(i + 1).is_some_and(|(n, _)| operand_start(n)) =>
+            {
+                Tok::Cmd("cdot".into())
+            }
+            t => t.clone(),
+        };
+        out.push((t, *col));
+    }
+    out
+}
+
+/// `q^{{}_{(4)}}`: a group that holds only a script of nothing (`{}_{(4)}`, a label set low in a
+/// superscript) is the script's text, `q^{(4)}`. A script of nothing before a name
+/// (`{}^N\omega`, a frame) is left to the reader.
+fn empty_bases(mut toks: Vec<(Tok, usize)>) -> Vec<(Tok, usize)> {
+    let mut i = 0;
+    // (the empty group itself is dropped as it is lexed: `{` then the script)
+    while i + 2 < toks.len() {
+        if toks[i].0 == Tok::Open
+            && matches!(toks[i + 1].0, Tok::Ch('_' | '^'))
+            && let Some(end) = argument_end(&toks, i + 2)
+            && toks.get(end).is_some_and(|t| t.0 == Tok::Close)
+        {
+            // the script's braces too: `^{{}_{(4)}}` is `^{(4)}`
+            if toks[i + 2].0 == Tok::Open {
+                toks.remove(end - 1);
+                toks.remove(i + 2);
+            }
+            toks.remove(i + 1);
+        }
+        i += 1;
+    }
+    toks
 }
 
 /// The index after a script's argument that starts at `k`: one token, or a group.

@@ -349,3 +349,36 @@ fn an_upper_bound_written_first_is_the_same_bound() {
     assert_eq!(read("\\sum^n_{i=1} a_i"), read("\\sum_{i=1}^n a_i"));
     assert_eq!(read("\\int^{b}_{a} x dx"), read("\\int_{a}^{b} x dx"));
 }
+
+#[test]
+fn a_script_of_nothing_alone_in_a_superscript_is_its_label() {
+    // by hand: `q^{{}_{(4)}}` prints the label (4) set low in the superscript (a textbook's
+    // homogeneous coordinates): the same name as `q^{(4)}`; a frame before a name is not this
+    assert_eq!(read("q^{{}_{(4)}} + p"), read("q^{(4)} + p"));
+    assert_eq!(read("f^{{}_{(3)}}_b"), read("f^{(3)}_b"));
+    assert_ne!(read("{}^N\\omega"), read("N\\omega"));
+}
+
+#[test]
+fn a_period_between_operands_is_a_dot_product_and_set_operations_join() {
+    // by hand: `\mathbf{v}.\mathbf{n}` is v . n; a decimal point stays
+    assert_eq!(
+        read("\\mathbf{v}.\\mathbf{n}"),
+        read("\\mathbf{v} \\cdot \\mathbf{n}")
+    );
+    assert_eq!(read("(u.\\nabla) u"), read("(u \\cdot \\nabla) u"));
+    assert_eq!(read("1.5 a"), "1.5*a");
+    // `\setminus`, `\cap`, `\cup` join sets as a sum joins terms of one unit
+    assert_eq!(
+        read("\\Omega \\setminus \\omega"),
+        read("\\Omega + \\omega")
+    );
+    assert_eq!(read("A \\cap B \\cup C"), read("A + B + C"));
+    // `h(\cdot, t)`: a placeholder alone in its place; `\nabla(\nabla \cdot v)` is no application
+    assert_eq!(read("h(\\cdot, t)"), "{h(cdot,t)}");
+    assert_eq!(
+        read("\\nabla(\\nabla \\cdot v)"),
+        read("\\nabla (\\nabla \\cdot v)")
+    );
+    assert_ne!(read("\\nabla(\\nabla \\cdot v)"), "{nabla(nablacdotv)}");
+}

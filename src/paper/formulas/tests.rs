@@ -772,6 +772,15 @@ fn words_separate_relations_only_at_the_top_level() {
     let w = |t: &str| display::words_as_separators(t);
     assert!(w(r"x = f(a) \text{ and } y = 2").contains(" ; "));
     assert!(!w(r"\frac{a \text{ and } b}{c} = d").contains(';'));
+    // a name in nested text fonts (a thesis's `\textit{\textbf{F}}_{\textit{x}}`, math set in
+    // text fonts) is a name, not a phrase: the row stays whole
+    assert!(!w(r"u = a + \textit{\textbf{F}}_{\textit{x}}").contains(';'));
+    assert!(!w(r"u = \textbf{\mathit{Re}}").contains(';'));
+    assert!(!w(r"\textbf{\tau} = r \times f").contains(';'));
+    // a script's text is a label, whatever it holds (a textbook's frames `R_\text{\underline{b}b}`)
+    assert!(!w(r"R_\text{\underline{b}b} = R_\text{sb}^\text{(b)}").contains(';'));
+    // a phrase in a font is still words
+    assert!(w(r"u = 1 \textit{\textbf{for all}} v = 2").contains(" ; "));
 }
 
 #[test]

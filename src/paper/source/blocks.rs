@@ -66,6 +66,69 @@ pub fn folder_loader(dir: &std::path::Path) -> impl Fn(&str) -> Result<String, S
     }
 }
 
+/// What a file given as a preamble contributes, and what of it could not be followed: a main
+/// file (`\documentclass` or `\begin{document}`) its text before `\begin{document}`, its
+/// inputs read from its own folder (the folder of `path`); any other file (a file of macros)
+/// its whole text.
+pub fn preamble_part(text: &str, path: &std::path::Path) -> (String, Vec<String>) {
+    let clean = super::files::strip_comments(text);
+    let begin = clean.find("\\begin{document}");
+    if begin.is_none() && !clean.contains("\\documentclass") {
+        return (text.to_string(), Vec::new());
+    }
+    let head = &clean[..begin.unwrap_or(clean.len())];
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => std::path::Path::new("."),
+    };
+    let load = folder_loader(dir);
+    let (out, _, problems) = super::files::assemble(head, &load);
+    (out, problems)
+}
+
+/// The main file a `subfiles` chapter names (`\documentclass[../main.tex]{subfiles}`), whose
+/// preamble LaTeX reads for it when the chapter is built alone: a relative path from the
+/// chapter's folder (`.tex` added when it has none) to a main file (a `\documentclass` or a
+/// `\begin{document}`, not itself a `subfiles` chapter) that is not the chapter itself. An absolute path, or a file that is no main file, is
+/// none.
+pub fn subfiles_main(text: &str, paper: &std::path::Path) -> Option<std::path::PathBuf> {
+    let clean = super::files::strip_comments(text);
+    let k = clean.find("\\documentclass[")?;
+    let rest = &clean[k + "\\documentclass[".len()..];
+    let close = rest.find(']')?;
+    if !rest[close + 1..].trim_start().starts_with("{subfiles}") {
+        return None;
+    }
+    let name = rest[..close].trim();
+    let rel = std::path::Path::new(name);
+    if name.is_empty() || rel.is_absolute() || name.starts_with('~') {
+        return None;
+    }
+    let dir = paper.parent().unwrap_or(std::path::Path::new(""));
+    let mut main = dir.join(rel);
+    if main.extension().is_none() {
+        main.set_extension("tex");
+    }
+    let same = |a: &std::path::Path, b: &std::path::Path| matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y);
+    let main_text = super::files::read_text(&main).ok()?;
+    let main_clean = super::files::strip_comments(&main_text);
+    let own_class = (main_clean.contains("\\documentclass")
+        || main_clean.contains("\\begin{document}"))
+        && subfiles_main_named(&main_text).is_none();
+    (own_class && !same(&main, paper)).then_some(main)
+}
+
+/// Whether `text` is itself a `subfiles` chapter (its class `subfiles`).
+fn subfiles_main_named(text: &str) -> Option<()> {
+    let clean = super::files::strip_comments(text);
+    let k = clean.find("\\documentclass")?;
+    clean[k..]
+        .split_once('{')
+        .and_then(|(_, r)| r.split_once('}'))
+        .filter(|(class, _)| class.trim() == "subfiles")
+        .map(|_| ())
+}
+
 /// A paper's displays from its text: a displays extract of `%% block N` sections (the seeds'
 /// cache, `verify/tex/`), or a LaTeX source (or a text with display math) read as LaTeX numbers
 /// it, with its document.

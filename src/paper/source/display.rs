@@ -501,7 +501,8 @@ pub(crate) fn words_as_separators(tex: &str) -> String {
             let Some((inner, end)) = super::macros::group(&out, open) else {
                 continue;
             };
-            let words = inner.trim().to_lowercase();
+            // a name in nested styles (`\textit{\textbf{F}}`, as math in text fonts) is a name
+            let words = unstyled(inner.trim()).to_lowercase();
             // words of any language but English (`\text{常数}`) are words too, and so is a
             // phrase with punctuation, a formula or a command in it (`\text{ --- \textbf{..}}`,
             // `\textrm{Equilibrium Equations:}`); a name in words (`\text{err}`,
@@ -513,7 +514,11 @@ pub(crate) fn words_as_separators(tex: &str) -> String {
                 .split(|c: char| c.is_whitespace() || c == ',' || c == '~')
                 .find(|w| !w.is_empty())
                 .unwrap_or("");
+            // a script's text is a label (`R_\text{\underline{b}b}`), never words between
+            // relations
+            let script = out[..at].trim_end().ends_with(['_', '^']);
             if depth_at(&out, at) == 0
+                && !script
                 && (words.is_empty() || foreign || CONNECTIVES.contains(&first))
             {
                 out.replace_range(at..end, " ; ");
@@ -522,6 +527,41 @@ pub(crate) fn words_as_separators(tex: &str) -> String {
         }
     }
     out
+}
+
+/// `inner` without the font commands around a name in it (`\textbf{F}` is `F`), when what is
+/// left is one name of letters and digits or one Greek letter (`\textbf{\tau}`); `inner`
+/// itself otherwise.
+fn unstyled(inner: &str) -> &str {
+    const FONTS: [&str; 8] = [
+        "\\textbf",
+        "\\textit",
+        "\\textrm",
+        "\\textsf",
+        "\\mathbf",
+        "\\mathit",
+        "\\mathrm",
+        "\\boldsymbol",
+    ];
+    let mut s = inner.trim();
+    while let Some(f) = FONTS.iter().find(|f| s.starts_with(**f)) {
+        let rest = s[f.len()..].trim_start();
+        match rest.strip_prefix('{').and_then(|r| r.strip_suffix('}')) {
+            Some(body) if !body.contains(['{', '}']) || body.starts_with('\\') => s = body.trim(),
+            _ => return inner,
+        }
+    }
+    // a Greek letter: its name, as the words of a name would be
+    if let Some(g) = s.strip_prefix('\\')
+        && super::packages::GREEK.contains(&g)
+    {
+        return g;
+    }
+    if s.chars().all(|c| c.is_ascii_alphanumeric()) && !s.is_empty() {
+        s
+    } else {
+        inner
+    }
 }
 
 /// A piece split at its top-level colons when each part holds a relation (`y(x_1) = 0:

@@ -399,8 +399,17 @@ fn expand_uses(
         } else {
             ""
         };
+        // nor to a control word or a letter before it (`\gamma\pres` with `p`: `\gamma p`, not
+        // `\gammap`; TeX reads two tokens)
+        let lead = if body.starts_with(|c: char| c.is_ascii_alphabetic())
+            && text[..at].ends_with(|c: char| c.is_ascii_alphabetic())
+        {
+            " "
+        } else {
+            ""
+        };
         let lines = "\n".repeat(text[at..end].matches('\n').count());
-        text.replace_range(at..end, &format!("{body}{glue}{lines}"));
+        text.replace_range(at..end, &format!("{lead}{body}{glue}{lines}"));
         pos = at;
     }
     Ok(text)
@@ -505,6 +514,11 @@ mod tests {
         let out = expanded(src);
         assert_eq!(out.lines().count(), src.lines().count(), "{out:?}");
         assert_eq!(out.lines().nth(4), Some("line 4"));
+        // nor to the control word before it (a thesis's `\gamma\pres`, `\pres` being `p`)
+        assert_eq!(
+            expanded("\\newcommand{\\p}{p}\\gamma\\p + \\p\\p").trim(),
+            "\\gamma p + p p"
+        );
         // a longer name is another macro
         assert_eq!(expanded("\\newcommand{\\a}{1}\\ab").trim(), "\\ab");
         // nor an argument to the control word before or after it (WSU notes' `\braket`)

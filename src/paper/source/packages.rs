@@ -43,7 +43,52 @@ const LATEX: &str = r"\newcommand{\underset}[2]{#2_{#1}}
 \newcommand{\Large}{}
 \newcommand{\LARGE}{}
 \newcommand{\huge}{}
-\newcommand{\Huge}{}";
+\newcommand{\Huge}{}
+\newcommand{\blacksquare}{}";
+
+/// The Greek letters of `textgreek` (`\texttau`) and `upgreek` (`\uptau`, upright): each the
+/// letter of the formula reader (`\tau`).
+pub(super) const GREEK: &[&str] = &[
+    "alpha",
+    "pi",
+    "beta",
+    "gamma",
+    "delta",
+    "epsilon",
+    "zeta",
+    "eta",
+    "theta",
+    "iota",
+    "kappa",
+    "lambda",
+    "mu",
+    "nu",
+    "xi",
+    "rho",
+    "sigma",
+    "tau",
+    "upsilon",
+    "phi",
+    "chi",
+    "psi",
+    "omega",
+    "varepsilon",
+    "vartheta",
+    "varphi",
+    "varrho",
+    "varsigma",
+    "Gamma",
+    "Delta",
+    "Theta",
+    "Lambda",
+    "Xi",
+    "Pi",
+    "Sigma",
+    "Upsilon",
+    "Phi",
+    "Psi",
+    "Omega",
+];
 
 /// Each package with the definitions it brings (LaTeX, as a paper's preamble would hold them).
 const PACKAGES: &[(&str, &str)] = &[
@@ -135,6 +180,13 @@ pub fn preamble_of(text: &str) -> String {
             out.push('\n');
         }
     }
+    for (package, prefix) in [("textgreek", "text"), ("upgreek", "up")] {
+        if used.iter().any(|u| u == package) {
+            for g in GREEK {
+                out.push_str(&format!("\\newcommand{{\\{prefix}{g}}}{{\\{g}}}\n"));
+            }
+        }
+    }
     out
 }
 
@@ -146,6 +198,16 @@ mod tests {
     fn expanded(src: &str) -> String {
         let pre = preamble_of(src);
         expand_with(src, &pre).expect("expands").0
+    }
+
+    #[test]
+    fn greek_letters_of_textgreek_and_upgreek_are_the_letters() {
+        let with = expanded("\\usepackage{textgreek,upgreek}\n$\\texttau = \\uppi \\upTheta$");
+        assert!(with.contains("$\\tau = \\pi \\Theta$"), "{with}");
+        let without = expanded("$\\texttau$");
+        assert!(without.contains("\\texttau"), "{without}");
+        // amssymb's end-of-proof box, used as a row marker, is nothing of the formula
+        assert!(expanded("$\\blacksquare\\, a = b$").contains("$\\, a = b$"));
     }
 
     #[test]

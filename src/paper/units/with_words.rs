@@ -53,9 +53,24 @@ pub fn weak_conflicts(
         if !matches!(status, Status::Inconsistent { .. }) {
             continue;
         }
+        // a definition that makes a letter nothing names a pure number (a sigmoid's steepness
+        // `e^{-M(\alpha - \alpha_0)}`) decides nothing of a relation that uses the letter: the
+        // chapter reuses it (M a moment there)
+        let uses: BTreeSet<String> = inputs[i]
+            .iter()
+            .flat_map(|r| r.sides.iter().flat_map(Expr::symbols))
+            .filter(|x| !declared.contains_key(&unit_name(x)))
+            .collect();
         let mut subset: Vec<Option<Relation>> = core
             .iter()
             .filter(|&&k| k != i)
+            .filter(|&&k| {
+                !inputs[k].iter().any(|r| {
+                    r.sides
+                        .get(1)
+                        .is_some_and(|rhs| forced_pure(rhs).iter().any(|x| uses.contains(x)))
+                })
+            })
             .map(|&k| inputs[k].clone())
             .collect();
         subset.push(inputs[i].clone());
@@ -65,6 +80,36 @@ pub fn weak_conflicts(
         }
     }
     weak
+}
+
+/// The symbols `e` makes pure numbers: those in the argument of a function that takes a pure
+/// number (`exp`, `ln`, `sin`, ...: not `sqrt`, `abs`, `sign`, Heaviside's step) or in an
+/// exponent.
+fn forced_pure(e: &Expr) -> Vec<String> {
+    use crate::algebra::expr::{Func, Op};
+    match e {
+        Expr::Num(_) | Expr::Sym(_) | Expr::Pi => Vec::new(),
+        Expr::Neg(a) => forced_pure(a),
+        Expr::Bin(Op::Pow, a, b) => {
+            let mut out = forced_pure(a);
+            out.extend(b.symbols());
+            out
+        }
+        Expr::Bin(_, a, b) => {
+            let mut out = forced_pure(a);
+            out.extend(forced_pure(b));
+            out
+        }
+        Expr::Call(Func::Sqrt | Func::Abs | Func::Sign | Func::Heaviside, a) => forced_pure(a),
+        Expr::Call(_, a) => a.symbols(),
+        Expr::Calc(_, a, _, rest) => {
+            let mut out = forced_pure(a);
+            for r in rest {
+                out.extend(forced_pure(r));
+            }
+            out
+        }
+    }
 }
 
 /// The inference with the units of the words: relations taken in the order that trusts known
@@ -375,5 +420,63 @@ fn renamed_in(e: &Expr, rename: &dyn Fn(&str) -> Option<String>) -> Expr {
             rename(var).unwrap_or_else(|| var.clone()),
             extra.iter().map(|x| renamed_in(x, rename)).collect(),
         ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::expr::parse;
+
+    fn rel(text: &str) -> Option<Relation> {
+        Some(Relation {
+            sides: text.split('=').map(|s| parse(s).expect("parses")).collect(),
+            dots: vec![],
+            rels: vec![],
+        })
+    }
+
+    #[test]
+    fn a_definition_that_makes_an_unnamed_letter_a_pure_number_decides_nothing_else() {
+        // by hand: a chapter's sigmoid `sig = 1/(1 + exp(-M (a - a0)))` makes its steepness M a
+        // pure number (a, a0 angles); the same chapter's `thdd = M/J` (thdd in 1/s^2, J in kg m^2)
+        // takes M for a moment. Nothing names M: the two relations conflict, and neither is the finding
+        let declared: BTreeMap<String, Unit> = [
+            ("thdd", Unit::parse("s^-2").unwrap()),
+            ("J", Unit::parse("kg m^2").unwrap()),
+            ("a", Unit::one()),
+            ("a0", Unit::one()),
+        ]
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect();
+        let inputs = vec![rel("sig = 1/(1 + exp(-M*(a - a0)))"), rel("thdd = M/J")];
+        let inf = infer_ordered(&inputs, &declared, true);
+        assert!(
+            matches!(inf.statuses[1], Status::Inconsistent { .. }),
+            "{:?}",
+            inf.statuses
+        );
+        assert!(weak_conflicts(&inputs, &inf, &declared).contains(&1));
+        // a sigmoid of a named steepness (M declared a pure number) still decides; so does a
+        // definition whose pure letter the relation does not use (`L(d) = exp(-d t) ..` for
+        // `E = L(a)`, issue 66's seed 000)
+        let mut named = declared.clone();
+        named.insert("M".into(), Unit::one());
+        let inf = infer_ordered(&inputs, &named, true);
+        assert!(!weak_conflicts(&inputs, &inf, &named).contains(&1));
+        let declared: BTreeMap<String, Unit> = [
+            ("t".to_string(), Unit::parse("s").unwrap()),
+            ("P".to_string(), Unit::parse("kg").unwrap()),
+        ]
+        .into_iter()
+        .collect();
+        let inputs = vec![rel("L = exp(-d*t)*t"), rel("P = L")];
+        let inf = infer_ordered(&inputs, &declared, true);
+        assert!(matches!(inf.statuses[1], Status::Inconsistent { .. }));
+        assert!(!weak_conflicts(&inputs, &inf, &declared).contains(&1));
+        // what the rule reads: a function's argument and an exponent, not a root's argument
+        let pure = forced_pure(&parse("sqrt(x) + exp(y) + z^w + abs(v)").unwrap());
+        assert_eq!(pure, ["y", "w"]);
     }
 }

@@ -46,6 +46,9 @@ impl Reader<'_> {
         if let Some(e) = self.applied_to_formulas(&name, open)? {
             return Ok(e);
         }
+        if let Some(e) = self.evaluated_at(&name, open) {
+            return Ok(e);
+        }
         // the arguments: names or numbers separated by commas, at one level
         let mut k = self.pos + open;
         let mut args = Vec::new();
@@ -62,6 +65,17 @@ impl Reader<'_> {
                     cur.push_str(greek(c).unwrap_or("p"))
                 }
                 Some(Tok::Cmd(c)) if c == "parallel" || c == "perp" => cur.push_str(&c[..3]),
+                // `h(\cdot, t)`: a placeholder for the variable left free
+                Some(Tok::Cmd(c))
+                    if c == "cdot"
+                        && cur.is_empty()
+                        && matches!(
+                            self.toks.get(k + 1).map(|t| &t.0),
+                            Some(Tok::Ch(',' | ')'))
+                        ) =>
+                {
+                    cur.push_str("cdot")
+                }
                 Some(Tok::Cmd(c)) if is_space(&Tok::Cmd(c.clone())) => {}
                 // `S(q_0, t_0; q, t)`: a semicolon separates arguments as a comma does
                 Some(Tok::Ch(',' | ';')) => args.push(std::mem::take(&mut cur)),
@@ -176,6 +190,49 @@ impl Reader<'_> {
         }
         let args: Vec<String> = args.iter().map(ToString::to_string).collect();
         Ok(Some(Expr::Sym(format!("{{{name}({})}}", args.join(",")))))
+    }
+
+    /// `w(z = h_U)`, `u(x, y = h_m + d)`, `Z(t = 0)`: a function at a point given by the value of
+    /// one of its variables, an opaque symbol named by its arguments as read (`{w(z=h_U)}`), with
+    /// the unit of the function; `None` unless an argument is such an equation.
+    fn evaluated_at(&mut self, name: &str, open: usize) -> Option<Expr> {
+        let save = self.pos;
+        self.pos += open;
+        let mut args = Vec::new();
+        let mut equation = false;
+        let done = loop {
+            let Ok(a) = self.expr() else { break false };
+            self.skip_space();
+            if *self.peek() == Tok::Ch('=') {
+                self.bump();
+                let Ok(b) = self.expr() else { break false };
+                self.skip_space();
+                equation = true;
+                args.push(format!("{a}={b}"));
+            } else {
+                args.push(a.to_string());
+            }
+            match self.peek() {
+                Tok::Ch(',' | ';') => {
+                    self.bump();
+                }
+                Tok::Ch(')') => {
+                    self.bump();
+                    break true;
+                }
+                Tok::Cmd(r) if r == "right" => {
+                    self.bump();
+                    self.bump();
+                    break true;
+                }
+                _ => break false,
+            }
+        };
+        if !(done && equation) {
+            self.pos = save;
+            return None;
+        }
+        Some(Expr::Sym(format!("{{{name}({})}}", args.join(","))))
     }
 
     /// A matrix or vector inside a formula (`\begin{pmatrix} .. \end{pmatrix}`): its entries

@@ -32,6 +32,11 @@ impl Reader<'_> {
                     self.bump();
                     out.push('p');
                 }
+                // `\hat{\imath}`: the dotless i (j) of a unit vector is the letter
+                Tok::Cmd(c) if c == "imath" || c == "jmath" => {
+                    self.bump();
+                    out.push_str(&c[..1]);
+                }
                 // `p_{1 ;}` of a scan: a separator put inside the braces, no name's part
                 Tok::Ch(';') if braced && self.at(1) == Some(&Tok::Close) => {
                     return self.err("a name's part (letters, digits, Greek)");
