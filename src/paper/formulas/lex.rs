@@ -124,7 +124,44 @@ pub(super) fn lex(src: &str, syms: &TexSymbols) -> Vec<(Tok, usize)> {
         }
     }
     out.push((Tok::End, chars.len() + 1));
-    set_operations(empty_bases(bounds_in_order(unstyled_operators(out))))
+    set_operations(repeated_integrals(empty_bases(bounds_in_order(
+        unstyled_operators(out),
+    ))))
+}
+
+/// `\int\int f dx dy`: integral signs in a row, the first without bounds, are one integral
+/// over a region of as many dimensions (`\iint`, `\iiint`), closed by all its differentials.
+fn repeated_integrals(toks: Vec<(Tok, usize)>) -> Vec<(Tok, usize)> {
+    let int = |t: &Tok| matches!(t, Tok::Cmd(c) if c == "int");
+    let mut out: Vec<(Tok, usize)> = Vec::with_capacity(toks.len());
+    let mut i = 0;
+    while i < toks.len() {
+        if int(&toks[i].0) {
+            let mut n = 1;
+            let mut k = i + 1;
+            loop {
+                let mut j = k;
+                while toks.get(j).is_some_and(|t| is_space(&t.0)) {
+                    j += 1;
+                }
+                if toks.get(j).is_some_and(|t| int(&t.0)) {
+                    n += 1;
+                    k = j + 1;
+                } else {
+                    break;
+                }
+            }
+            if n > 1 {
+                let name = if n == 2 { "iint" } else { "iiint" };
+                out.push((Tok::Cmd(name.into()), toks[i].1));
+                i = k;
+                continue;
+            }
+        }
+        out.push(toks[i].clone());
+        i += 1;
+    }
+    out
 }
 
 /// Two operators of sets and vectors as the reader takes them: `\Omega \setminus \omega`,
@@ -147,12 +184,32 @@ fn set_operations(toks: Vec<(Tok, usize)>) -> Vec<(Tok, usize)> {
         }
         _ => false,
     };
+    // the depth of braces, and the depths at which a text's group opened (`\text{s.t.}`,
+    // `\mathrm{c.c.}`: a period in words is punctuation)
+    let (mut depth, mut texts) = (0usize, Vec::new());
     let mut out: Vec<(Tok, usize)> = Vec::with_capacity(toks.len());
     for (i, (t, col)) in toks.iter().enumerate() {
+        match t {
+            Tok::Open => {
+                depth += 1;
+                if matches!(out.last(), Some((Tok::Cmd(c), _)) if accent_suffix(c).is_some() || c == "mbox" || c == "operatorname")
+                {
+                    texts.push(depth);
+                }
+            }
+            Tok::Close => {
+                if texts.last() == Some(&depth) {
+                    texts.pop();
+                }
+                depth = depth.saturating_sub(1);
+            }
+            _ => {}
+        }
         let t = match t {
             Tok::Cmd(c) if matches!(c.as_str(), "setminus" | "cap" | "cup") => Tok::Ch('+'),
             Tok::Ch('.')
-                if out.last().is_some_and(|(p, _)| operand_end(p))
+                if texts.is_empty()
+                    && out.last().is_some_and(|(p, _)| operand_end(p))
                     && toks.get(i + 1).is_some_and(|(n, _)| operand_start(n)) =>
             {
                 Tok::Cmd("cdot".into())

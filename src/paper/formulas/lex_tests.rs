@@ -367,6 +367,8 @@ fn a_period_between_operands_is_a_dot_product_and_set_operations_join() {
         read("\\mathbf{v} \\cdot \\mathbf{n}")
     );
     assert_eq!(read("(u.\\nabla) u"), read("(u \\cdot \\nabla) u"));
+    // a period in words (`\text{s.t.}`, `\mathrm{c.c.}`) is punctuation
+    assert_eq!(read("a + \\mathrm{c.c.}"), "a + cc");
     assert_eq!(read("1.5 a"), "1.5*a");
     // `\setminus`, `\cap`, `\cup` join sets as a sum joins terms of one unit
     assert_eq!(
@@ -381,4 +383,64 @@ fn a_period_between_operands_is_a_dot_product_and_set_operations_join() {
         read("\\nabla (\\nabla \\cdot v)")
     );
     assert_ne!(read("\\nabla(\\nabla \\cdot v)"), "{nabla(nablacdotv)}");
+}
+
+#[test]
+fn a_volume_element_in_a_numerator_and_a_repeated_integral_sign() {
+    // by hand: `\int \frac{d^3 k}{8\pi^3} f` integrates over k three times (a volume in k);
+    // `\int\int u dx dy` is `\iint u dx dy`
+    assert_eq!(
+        read("\\int \\frac{d^3 k}{8\\pi^3} f"),
+        "region(region(region(1/(8*pi^3)*f, k), k), k)"
+    );
+    assert_eq!(
+        read("\\int \\frac{d k}{8\\pi^3} f"),
+        "region(1/(8*pi^3)*f, k)"
+    );
+    assert_eq!(
+        read("\\int\\int u \\mathrm{d}x\\mathrm{d}y"),
+        read("\\iint u \\mathrm{d}x\\mathrm{d}y")
+    );
+    assert_eq!(read("\\int \\int\\int Q d V"), read("\\iiint Q d V"));
+}
+
+#[test]
+fn labels_infinity_quasi_velocities_and_omitted_arguments_are_names() {
+    // by hand: `\partial e^{pl}` differentiates by the plastic strain e^pl (a label, no order);
+    // `v_\infty` is the speed at infinity; `\dot{\pi}_\nu` a quasi-velocity (no constant pi);
+    // `M(\sim)` is M with its arguments omitted
+    assert_eq!(
+        read("\\frac{\\partial q}{\\partial e^{pl}}"),
+        "diff(q, epl)"
+    );
+    assert_eq!(read("m v_\\infty^2"), read("m v_{\\infty}^2"));
+    assert_eq!(read("m v_\\infty^2"), "m*vinf^2");
+    assert_eq!(read("\\dot{\\pi}_\\nu"), "pidnu");
+    assert_eq!(read("M(\\sim)"), "{M(sim)}");
+    // a number's superscript is still an order
+    assert_eq!(
+        read("\\frac{\\partial^2 q}{\\partial x^2}"),
+        "diff(diff(q, x), x)"
+    );
+}
+
+#[test]
+fn a_bracket_s_prime_is_its_derivative_as_a_symbol_of_its_own() {
+    // by hand: `(u v)'` is the derivative of u v by a variable left unsaid: one opaque symbol;
+    // a name's prime stays in the name
+    assert_eq!(read("(u v)' + w"), "{(u*v)'} + w");
+    assert_eq!(read("\\left(a\\right)'' + b'"), "{(a)''} + bp");
+}
+
+#[test]
+fn a_sized_set_builder_is_a_set_of_its_elements() {
+    // by hand: `\left\{ x \in D \,|\, x > 0 \right\}` is the set builder of `\{x \in D : x > 0\}`
+    assert_eq!(
+        read("\\left\\{ x \\in D \\,|\\, 0 < x < \\lambda \\right\\}"),
+        read("\\{ x \\in D : 0 < x < \\lambda \\}")
+    );
+    assert_eq!(
+        read("\\left\\{v \\in H(\\Omega): v \\geq \\psi \\right\\} + w"),
+        read("\\{v \\in H(\\Omega): v \\geq \\psi \\} + w")
+    );
 }

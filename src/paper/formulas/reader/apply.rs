@@ -66,15 +66,16 @@ impl Reader<'_> {
                 }
                 Some(Tok::Cmd(c)) if c == "parallel" || c == "perp" => cur.push_str(&c[..3]),
                 // `h(\cdot, t)`: a placeholder for the variable left free
+                // (`\sim` too: "we omit the arguments by writing (\sim)")
                 Some(Tok::Cmd(c))
-                    if c == "cdot"
+                    if (c == "cdot" || c == "sim")
                         && cur.is_empty()
                         && matches!(
                             self.toks.get(k + 1).map(|t| &t.0),
                             Some(Tok::Ch(',' | ')'))
                         ) =>
                 {
-                    cur.push_str("cdot")
+                    cur.push_str(c)
                 }
                 Some(Tok::Cmd(c)) if is_space(&Tok::Cmd(c.clone())) => {}
                 // `S(q_0, t_0; q, t)`: a semicolon separates arguments as a comma does

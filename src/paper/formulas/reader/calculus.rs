@@ -24,9 +24,9 @@ impl Reader<'_> {
                 Box::new(num(b).unwrap_or(Expr::Pi)),
             ));
         }
-        if let Some((a, var)) = self.numerator_differential()? {
+        if let Some((a, var, power)) = self.numerator_differential()? {
             let b = self.group()?;
-            self.pending_differential = Some(var);
+            self.pending_differential = Some((var, power));
             return Ok(Expr::Bin(Op::Div, Box::new(a), Box::new(b)));
         }
         // \frac{\partial f}{\partial x}, \frac{d f}{d x}, \frac{\partial^2 w}{\partial t^2},
@@ -72,6 +72,11 @@ impl Reader<'_> {
                     let var = self
                         .differential_variable()
                         .or_else(|_| self.err("the variable of a derivative"))?;
+                    // `\partial e^{pl}`: a label of letters is part of the variable's name
+                    let var = match self.letters_superscript() {
+                        Some(label) => format!("{var}{label}"),
+                        None => var,
+                    };
                     let times = self.derivative_order()?;
                     vars.extend(std::iter::repeat_n(var, times as usize));
                 }
@@ -115,6 +120,28 @@ impl Reader<'_> {
         let a = self.group()?;
         let b = self.group()?;
         Ok(Expr::Bin(Op::Div, Box::new(a), Box::new(b)))
+    }
+
+    /// `^{pl}`: a superscript of two letters or more (a label, as the plastic strain's
+    /// `e^{pl}`), read and returned; `None` (nothing read) otherwise.
+    pub(super) fn letters_superscript(&mut self) -> Option<String> {
+        if *self.peek() != Tok::Ch('^') || self.at(1) != Some(&Tok::Open) {
+            return None;
+        }
+        let mut k = self.pos + 2;
+        let mut label = String::new();
+        while let Some((Tok::Ch(c), _)) = self.toks.get(k) {
+            if !c.is_ascii_alphabetic() {
+                return None;
+            }
+            label.push(*c);
+            k += 1;
+        }
+        if label.len() < 2 || self.toks.get(k).map(|t| &t.0) != Some(&Tok::Close) {
+            return None;
+        }
+        self.pos = k + 1;
+        Some(label)
     }
 
     /// `^{n}` of a derivative's order (`\partial^2`, `t^2` in its denominator): n, or 1.
@@ -278,7 +305,10 @@ impl Reader<'_> {
         self.in_integral -= 1;
         let body = body?;
         self.skip_space();
-        if let Some(var) = self.pending_differential.take() {
+        if let Some((var, power)) = self.pending_differential.take() {
+            if power > 1 {
+                return self.err("a volume element `d^n x` closing an integral with bounds");
+            }
             return Ok(Expr::Calc(Calc::Int, Box::new(body), var, vec![lo, hi]));
         }
         if !self.is_differential() {
@@ -311,7 +341,11 @@ impl Reader<'_> {
         self.in_integral = outer;
         let mut body = body?;
         self.skip_space();
-        if let Some(var) = self.pending_differential.take() {
+        // `\int \frac{d^3 k}{8\pi^3} f`: a volume element in the numerator, once per dimension
+        if let Some((var, power)) = self.pending_differential.take() {
+            for _ in 1..power {
+                body = Expr::Calc(Calc::Region, Box::new(body), var.clone(), vec![]);
+            }
             return Ok(Expr::Calc(Calc::Region, Box::new(body), var, vec![]));
         }
         if !self.is_differential() {
@@ -356,7 +390,7 @@ impl Reader<'_> {
     /// Inside an integrand, `{d u}` as a fraction's numerator (`\frac{du}{F(u)}`): its variable
     /// becomes the integral's, and the numerator is 1; `None` (nothing read) otherwise.
     /// The numerator and the variable: `{d u}` gives 1 and u, `{l \mathrm{d} u}` gives l and u.
-    pub(super) fn numerator_differential(&mut self) -> R<Option<(Expr, String)>> {
+    pub(super) fn numerator_differential(&mut self) -> R<Option<(Expr, String, u32)>> {
         if self.in_integral == 0 || *self.peek() != Tok::Open {
             return Ok(None);
         }
@@ -370,12 +404,12 @@ impl Reader<'_> {
             self.expr().ok().filter(|_| self.is_differential())
         };
         if let Some(factor) = factor {
-            // a volume element `d^3 x` in a numerator is not read as one
-            let single = self.skip_differential_mark() == 1;
+            // a volume element `d^3 k` in a numerator: its variable and its power
+            let power = self.skip_differential_mark();
             let var = self.differential_variable().ok();
             self.skip_space();
             if let Some(v) = var
-                && single
+                && power >= 1
                 && *self.peek() == Tok::Close
             {
                 self.bump();
@@ -388,7 +422,7 @@ impl Reader<'_> {
                     && (self.d_mark(k) > 0
                         || matches!(self.toks.get(k), Some((Tok::Cmd(c), _)) if c == "partial"));
                 if !derivative {
-                    return Ok(Some((factor, v)));
+                    return Ok(Some((factor, v, power)));
                 }
             }
         }

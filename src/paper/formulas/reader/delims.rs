@@ -20,6 +20,27 @@ impl Reader<'_> {
         }
         let open = self.bump();
         let e = self.expr()?;
+        // `\left\{ (x, y) \in \mathbb{R}^2 \,|\, .. \right\}`: a set of its elements, in their
+        // unit, as `\{x \in D : ..\}` is; what follows the element is no value
+        self.skip_space();
+        let builder = matches!(self.peek(), Tok::Ch(':' | '|'))
+            || matches!(self.peek(), Tok::Cmd(c) if c == "in" || c == "mid" || c == "vert");
+        if builder && matches!(&open, Tok::Cmd(c) if c == "{") {
+            let mut depth = 0usize;
+            loop {
+                match self.peek().clone() {
+                    Tok::End => return self.err("`\\right\\}` closing a set"),
+                    Tok::Cmd(c) if c == "left" => depth += 1,
+                    Tok::Cmd(c) if c == "right" && depth == 0 => break,
+                    Tok::Cmd(c) if c == "right" => depth -= 1,
+                    _ => {}
+                }
+                self.bump();
+            }
+            self.bump();
+            self.bump();
+            return Ok(super::marks::marked(e));
+        }
         let e = self.tuple(e)?;
         self.skip_space();
         if !matches!(self.peek(), Tok::Cmd(c) if c == "right") {

@@ -45,7 +45,7 @@ pub(super) struct Reader<'a> {
     star_power: bool,
     /// The variable of a differential read inside an integrand's fraction (`\int \frac{du}{F}`):
     /// the integral's own.
-    pending_differential: Option<String>,
+    pending_differential: Option<(String, u32)>,
 }
 
 /// The deepest nesting read (as the text parser's limit).
@@ -426,6 +426,17 @@ impl<'a> Reader<'a> {
                 Tok::Ch('!') => {
                     self.bump();
                     e = Expr::Call(Func::Factorial, Box::new(e));
+                }
+                // `\left(\frac{u'}{\sqrt{1+u'^2}}\right)'`: a bracket's derivative by a variable
+                // the prime does not name, an opaque symbol named by its text, in a unit of its
+                // own (a name's prime is part of the name: `u'`)
+                Tok::Ch('\'') => {
+                    let mut primes = String::new();
+                    while *self.peek() == Tok::Ch('\'') {
+                        self.bump();
+                        primes.push('\'');
+                    }
+                    e = Expr::Sym(format!("{{({e}){primes}}}"));
                 }
                 // `(\partial V / \partial q)_0`, `[\mathbf{D}]_{ab}`, `\{f, g\}_{qp}`: taken at
                 // a point, or a component: the unit of the formula

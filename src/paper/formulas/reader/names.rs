@@ -28,6 +28,12 @@ impl Reader<'_> {
                     self.bump();
                     out.push_str(greek(&c).unwrap_or_default());
                 }
+                // `\dot{\pi}_\nu`: a quasi-velocity's letter under an accent is a name's, not
+                // the constant
+                Tok::Cmd(c) if braced && c == "pi" => {
+                    self.bump();
+                    out.push_str("pi");
+                }
                 Tok::Cmd(c) if c == "prime" => {
                     self.bump();
                     out.push('p');
@@ -60,7 +66,8 @@ impl Reader<'_> {
                 Tok::Ch('(' | ')' | '.' | '/' | '|' | '[' | ']') if braced => {
                     self.bump();
                 }
-                Tok::Cmd(c) if braced && c == "infty" => {
+                // `v_\infty`, `v_{\infty}`: the value at infinity
+                Tok::Cmd(c) if c == "infty" => {
                     self.bump();
                     out.push_str("inf");
                 }
