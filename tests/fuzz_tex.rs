@@ -9,7 +9,10 @@
 //! within seconds).
 
 use impactcheck::paper::audit::{Units, audit};
-use impactcheck::paper::source::blocks::blocks_at;
+#[path = "support/scratch.rs"]
+mod scratch;
+
+use impactcheck::paper::source::blocks::{blocks_at, preamble_part, subfiles_main};
 use impactcheck::paper::source::document::read_document_with;
 use proptest::prelude::*;
 
@@ -165,6 +168,46 @@ fn run_files(files: &[String]) {
     }
 }
 
+/// How a file of [`main_files_on_disk`] opens: a `subfiles` chapter of another file (or of
+/// itself, of a missing one, of a path out of the folder), a main file, or nothing.
+const HEADS: &[&str] = &[
+    "\\documentclass[a.tex]{subfiles}\n\\begin{document}\n",
+    "\\documentclass[b]{subfiles}\n\\begin{document}\n",
+    "\\documentclass[../a.tex]{subfiles}\n\\begin{document}\n",
+    "\\documentclass[/etc/passwd]{subfiles}\n",
+    "\\documentclass[gone]{subfiles}\n",
+    "\\documentclass{article}\n\\newcommand{\\q}{q}\n\\begin{document}\n",
+    "\\begin{document}\n",
+    "",
+];
+
+/// Files `a`..`d` written to a folder of their own, each opened by one of [`HEADS`]: each read
+/// as a `subfiles` chapter with its main file's preamble and given to another as a preamble.
+fn main_files_on_disk(files: &[String], heads: &[usize]) {
+    let dir = scratch::Scratch::new("fuzz-main-files");
+    let names = ["a", "b", "c", "d"];
+    for (k, name) in names.iter().enumerate() {
+        let text = format!("{}{}", HEADS[heads[k]], files[k]);
+        std::fs::write(dir.join(format!("{name}.tex")), text).unwrap();
+    }
+    for name in names {
+        let path = dir.join(format!("{name}.tex"));
+        let text = std::fs::read_to_string(&path).unwrap();
+        if let Some(main) = subfiles_main(&text, &path) {
+            assert!(
+                main.starts_with(dir.parent().unwrap()),
+                "{}",
+                main.display()
+            );
+            let main_text = std::fs::read_to_string(&main).unwrap();
+            let (pre, _) = preamble_part(&main_text, &main);
+            let _ = blocks_at(&text, Some(&dir), &pre);
+        }
+        let (pre, _) = preamble_part(&text, &path);
+        let _ = blocks_at(&files[0], Some(&dir), &pre);
+    }
+}
+
 /// A document's displays as the audit takes them.
 fn doc_blocks(
     doc: &impactcheck::paper::source::document::Document,
@@ -215,6 +258,14 @@ proptest! {
     fn papers_of_several_files_input_at_random(files in prop::collection::vec(file_body(), 5)) {
         // cycles, files that input themselves, inputs twice over: no panic, no hang
         run_files(&files);
+    }
+
+    #[test]
+    fn chapters_read_with_their_main_files_preamble(files in prop::collection::vec(file_body(), 4),
+                                                    heads in prop::collection::vec(0usize..HEADS.len(), 4)) {
+        // a chapter whose `subfiles` main is itself, another chapter or missing; a preamble given
+        // by a main file that inputs the chapter back: no panic, no hang
+        main_files_on_disk(&files, &heads);
     }
 
     #[test]

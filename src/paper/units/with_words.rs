@@ -56,19 +56,24 @@ pub fn weak_conflicts(
         // a definition that makes a letter nothing names a pure number (a sigmoid's steepness
         // `e^{-M(\alpha - \alpha_0)}`) decides nothing of a relation that uses the letter: the
         // chapter reuses it (M a moment there)
+        // (by the symbol a unit is that of: the sigmoid's `M(\alpha - \alpha_0)`, where the
+        // chapter applies M elsewhere, is M's)
         let uses: BTreeSet<String> = inputs[i]
             .iter()
             .flat_map(|r| r.sides.iter().flat_map(Expr::symbols))
-            .filter(|x| !declared.contains_key(&unit_name(x)))
+            .map(|x| unit_name(&x))
+            .filter(|x| !declared.contains_key(x))
             .collect();
         let mut subset: Vec<Option<Relation>> = core
             .iter()
             .filter(|&&k| k != i)
             .filter(|&&k| {
                 !inputs[k].iter().any(|r| {
-                    r.sides
-                        .get(1)
-                        .is_some_and(|rhs| forced_pure(rhs).iter().any(|x| uses.contains(x)))
+                    r.sides.get(1).is_some_and(|rhs| {
+                        forced_pure(rhs)
+                            .iter()
+                            .any(|x| uses.contains(&unit_name(x)))
+                    })
                 })
             })
             .map(|&k| inputs[k].clone())
@@ -475,6 +480,27 @@ mod tests {
         let inf = infer_ordered(&inputs, &declared, true);
         assert!(matches!(inf.statuses[1], Status::Inconsistent { .. }));
         assert!(!weak_conflicts(&inputs, &inf, &declared).contains(&1));
+        // the steepness read as a function applied (`M(a - a0)`, M applied elsewhere in the
+        // chapter): the same letter
+        let applied = |name: &str| (name == "X").then(|| Expr::Sym("{M(a - a0)}".into()));
+        let mut sigmoid = rel("sig = 1/(1 + exp(-X))").unwrap();
+        sigmoid.sides[1] = sigmoid.sides[1].substitute(&applied);
+        let inputs = vec![Some(sigmoid), rel("thdd = M/J")];
+        let declared: BTreeMap<String, Unit> = [
+            ("thdd".to_string(), Unit::parse("s^-2").unwrap()),
+            ("J".to_string(), Unit::parse("kg m^2").unwrap()),
+            ("a".to_string(), Unit::one()),
+            ("a0".to_string(), Unit::one()),
+        ]
+        .into_iter()
+        .collect();
+        let inf = infer_ordered(&inputs, &declared, true);
+        assert!(
+            matches!(inf.statuses[1], Status::Inconsistent { .. }),
+            "{:?}",
+            inf.statuses
+        );
+        assert!(weak_conflicts(&inputs, &inf, &declared).contains(&1));
         // what the rule reads: a function's argument and an exponent, not a root's argument
         let pure = forced_pure(&parse("sqrt(x) + exp(y) + z^w + abs(v)").unwrap());
         assert_eq!(pure, ["y", "w"]);
