@@ -417,6 +417,23 @@ fn the_entries_of_the_nomencl_package_are_rows_of_a_nomenclature() {
 }
 
 #[test]
+fn the_symbols_of_the_glossaries_package_are_rows_of_a_nomenclature() {
+    // the symbol's math in `name` (its unit in `symbol` or `unit`) or in `symbol`, and the
+    // `glossaries-extra` form; a term of words (no math) names nothing
+    let text = "\\newglossaryentry{sym:m}{name={\\ensuremath{m}}, description={mass of the ball},\n symbol={\\si{\\kilo\\gram}}}\n\\newglossaryentry{k}{name=stiffness, symbol={$k$}, unit={N/m}, description={the spring's stiffness}}\n\\glsxtrnewsymbol[description={contact time}]{tc}{$t_c$}\n\\newglossaryentry{fem}{name=FEM, description={finite element method}}\n\\newglossaryentry{v}{name={$v$}, description={speed}}";
+    let w = read_words(text, &TexSymbols::default(), &vocab());
+    let unit = |s: &str| w.units.get(s).map(|u| u.unit.to_string());
+    assert_eq!(unit("m").as_deref(), Some("kg"));
+    assert_eq!(unit("k").as_deref(), Some("kg s^-2"));
+    assert_eq!(unit("tc").as_deref(), Some("s"));
+    assert_eq!(unit("v").as_deref(), Some("m s^-1"));
+    // each on its entry's line (the mass's entry takes two)
+    assert_eq!(w.units["k"].line, 3);
+    assert_eq!(w.units["tc"].line, 4);
+    assert_eq!(w.units["v"].line, 6);
+}
+
+#[test]
 fn a_list_that_says_its_verb_once_names_every_symbol() {
     let w = read_words(
         "where $E^*$ is the effective modulus, $R^*$ the effective radius and $m^*$ the effective mass. Then $x$, the force $F$ and $y$ follow.",
@@ -462,4 +479,36 @@ fn a_unit_said_after_in_is_the_symbol_s_unit() {
     let unit = |s: &str| w.units.get(s).map(|u| u.unit.to_string());
     assert_eq!(unit("T").as_deref(), Some("K"));
     assert_eq!(unit("k").as_deref(), Some("kg m s^-3 K^-1"));
+}
+
+#[test]
+fn a_word_takes_its_sense_from_the_words_around_it_as_the_vocabulary_says() {
+    // by hand: the amplitude of a force is a force, an amplitude alone a displacement; an
+    // array's length counts its elements
+    assert_eq!(
+        quantity("the amplitude of the applied force").as_deref(),
+        Some("force")
+    );
+    assert_eq!(quantity("the amplitude").as_deref(), Some("length"));
+    assert_eq!(
+        quantity("the length of the array").as_deref(),
+        Some("count")
+    );
+    assert_eq!(
+        quantity("the length of the beam").as_deref(),
+        Some("length")
+    );
+    // the senses are data: a user's file adds a qualifying word
+    assert_eq!(quantity("the peak of the applied force"), None);
+    let more = Vocabulary::parse("[senses]\nqualifying = [\"peak\"]\n", "v.toml").unwrap();
+    let v = vocab().extended(more);
+    assert_eq!(
+        v.describe("the peak of the applied force")
+            .map(|h| h.quantity.name.clone())
+            .as_deref(),
+        Some("force")
+    );
+    // a key [senses] does not know is named
+    let e = Vocabulary::parse("[senses]\nqualifyng = [\"peak\"]\n", "v.toml").unwrap_err();
+    assert!(e.contains("v.toml") && e.contains("senses"), "{e}");
 }

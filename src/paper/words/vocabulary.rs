@@ -45,6 +45,19 @@ pub struct Vocabulary {
     quantities: Vec<Quantity>,
     phrases: BTreeMap<Vec<String>, Phrase>,
     longest: usize,
+    /// The words that stand for the quantity they qualify (`[senses] qualifying`: "the
+    /// amplitude of the applied force" is a force), in the singular.
+    qualifying: Vec<String>,
+}
+
+/// The `[senses]` table of a vocabulary: how words take their sense from the words around them.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSenses {
+    /// Words that stand for the quantity they qualify ("the velocity vector", "the amplitude
+    /// of the force").
+    #[serde(default)]
+    qualifying: Vec<String>,
 }
 
 #[derive(Deserialize)]
@@ -135,28 +148,6 @@ const PARTICIPLES: &[&str] = &[
     "obtained",
 ];
 
-/// Words that stand for the quantity they qualify ("the velocity vector", "the projection of
-/// the velocity").
-const TRANSPARENT: &[&str] = &[
-    "vector",
-    "component",
-    "projection",
-    "value",
-    "magnitude",
-    "increment",
-    "change",
-    "variation",
-    "maximum",
-    "minimum",
-    "jump",
-    "norm",
-    "modulus",
-    "amplitude",
-    "total",
-    "sum",
-    "difference",
-];
-
 /// Words that make a description another quantity than its head ("the force per unit length",
 /// "the moment referred to the normal reaction", "the dimensionless time").
 const SCALINGS: &[&[&str]] = &[
@@ -240,9 +231,22 @@ impl Vocabulary {
     /// Reads a vocabulary file; `origin` names it in errors (a bad unit, a phrase given twice,
     /// a key that is not `words`, `unit`, `unless` or `description_only`).
     pub fn parse(text: &str, origin: &str) -> Result<Vocabulary, String> {
-        let raw: BTreeMap<String, RawQuantity> =
+        let mut table: toml::Table =
             toml::from_str(text).map_err(|e| format!("{origin}: {}", e.message()))?;
-        let mut v = Vocabulary::default();
+        let senses: Option<RawSenses> = table
+            .remove("senses")
+            .map(|t| t.try_into())
+            .transpose()
+            .map_err(|e: toml::de::Error| format!("{origin}: [senses]: {}", e.message()))?;
+        let raw: BTreeMap<String, RawQuantity> = toml::Value::Table(table)
+            .try_into()
+            .map_err(|e: toml::de::Error| format!("{origin}: {}", e.message()))?;
+        let mut v = Vocabulary {
+            qualifying: senses
+                .map(|s| s.qualifying.iter().map(|w| singular(w)).collect())
+                .unwrap_or_default(),
+            ..Vocabulary::default()
+        };
         let mut seen: BTreeMap<Vec<String>, String> = BTreeMap::new();
         for (name, q) in raw {
             let unit = match &q.unit {
@@ -305,6 +309,11 @@ impl Vocabulary {
             );
         }
         self.longest = self.longest.max(other.longest);
+        for w in other.qualifying {
+            if !self.qualifying.contains(&w) {
+                self.qualifying.push(w);
+            }
+        }
         self
     }
 
@@ -392,7 +401,8 @@ impl Vocabulary {
         // words ("the disk angular velocity vector"), else what they qualify ("the absolute
         // value of the tangential component of the velocity")
         // "the amplitude of the applied force" is a force, "the amplitude" alone a length
-        if TRANSPARENT.contains(&words[group_end - 1].as_str())
+        let transparent = |w: &str| self.qualifying.iter().any(|q| q == w);
+        if transparent(&words[group_end - 1])
             && depth < 4
             && words.get(group_end).is_some_and(|w| w == "of")
             && let Some(h) = self
@@ -403,7 +413,7 @@ impl Vocabulary {
         }
         let mut k = group_end;
         if self.longest_suffix(&words[i..k]).is_none() {
-            while k > i && TRANSPARENT.contains(&words[k - 1].as_str()) {
+            while k > i && transparent(&words[k - 1]) {
                 k -= 1;
             }
             let stripped = k < group_end;

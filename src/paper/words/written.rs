@@ -188,6 +188,8 @@ pub(super) fn value_unit<'a>(math: &'a str, after: &str) -> Option<(&'a str, Uni
 /// \\`), as the words read one; its lines kept.
 pub(super) fn nomenclature_rows(text: &str) -> String {
     const CMD: &str = "\\nomenclature";
+    let glossary = glossary_rows(text);
+    let text = glossary.as_str();
     if !text.contains(CMD) {
         return text.to_string();
     }
@@ -228,5 +230,115 @@ pub(super) fn nomenclature_rows(text: &str) -> String {
         pos = close;
     }
     out.push_str(&text[pos..]);
+    out
+}
+
+/// The symbols of the `glossaries` package as rows of a nomenclature:
+/// `\newglossaryentry{key}{name={\ensuremath{m}}, description={mass}, symbol={\si{kg}}}` (the
+/// symbol's math in `name` or in `symbol`; its unit in `unit` or `user1`, or in `symbol` when
+/// `name` holds the math) and `\glsxtrnewsymbol[description={mass}]{key}{$m$}` become
+/// `\\ $m$ & mass & [kg] \\`, on the entry's first line, its other lines kept.
+fn glossary_rows(text: &str) -> String {
+    const ENTRY: &str = "\\newglossaryentry";
+    const SYMBOL: &str = "\\glsxtrnewsymbol";
+    if !text.contains(ENTRY) && !text.contains(SYMBOL) {
+        return text.to_string();
+    }
+    let group = crate::paper::source::files::braced;
+    let math = |v: &str| v.contains('$') || v.contains("\\ensuremath");
+    let as_math = |v: &str| {
+        let v = v.trim();
+        match v.strip_prefix("\\ensuremath") {
+            Some(rest) => format!(
+                "${}$",
+                rest.trim().trim_start_matches('{').trim_end_matches('}')
+            ),
+            None => v.to_string(),
+        }
+    };
+    let mut out = String::with_capacity(text.len());
+    let mut pos = 0;
+    loop {
+        let next = [ENTRY, SYMBOL]
+            .iter()
+            .filter_map(|c| text[pos..].find(c).map(|k| (pos + k, *c)))
+            .min();
+        let Some((at, cmd)) = next else { break };
+        let mut end = at + cmd.len();
+        let mut options = String::new();
+        if cmd == SYMBOL
+            && text[end..].starts_with('[')
+            && let Some(c) = text[end..].find("]{")
+        {
+            options = text[end + 1..end + c].to_string();
+            end += c + 1;
+        }
+        let row = group(text, end).and_then(|(_, mid)| {
+            group(text, mid).map(|(body, close)| {
+                let (name, fields) = if cmd == ENTRY {
+                    (None, fields_of(&body))
+                } else {
+                    (Some(body), fields_of(&options))
+                };
+                (name, fields, close)
+            })
+        });
+        let Some((name, f, close)) = row else {
+            out.push_str(&text[pos..end]);
+            pos = end;
+            continue;
+        };
+        let get = |k: &str| f.iter().find(|(key, _)| key == k).map(|(_, v)| v.clone());
+        let (name, symbol) = match name {
+            Some(n) => (Some(n), get("symbol")),
+            None => (get("name"), get("symbol")),
+        };
+        let (sym, unit) = match (name, symbol) {
+            (Some(n), s) if math(&n) => (Some(n), get("unit").or(get("user1")).or(s)),
+            (_, Some(s)) if math(&s) => (Some(s), get("unit").or(get("user1"))),
+            _ => (None, None),
+        };
+        out.push_str(&text[pos..at]);
+        if let Some(sym) = sym {
+            let desc = get("description").unwrap_or_default();
+            let unit = unit
+                .map(|u| format!(" & [{}]", u.trim()))
+                .unwrap_or_default();
+            let row = format!("\\\\ {} & {}{unit} \\\\", as_math(&sym), desc.trim());
+            out.push_str(&row.replace('\n', " "));
+        }
+        out.push_str(&"\n".repeat(text[at..close].matches('\n').count()));
+        pos = close;
+    }
+    out.push_str(&text[pos..]);
+    out
+}
+
+/// The `key=value` pairs of a list at the top level of its braces, each value without one pair
+/// of braces around it.
+fn fields_of(list: &str) -> Vec<(String, String)> {
+    let mut out = Vec::new();
+    let (mut depth, mut start) = (0i32, 0);
+    let bytes = list.as_bytes();
+    for i in 0..=bytes.len() {
+        let c = bytes.get(i).copied().unwrap_or(b',');
+        match c {
+            b'{' => depth += 1,
+            b'}' => depth -= 1,
+            b',' if depth == 0 => {
+                let item = &list[start..i.min(list.len())];
+                if let Some((k, v)) = item.split_once('=') {
+                    let v = v.trim();
+                    let v = v
+                        .strip_prefix('{')
+                        .and_then(|x| x.strip_suffix('}'))
+                        .unwrap_or(v);
+                    out.push((k.trim().to_string(), v.to_string()));
+                }
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
     out
 }
