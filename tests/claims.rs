@@ -724,6 +724,64 @@ expect = ">= 0.2"
 }
 
 #[test]
+fn never_and_always_are_decided_by_a_counterexample_or_its_absence() {
+    // a linear spring-dashpot never rebounds faster than it came (e <= 1 for c >= 0, by
+    // energy): "p <= 0" of e > 1 holds, no interval of finite samples being needed; e >= 1/2
+    // happens for c below 30.5 N s/m (the closed form above), so "never" of it fails on the
+    // samples that show it, and "always" of it fails too
+    let body = |id: &str, event: &str, expect: &str| {
+        format!(
+            r#"
+[[claim]]
+id = "{id}"
+equation = "(6)"
+quote = "never"
+kind = "probability"
+scene = "spring.toml"
+sample = {{ "contact.damping" = "uniform(0, 100)" }}
+count = 200
+seed = 11
+event = "{event}"
+expect = "{expect}"
+"#
+        )
+    };
+    let p = spring_claims(
+        "never",
+        &[
+            body("t.never", "restitution > 1 + 1e-9", "<= 0"),
+            body("t.never-broken", "restitution >= 0.5", "<= 0"),
+            body("t.always", "restitution <= 1 + 1e-9", ">= 1"),
+            body("t.always-broken", "restitution < 0.5", ">= 1"),
+        ]
+        .concat(),
+    );
+    let papers = load_claims(&p).expect("claims");
+    let out = run_all(&papers, p.parent().expect("dir")).expect("run");
+    let verdict = |id: &str| {
+        let o = out.iter().find(|o| o.id == id).expect(id);
+        (o.verdict, o.detail.clone())
+    };
+    assert_eq!(
+        verdict("t.never").0,
+        Verdict::Holds,
+        "{}",
+        verdict("t.never").1
+    );
+    assert_eq!(
+        verdict("t.always").0,
+        Verdict::Holds,
+        "{}",
+        verdict("t.always").1
+    );
+    for id in ["t.never-broken", "t.always-broken"] {
+        let (v, d) = verdict(id);
+        assert_eq!(v, Verdict::Fails, "{d}");
+        assert!(d.contains("computed counterexample"), "{d}");
+    }
+}
+
+#[test]
 fn definitions_are_checked_for_units_and_uses() {
     // by hand: the area of [0, x] x [0, y] is x y, its polar moment int int (s^2) over it is
     // x^3 y/3; a unit mismatch (m^2 against m) and a wrong use (x y/2) must fail

@@ -240,7 +240,9 @@ A ball of mass $m$ falls from rest; $g$ is the acceleration of gravity. Here $t$
     );
     for claim in [
         "id = \"b.eq1.units\"",
-        "id = \"b.eq2.units\"",
+        // the chain E = m g z(t) = m g^2 t^2/2: a claim per link
+        "id = \"b.eq2-link1.units\"",
+        "id = \"b.eq2-link2.units\"",
         "printed_from = { display = 3, relation = 1, form = \"difference\" }",
         "printed_from = { display = 3, relation = 2, form = \"difference\" }",
     ] {
@@ -249,7 +251,7 @@ A ball of mass $m$ falls from rest; $g$ is the acceleration of gravity. Here $t$
     assert!(!text.contains("no claim"), "{text}");
     std::fs::write(dir.join("claims.toml"), &text).unwrap();
     let claims = run_claims(&dir).expect("the scaffold runs");
-    assert_eq!(claims.len(), 4, "{claims:?}");
+    assert_eq!(claims.len(), 5, "{claims:?}");
     for c in &claims {
         assert_eq!(c["verdict"], "holds", "{c}");
     }
@@ -259,8 +261,11 @@ A ball of mass $m$ falls from rest; $g$ is the acceleration of gravity. Here $t$
         .replace("E = m g z(t) =", "E = m z(t) =");
     std::fs::write(dir.join("paper.tex"), bad).unwrap();
     let claims = run_claims(&dir).expect("runs");
-    let chain = claims.iter().find(|c| c["id"] == "b.eq2.units").unwrap();
-    assert_eq!(chain["verdict"], "fails", "{chain}");
+    // both links hold the misprinted m z(t), an energy over g: both see it
+    for link in ["b.eq2-link1.units", "b.eq2-link2.units"] {
+        let chain = claims.iter().find(|c| c["id"] == link).unwrap();
+        assert_eq!(chain["verdict"], "fails", "{chain}");
+    }
 }
 
 fn rod_threshold(printed: &str) -> Vec<Value> {

@@ -71,3 +71,13 @@ def test_a_worker_killed_mid_run_loses_no_row(client):
     client.wait_for_workers(2, timeout=60)
     assert victim not in client.run(os.getpid).values()
     assert rows == local
+
+
+def test_the_dask_submodule_is_reachable_after_importing_the_package_alone():
+    # a fresh interpreter: nothing has imported impactcheck.dask by name
+    import subprocess
+    import sys
+
+    code = "import impactcheck as ic, sys; assert 'impactcheck.dask' not in sys.modules; print(callable(ic.dask.sweep))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "True"

@@ -248,9 +248,9 @@ pub fn dimension(e: &Expr, unit: &dyn Fn(&str) -> Option<Unit>) -> Result<Unit, 
                 Some(u) => u,
                 None => unit(x).ok_or_else(|| DimError::Unknown(x.clone()))?,
             };
-            for v in extra {
+            for v in extra.iter().filter(|v| !zero(v)) {
                 let uv = dimension(v, unit)?;
-                if uv != ux && !zero(v) {
+                if uv != ux {
                     return Err(DimError::Mismatch {
                         whole: e.to_string(),
                         left: x.clone(),

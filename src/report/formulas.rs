@@ -72,7 +72,7 @@ pub fn formula_power(outcomes: &[Outcome]) -> Vec<FormulaPower> {
             .or_default()
             .push((o, p));
     }
-    groups
+    let mut out = groups
         .into_iter()
         .map(|((paper, formula), claims)| {
             // a misprint some claim let through, unless another claim killed it, or found it the
@@ -113,7 +113,16 @@ pub fn formula_power(outcomes: &[Outcome]) -> Vec<FormulaPower> {
                 formula,
             }
         })
-        .collect()
+        .collect::<Vec<_>>();
+    // in the order of their first claims, as every list of the reports (000.eq6 before
+    // 000.eq23), not of the formulas' texts
+    let first = |f: &FormulaPower| f.claims.first().cloned().unwrap_or_default();
+    out.sort_by(|a, b| {
+        a.paper
+            .cmp(&b.paper)
+            .then_with(|| super::natural_cmp(&first(a), &first(b)))
+    });
+    out
 }
 
 /// Whether the group is one claim measured on other keys (its survivors keep their keys).

@@ -431,8 +431,10 @@ fn power_section(papers: &[PaperInfo], outcomes: &[Outcome]) -> String {
     let weak: Vec<&&(&Outcome, &Power)> = run.iter().filter(|(_, p)| p.weak()).collect();
     let mut md = format!(
         "## Power of the checks\n\nEach claim's printed side is misprinted the way misprints happen (a coefficient \
-         x2, x1/2, x1.1, x0.9; an exponent +-1; a sign; a dropped term; a symbol swapped for another of the same \
-         unit; at most 40 per claim) and the claim is checked again: a misprint that keeps the verdict survives. \
+         x2, x1/2, x1.1, x0.9, a term printed with no number x2, x1/2; an exponent +-1; a sign; a dropped term; a \
+         symbol swapped for another of the same unit; inside derivatives too; at most 40 per claim, and always the \
+         paper's own misprint where a claim holds with a correction) and the claim is checked again: a misprint \
+         that keeps the verdict survives, and a printed key that cannot be misprinted (not a formula) is a gap. \
          Not counted: a misprint that states the same (a side against zero times a positive factor) or only weakens \
          a true inequality; a claim's `allowance` for the integration error is not the paper's and is not misprinted. \
          {} claims measured: {mutants} misprints, {killed} killed ({:.0} %); {} claims see every misprint, \
@@ -443,6 +445,36 @@ fn power_section(papers: &[PaperInfo], outcomes: &[Outcome]) -> String {
         weak.len(),
         measured.len() - run.len()
     );
+    // whether each verdict can move: a misprint that changes it, or a weakness declared
+    let moved = run.iter().filter(|(_, p)| p.killed > 0).count();
+    let moved_weak = run.iter().filter(|(_, p)| p.killed > 0 && p.weak()).count();
+    let stuck: Vec<&&(&Outcome, &Power)> = run.iter().filter(|(_, p)| p.killed == 0).collect();
+    let undeclared = run
+        .iter()
+        .filter(|(_, p)| p.weak() && p.blind.is_none())
+        .count();
+    let own = |names: &[String]| {
+        names
+            .iter()
+            .filter(|n| n.ends_with("(the paper's own misprint)"))
+            .count()
+    };
+    let own_tried: usize = run
+        .iter()
+        .map(|(_, p)| own(&p.killed_names) + own(&p.survivors))
+        .sum();
+    let own_killed: usize = run.iter().map(|(_, p)| own(&p.killed_names)).sum();
+    let gaps: usize = run.iter().map(|(_, p)| p.not_applied.len()).sum();
+    md.push_str(&format!(
+        "**Can each verdict move?** Of the {} claims measured, {moved} change their verdict under some misprint of \
+         their printed side ({moved_weak} of them also let some misprint through); {} change under none, each \
+         declared weak with what its check cannot see; {undeclared} weak claim(s) say nothing of why. The paper's \
+         own misprint, where a claim holds with a correction and the printed side is a misprint of it, is tried \
+         {own_tried} time(s) and changes the verdict {own_killed} time(s). Misprints not applied (a printed key \
+         that is no formula): {gaps}.\n\n",
+        run.len(),
+        stuck.len(),
+    ));
     if !weak.is_empty() {
         md.push_str(
             "| weak claim | killed | surviving misprints (first 3) | what the check cannot see |\n|---|---|---|---|\n",
@@ -455,7 +487,11 @@ fn power_section(papers: &[PaperInfo], outcomes: &[Outcome]) -> String {
                 anchor(&o.id),
                 p.killed,
                 p.mutants,
-                escape_cell(&first_three(&p.survivors)),
+                escape_cell(&first_three(if p.survivors.is_empty() {
+                    &p.not_applied
+                } else {
+                    &p.survivors
+                })),
                 escape_cell(p.blind.as_deref().unwrap_or("**not stated**"))
             ));
         }
@@ -502,6 +538,16 @@ fn power_line(p: &Power) -> String {
                 .collect::<Vec<_>>()
                 .join(", "),
             p.blind.as_deref().unwrap_or("not stated")
+        ));
+    }
+    if !p.not_applied.is_empty() {
+        line.push_str(&format!(
+            "; not applied: {}",
+            p.not_applied
+                .iter()
+                .map(|s| format!("`{s}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
         ));
     }
     line.push_str(".\n\n");

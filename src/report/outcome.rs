@@ -115,6 +115,11 @@ pub struct Power {
     /// The misprints of an inequality that only weakened it (`excused`), named as `survivors`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub weaker: Vec<String>,
+    /// The misprints that could not be applied, each with why (a printed key that is not a
+    /// formula, such as a value the claim computes, `@series.a1`): a gap, so the claim is not
+    /// called strong.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub not_applied: Vec<String>,
     /// What it was measured from (`verify::power_cache`): the main job reuses it while
     /// the key is the same.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -136,7 +141,7 @@ impl Power {
 
     /// Whether a misprint survived: the check cannot see it.
     pub fn weak(&self) -> bool {
-        !self.survivors.is_empty()
+        !self.survivors.is_empty() || !self.not_applied.is_empty()
     }
 
     /// The share of the mutants killed (`None` when none was run).

@@ -7,7 +7,7 @@
 //! `reports/README.md` stays true when a claim is added or removed.
 
 use super::{Outcome, PaperClaims};
-use crate::paper::source::blocks::numbers;
+use crate::paper::source::blocks::numbers_at;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -133,7 +133,7 @@ pub fn check_equations(
     let Ok(text) = std::fs::read_to_string(&path) else {
         return Ok(None);
     };
-    let tagged = numbers(&p.file, &text);
+    let tagged = numbers_at(&p.file, &text, path.parent());
     if p.equations == tagged {
         return Ok(Some(path));
     }
@@ -226,7 +226,8 @@ pub fn check_quotes(p: &PaperClaims, papers: Option<&Path>) -> Result<(), super:
 /// its text (`None`: not found).
 pub fn of_text(p: &PaperClaims, text: Option<&str>, where_: Option<String>) -> Coverage {
     let equations = if p.equations.is_empty() {
-        text.map(|t| numbers(&p.file, t)).unwrap_or_default()
+        text.map(|t| numbers_at(&p.file, t, None))
+            .unwrap_or_default()
     } else {
         p.equations.clone()
     };

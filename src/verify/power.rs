@@ -31,6 +31,7 @@
 //! Written by hand: mutation of formulas (as cargo-mutants and PIT mutate code) is a walk over
 //! our own [`Expr`]; no crate does it.
 
+use super::fingerprint::{Depends, depends_of, fingerprint, fnv, same};
 use super::kinds::{Checked, KindEntry, Session};
 use super::{ClaimSpec, Outcome, Verdict};
 use crate::algebra::expr::{self, Expr, Inequality, Op};
@@ -280,8 +281,39 @@ fn local(e: &Expr, in_exponent: bool, swaps: &dyn Fn(&str) -> Vec<String>, out: 
                     negate(b)
                 },
             });
+            // a term printed with no number before it has the coefficient 1, misprinted as
+            // any other (a balance `left - right` with its left side doubled)
+            for (term, first) in [(a, true), (b, false)] {
+                if has_coefficient(term) {
+                    continue;
+                }
+                for (name, f) in &FACTORS[..2] {
+                    let scaled =
+                        Box::new(Expr::Bin(Op::Mul, Box::new(Expr::Num(f())), term.clone()));
+                    out.push(Mutant {
+                        what: format!("term {} {name}", short(term)),
+                        expr: if first {
+                            Expr::Bin(*op, scaled, b.clone())
+                        } else {
+                            Expr::Bin(*op, a.clone(), scaled)
+                        },
+                    });
+                }
+            }
         }
         _ => {}
+    }
+}
+
+/// Whether a term carries a coefficient of its own that the literal misprints reach (a
+/// number, a product led by one, a negated such term), or is a sum, whose terms are misprinted
+/// one by one.
+fn has_coefficient(e: &Expr) -> bool {
+    match e {
+        Expr::Num(_) | Expr::Bin(Op::Add | Op::Sub, ..) => true,
+        Expr::Neg(a) => has_coefficient(a),
+        Expr::Bin(Op::Mul | Op::Div, a, _) => has_coefficient(a),
+        _ => false,
     }
 }
 
@@ -304,46 +336,6 @@ fn sibling(f: expr::Func) -> Option<expr::Func> {
         F::Atanh => F::Atan,
         _ => return None,
     })
-}
-
-/// How many symbol values a fingerprint may look up: nested integrals evaluated by
-/// quadrature cost 1024 evaluations per level, and a formula too dear to evaluate is not
-/// fingerprinted (its mutants are run, none merged as equivalent).
-const FINGERPRINT_BUDGET: usize = 200_000;
-
-/// Values of a formula's symbols at three points (a hash of the name picks each in
-/// [0.35, 0.85], where every function of the formula language but `acosh` is defined; a value
-/// that is not finite fingerprints nothing, and its mutant is run).
-fn fingerprint(values: &[&Expr]) -> Option<Vec<f64>> {
-    let mut out = Vec::new();
-    let spent = std::cell::Cell::new(0usize);
-    for point in 0..3u64 {
-        let value = |s: &str| {
-            spent.set(spent.get() + 1);
-            if spent.get() > FINGERPRINT_BUDGET {
-                return None;
-            }
-            let mut h: u64 = 0xcbf2_9ce4_8422_2325 ^ point.wrapping_mul(0x9e37_79b9_7f4a_7c15);
-            for b in s.bytes() {
-                h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
-            }
-            Some(0.35 + 0.5 * ((h >> 11) as f64 / (1u64 << 53) as f64))
-        };
-        for e in values {
-            let v = e.eval(&value).ok()?;
-            if !v.is_finite() {
-                return None;
-            }
-            out.push(v);
-        }
-    }
-    Some(out)
-}
-
-fn same(a: &[f64], b: &[f64]) -> bool {
-    a.iter()
-        .zip(b)
-        .all(|(x, y)| (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1e-300))
 }
 
 /// A printed key of a claim: where it is in the claim's keys, and its text.
@@ -459,12 +451,23 @@ impl Side {
 
     /// Every misprint, marked `equivalent` where it states the same as the side (a side of an
     /// inequality against zero times a positive factor).
-    fn mutants(&self, swaps: &dyn Fn(&str) -> Vec<String>) -> Vec<Misprint> {
+    fn mutants(&self, swaps: &dyn Fn(&str) -> Vec<String>, depends: &Depends) -> Vec<Misprint> {
         let mut out = Vec::new();
-        let mut seen: Vec<Vec<f64>> = fingerprint(&self.exprs()).into_iter().collect();
+        let base = fingerprint(&self.exprs(), depends);
+        let mut seen: Vec<Vec<f64>> = Vec::new();
         let mut keep = |what: String, text: String, vals: Vec<&Expr>, equivalent: bool| {
-            let fp = fingerprint(&vals);
+            let fp = fingerprint(&vals, depends);
             if let Some(fp) = &fp {
+                // the same values as the printed side: it states the same, and is named so;
+                // the same as an earlier misprint: counted once
+                if base.as_ref().is_some_and(|b| same(b, fp)) {
+                    out.push(Misprint {
+                        what: format!("{what} (the same values as the printed side)"),
+                        text,
+                        equivalent: true,
+                    });
+                    return;
+                }
                 if seen.iter().any(|s| same(s, fp)) {
                     return;
                 }
@@ -591,7 +594,7 @@ pub fn measure<'s>(
                         .and_then(|v| v.as_str())
                         .map(str::trim)
                         == Some("0"));
-        for m in side.mutants(&swaps) {
+        for m in side.mutants(&swaps, &depends_of(&t.text)) {
             if m.equivalent || (against_zero && m.what.starts_with("the whole side")) {
                 equivalent.push(format!("{}: {}", path_text(&t.path), m.what));
                 continue;
@@ -614,7 +617,14 @@ pub fn measure<'s>(
         .map(|t| t.text.as_str())
         .collect::<Vec<_>>()
         .join("\n");
-    let picked = sample(all.len(), MAX_MUTANTS, &seed);
+    let mut picked = sample(all.len(), MAX_MUTANTS, &seed);
+    // the misprint the paper made, where it is one of the corrected side's: always run
+    for i in own_misprints(cx, spec, &keys, &all) {
+        all[i].0 = format!("{} (the paper's own misprint)", all[i].0);
+        if !picked.contains(&i) {
+            picked.push(i);
+        }
+    }
     let base_margin = least_margin(original);
     let fates: Vec<Fate> = picked
         .par_iter()
@@ -649,6 +659,14 @@ pub fn measure<'s>(
         killed_names: Vec::new(),
         equivalent,
         weaker: Vec::new(),
+        not_applied: unread
+            .iter()
+            .map(|k| {
+                format!(
+                    "{k}: not a formula (a value the claim computes or looks up), so not misprinted"
+                )
+            })
+            .collect(),
         key: None,
     };
     if let [one] = targets(&spec.keys, &keys).as_slice() {
@@ -681,6 +699,31 @@ pub fn measure<'s>(
     power
 }
 
+/// The misprints of a `corrected` side that state what the paper printed (the same values as
+/// its `printed` side at three points of their symbols): the error the claim found.
+fn own_misprints(
+    cx: &Checked,
+    spec: &ClaimSpec,
+    keys: &[&str],
+    all: &[(String, Target, String)],
+) -> Vec<usize> {
+    let printed = match (keys, spec.keys.get("printed").and_then(|v| v.as_str())) {
+        (["corrected"], Some(p)) => p,
+        _ => return Vec::new(),
+    };
+    let Some(target) = all.first().map(|(_, t, _)| t) else {
+        return Vec::new();
+    };
+    let depends = depends_of(&target.text);
+    let print = |text: &str| Side::read(text, cx).and_then(|s| fingerprint(&s.exprs(), &depends));
+    let Some(want) = print(printed) else {
+        return Vec::new();
+    };
+    (0..all.len())
+        .filter(|&i| print(&all[i].2).is_some_and(|fp| same(&fp, &want)))
+        .collect()
+}
+
 /// `k` of `n` indices, spread evenly with a seeded offset (all of them when `n <= k`).
 fn sample(n: usize, k: usize, seed: &str) -> Vec<usize> {
     if n <= k {
@@ -705,14 +748,6 @@ pub fn pick(ids: &[String], n: usize, seed: &str) -> std::collections::BTreeSet<
         .take(n)
         .map(|(_, id)| id.clone())
         .collect()
-}
-
-fn fnv(s: &str) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in s.bytes() {
-        h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
-    }
-    h
 }
 
 /// The power of a file's claims, measured as its check is made.
@@ -843,11 +878,14 @@ mod tests {
         // a*b with a and b of the same unit: the swap a -> b gives b*b (kept), and a
         // whole-side x2 equals the literal's x2 in 2*a*b (kept once)
         let cxless = Side::Formula(expr::parse("2*a*b").unwrap());
-        let m = cxless.mutants(&|s| match s {
-            "a" => vec!["b".into()],
-            "b" => vec!["a".into()],
-            _ => vec![],
-        });
+        let m = cxless.mutants(
+            &|s| match s {
+                "a" => vec!["b".into()],
+                "b" => vec!["a".into()],
+                _ => vec![],
+            },
+            &Depends::new(),
+        );
         let doubled = m
             .iter()
             .map(|m| m.text.as_str())
@@ -856,6 +894,62 @@ mod tests {
         assert_eq!(doubled, 1, "{m:?}");
         assert!(m.iter().any(|x| x.text == "2*b*b"));
         assert!(m.iter().any(|x| x.text == "2*a*a"));
+    }
+
+    #[test]
+    fn a_misprint_inside_a_derivative_is_made_and_told_from_the_printed_side() {
+        // by hand: in E z^2 + 2 eta z z' (000's (18) corrected), z a function of t, halving the
+        // 2 gives E z^2 + eta z z' (the paper's own misprint), which differs wherever z z' is not
+        // 0; with z a constant the derivative would vanish and the misprint look the same
+        let text = "E*z^2 + 2*eta*z*diff(z, t)";
+        let side = Side::Formula(expr::parse(text).unwrap());
+        let depends = depends_of(text);
+        assert_eq!(depends.get("z"), Some(&vec!["t".to_string()]));
+        let m = side.mutants(&|_| vec![], &depends);
+        let halved = m
+            .iter()
+            .find(|x| x.what == "coefficient 2 x1/2")
+            .expect("the coefficient inside the derivative's term is misprinted");
+        assert!(!halved.equivalent, "{halved:?}");
+        // with nothing differentiated, the term is 0: that misprint states the same, and is named so
+        let flat = side.mutants(&|_| vec![], &Depends::new());
+        let same = flat
+            .iter()
+            .find(|x| x.what.starts_with("coefficient 2 x1/2"))
+            .unwrap();
+        assert!(same.equivalent && same.what.ends_with("(the same values as the printed side)"));
+    }
+
+    #[test]
+    fn a_definitions_constant_stays_constant_under_a_derivative() {
+        // diff(z9, t) with z9 = v0 t + c t^2 expanded: v0 is no function of t, so v0 t
+        // misprinted (x2) changes the second derivative by nothing, by hand
+        let printed = "diff(diff(z9, t), t)";
+        let depends = depends_of(printed);
+        assert!(depends.contains_key("z9") && !depends.contains_key("v0"));
+        let expanded = expr::parse("diff(diff(v0*t + c*t^2, t), t)").unwrap();
+        let misprint = expr::parse("diff(diff(2*v0*t + c*t^2, t), t)").unwrap();
+        assert!(same(
+            &fingerprint(&[&expanded], &depends).unwrap(),
+            &fingerprint(&[&misprint], &depends).unwrap()
+        ));
+        let other = expr::parse("diff(diff(v0*t + 2*c*t^2, t), t)").unwrap();
+        assert!(!same(
+            &fingerprint(&[&expanded], &depends).unwrap(),
+            &fingerprint(&[&other], &depends).unwrap()
+        ));
+    }
+
+    #[test]
+    fn a_term_without_a_number_is_scaled_as_a_coefficient_would_be() {
+        // a balance a*b - c: its left term doubled, by hand 2*(a*b) - c
+        let m = texts("a*b - c");
+        assert!(m.contains(&"2*(a*b) - c".to_string()), "{m:?}");
+        assert!(m.contains(&"a*b - 0.5*c".to_string()), "{m:?}");
+        // a term with a number of its own is reached by the literal's misprints only
+        assert!(!m.iter().any(|t| t.contains("2*(3")), "{m:?}");
+        let n = texts("3*a - c");
+        assert!(!n.contains(&"2*(3*a) - c".to_string()), "{n:?}");
     }
 
     #[test]

@@ -172,12 +172,14 @@ fn from_paper(
         }
         None => None,
     };
-    if let Some(k) = spec
-        .keys()
-        .find(|k| !["tag", "label", "after", "lhs", "at", "form", "relation"].contains(&k.as_str()))
-    {
+    if let Some(k) = spec.keys().find(|k| {
+        ![
+            "tag", "label", "after", "lhs", "at", "form", "relation", "link",
+        ]
+        .contains(&k.as_str())
+    }) {
         return Err(err(format!(
-            "unknown key `{k}`; allowed: tag, label, after, lhs, at, form, relation, display"
+            "unknown key `{k}`; allowed: tag, label, after, lhs, at, form, relation, link, display"
         )));
     }
     if spec.contains_key("relation") && spec.contains_key("lhs") {
@@ -435,6 +437,26 @@ fn nth_relation(
     }
 }
 
+/// `link = j`: of a chain `a <= b <= c`, the j-th link (1-based: `a <= b` is 1), read alone.
+fn link_of(
+    file: &PaperClaims,
+    id: &str,
+    field: &str,
+    spec: &toml::Table,
+) -> Result<Option<usize>, VerifyError> {
+    match spec.get("link") {
+        None => Ok(None),
+        Some(v) => v.as_integer().filter(|k| *k >= 1).map(|k| Some(k as usize)).ok_or_else(|| {
+            bad(
+                file,
+                id,
+                field,
+                "`link` is a link's place in a chain of relations, 1 for the first (`a` to `b` of `a <= b <= c`)".into(),
+            )
+        }),
+    }
+}
+
 /// A formula read from the paper: the side asked for (`lhs`, or the right side of the tagged
 /// equation), as text of the formula language, and the LaTeX it was read from.
 fn formula_from_paper(
@@ -456,7 +478,8 @@ fn formula_from_paper(
     let (latex, lhs) = from_paper(file, id, field, spec, syms, false)?;
     let difference = difference_form(file, id, field, spec)?;
     let nth = nth_relation(file, id, field, spec)?;
-    let mut e = read_side(&latex, lhs.as_deref(), nth, syms, difference).map_err(|e| {
+    let link = link_of(file, id, field, spec)?;
+    let mut e = read_side(&latex, lhs.as_deref(), (nth, link), syms, difference).map_err(|e| {
         let at = where_in_paper(file, &latex);
         bad(file, id, field, format!("{at}`{latex}`: {e}"))
     })?;
@@ -549,13 +572,32 @@ fn where_in_paper(file: &PaperClaims, latex: &str) -> String {
 fn read_side(
     tex: &str,
     lhs: Option<&str>,
-    nth: Option<usize>,
+    (nth, link): (Option<usize>, Option<usize>),
     syms: &TexSymbols,
     difference: bool,
 ) -> Result<Expr, crate::paper::formulas::TexError> {
     let pieces = read_display(tex, syms);
     let mut first_err = None;
     let side = |r: &crate::paper::formulas::TexRelation| {
+        // one link of a chain, as a relation of its own
+        let sides = match link {
+            Some(j) if j < r.sides.len() => &r.sides[j - 1..=j],
+            Some(j) => {
+                return Err(crate::paper::formulas::TexError {
+                    column: 1,
+                    construct: format!(
+                        "a link {j} of a chain (the relation has {} side(s))",
+                        r.sides.len()
+                    ),
+                    found: tex.into(),
+                });
+            }
+            None => &r.sides[..],
+        };
+        let r = crate::paper::formulas::TexRelation {
+            sides: sides.to_vec(),
+            ..r.clone()
+        };
         let last = r.sides.last().cloned().unwrap_or(Expr::Pi);
         let zero = Expr::Num(crate::algebra::poly::Q::from_integer(0.into()));
         let minus = |a: &Expr, b: &Expr| {
@@ -565,7 +607,7 @@ fn read_side(
                 Box::new(b.clone()),
             )
         };
-        if difference && r.sides.len() == 2 && last == zero {
+        Ok(if difference && r.sides.len() == 2 && last == zero {
             r.sides[0].clone()
         } else if difference && r.sides.len() > 1 {
             // a chain `a = b = c` as `(a - b) + (b - c)`: the value of `a - c`, with every side
@@ -579,12 +621,12 @@ fn read_side(
                 .unwrap_or(last)
         } else {
             last
-        }
+        })
     };
     if let Some(k) = nth {
         let all: Vec<_> = pieces.iter().flat_map(|row| &row.relations).collect();
         return match all.get(k) {
-            Some(Ok(r)) if r.sides.len() > 1 => Ok(side(r)),
+            Some(Ok(r)) if r.sides.len() > 1 => side(r),
             Some(Err(e)) => Err(e.clone()),
             _ => Err(crate::paper::formulas::TexError {
                 column: 1,
@@ -601,13 +643,13 @@ fn read_side(
         for row in &pieces {
             for rel in &row.relations {
                 match (rel, lhs) {
-                    (Ok(r), None) if exact => return Ok(side(r)),
+                    (Ok(r), None) if exact => return side(r),
                     (Ok(r), Some(l)) if exact && r.sides[0].to_string() == l => {
-                        return Ok(side(r));
+                        return side(r);
                     }
                     (Ok(r), Some(l)) if !exact && !difference && r.sides.len() > 1 => {
                         if let Some(f) = factor_of(&r.sides[0], l) {
-                            return Ok(divided(side(r), f));
+                            return side(r).map(|s| divided(s, f));
                         }
                     }
                     (Err(e), _) => {
@@ -765,7 +807,7 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
                 let t = t.as_str().map(str::to_string).ok_or_else(|| {
                     bad(&snapshot, &c.head.id, "printed_tex", "is LaTeX text".into())
                 })?;
-                ("printed_tex", t, None, false, None)
+                ("printed_tex", t, None, false, (None, None))
             }
             (None, Some(f)) => {
                 let spec = f.as_table().cloned().ok_or_else(|| {
@@ -780,7 +822,8 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
                     from_paper(&snapshot, &c.head.id, "printed_from", &spec, &syms, false)?;
                 let difference = difference_form(&snapshot, &c.head.id, "printed_from", &spec)?;
                 let nth = nth_relation(&snapshot, &c.head.id, "printed_from", &spec)?;
-                ("printed_from", latex, lhs, difference, nth)
+                let link = link_of(&snapshot, &c.head.id, "printed_from", &spec)?;
+                ("printed_from", latex, lhs, difference, (nth, link))
             }
         };
         let e = read_side(&latex, lhs.as_deref(), nth, &syms, difference).map_err(|e| {
@@ -821,7 +864,12 @@ pub fn resolve(file: &mut PaperClaims) -> Result<(), VerifyError> {
                 ));
             }
         };
-        let e = if c.kind == "dimension" {
+        // a kind that judges units alone takes a function applied for its value (the registry
+        // says which kinds do)
+        let units_only = super::kinds::BUILTIN
+            .iter()
+            .any(|k| k.name == c.kind && k.units_only);
+        let e = if units_only {
             applications_as_functions(&e)
         } else {
             e

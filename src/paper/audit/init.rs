@@ -116,25 +116,47 @@ pub fn init_claims(
                 format!("display{}-{}", r.display, r.in_display),
             ),
         };
-        match init_claim(a, r) {
-            Err(w) => s.push_str(&format!("\n# {here}: no claim: {w}\n")),
-            Ok(expect) => s.push_str(&format!(
-                "\n[[claim]]\nid = {}\nequation = {}\nreading = {}\nkind = \"dimension\"\nprinted_from = {{ {reference}, form = \"difference\" }}\nexpect = {}\n",
-                q(&format!("{id}.{slug}.units")),
-                q(&here),
-                q(&format!(
-                    "{here} has one unit on both sides, {expect} (the audit found it {})",
-                    r.status
+        // a chain (`0 \le x \le L`, `a = b = c`): one claim per link, each a relation of its own
+        let links: Vec<Option<usize>> = if r.sides.len() > 2 {
+            (1..r.sides.len()).map(Some).collect()
+        } else {
+            vec![None]
+        };
+        for link in links {
+            let (here, reference, slug) = match link {
+                None => (here.clone(), reference.clone(), slug.clone()),
+                Some(j) => (
+                    format!(
+                        "{here}, link {j} (`{} {} {}`)",
+                        r.sides[j - 1],
+                        r.rels.get(j - 1).copied().unwrap_or("="),
+                        r.sides[j]
+                    ),
+                    format!("{reference}, link = {j}"),
+                    format!("{slug}-link{j}"),
+                ),
+            };
+            match init_claim(a, r, link) {
+                Err(w) => s.push_str(&format!("\n# {here}: no claim: {w}\n")),
+                Ok(expect) => s.push_str(&format!(
+                    "\n[[claim]]\nid = {}\nequation = {}\nreading = {}\nkind = \"dimension\"\nprinted_from = {{ {reference}, form = \"difference\" }}\nexpect = {}\n",
+                    q(&format!("{id}.{slug}.units")),
+                    q(&here),
+                    q(&format!(
+                        "{here} has one unit on both sides, {expect} (the audit found it {})",
+                        r.status
+                    )),
+                    q(&expect)
                 )),
-                q(&expect)
-            )),
+            }
         }
     }
     s
 }
 
-/// The unit a dimension claim on the relation `r` expects, or why `verify init` writes none.
-fn init_claim(a: &Audit, r: &AuditRelation) -> Result<String, String> {
+/// The unit a dimension claim on the relation `r` (on its link `link` of a chain) expects, or
+/// why `verify init` writes none.
+fn init_claim(a: &Audit, r: &AuditRelation, link: Option<usize>) -> Result<String, String> {
     let unit = |n: &str| {
         let n = crate::paper::units::unit_name(n);
         a.symbols
@@ -171,9 +193,23 @@ fn init_claim(a: &Audit, r: &AuditRelation) -> Result<String, String> {
         }
         _ => {}
     }
+    // an ellipsis stands for terms left out: no formula a claim can hold
+    if let Some(side) = r.sides.iter().find(|e| {
+        e.symbols()
+            .iter()
+            .any(|x| x == crate::algebra::units::ELLIPSIS)
+    }) {
+        return Err(format!(
+            "its side `{side}` leaves terms out (`...`): no formula to check"
+        ));
+    }
+    let sides = match link {
+        Some(j) => &r.sides[j - 1..=j],
+        None => &r.sides[..],
+    };
     // what the dimension kind will compute: a consistent relation it cannot judge (a symbolic
     // power of a dimensional base) would fail for the kind's sake, not the paper's
-    for pair in r.sides.windows(2) {
+    for pair in sides.windows(2) {
         let diff = Expr::Bin(
             crate::algebra::expr::Op::Sub,
             Box::new(pair[0].clone()),
@@ -186,6 +222,21 @@ fn init_claim(a: &Audit, r: &AuditRelation) -> Result<String, String> {
                 "consistent, but a dimension claim cannot judge it: {e}"
             ));
         }
+    }
+    // a consistent relation: the unit its sides share (a chain's links too, `0 <= x <= L` in
+    // m, though its first side is a bare 0)
+    if let Some(u) = r.unit.as_deref().filter(|_| r.status == "consistent") {
+        return Ok(u.to_string());
+    }
+    if let Some(j) = link {
+        let of = |e: &Expr| {
+            (!crate::algebra::units::every_unit(e))
+                .then(|| crate::algebra::units::dimension(e, &unit).ok())
+                .flatten()
+        };
+        return Ok(of(&r.sides[j - 1])
+            .or_else(|| of(&r.sides[j]))
+            .map_or_else(|| "1".to_string(), |u| u.to_string()));
     }
     // an inconsistent relation whose left side has no single unit: its right side's unit (the
     // claim fails either way; the unit must only be one)

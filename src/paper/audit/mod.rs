@@ -87,6 +87,9 @@ pub struct AuditRelation {
     /// Its sides as read.
     #[serde(skip)]
     pub sides: Vec<Expr>,
+    /// The relations between its sides (`=`, `<=`, ...), one fewer than the sides.
+    #[serde(skip)]
+    pub rels: Vec<&'static str>,
     /// The unit of its left side, when it has one.
     #[serde(skip)]
     pub side_unit: Option<Unit>,
@@ -273,6 +276,7 @@ pub(super) fn read_relations(
                     opaque: false,
                     names: Vec::new(),
                     sides: Vec::new(),
+                    rels: Vec::new(),
                     side_unit: None,
                     right_unit: None,
                     unit: None,
@@ -318,6 +322,7 @@ pub(super) fn read_relations(
                             opaque,
                             names,
                             sides: r.sides.clone(),
+                            rels: r.rels.clone(),
                             ..base
                         });
                         let mut dots = row_dots.clone();

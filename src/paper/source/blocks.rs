@@ -186,11 +186,17 @@ pub fn tags(text: &str) -> Vec<String> {
 /// extract, its blocks' tags and the numbers printed after them; the `\tag{...}` labels for any
 /// other text (the seeds).
 pub fn numbers(file: &str, text: &str) -> Vec<String> {
+    numbers_at(file, text, None)
+}
+
+/// As [`numbers`], for a text in the folder `dir`: its `\input` files read from there, so that
+/// a main file's numbers are those of the sections it reads.
+pub fn numbers_at(file: &str, text: &str, dir: Option<&std::path::Path>) -> Vec<String> {
     if !file.ends_with(".tex") {
         return tags(text);
     }
     let mut out: Vec<String> = Vec::new();
-    let all = match blocks_of(text) {
+    let all = match blocks_at(text, dir, "") {
         (_, Some(doc)) => doc.numbers,
         // a displays extract: each block's tags, and the number printed after it
         (blocks, None) => blocks

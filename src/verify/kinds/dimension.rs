@@ -37,6 +37,7 @@ impl Kind for Dimension {
         "a unit check sees only the misprints that change the unit: a coefficient, a sign, a dropped term of the same unit or a symbol of the same unit keep it",
     );
     const PRINTED: &'static [&'static str] = &["printed"];
+    const UNITS_ONLY: bool = true;
     type Spec = DimensionSpec;
 
     fn validate(cx: &Checked, c: &Head, s: DimensionSpec) -> Result<Self, VerifyError> {

@@ -68,6 +68,10 @@ pub trait Kind: Sized + Send + Sync + 'static {
     /// What every check of this kind cannot see (a dimension check: a misprint that keeps the
     /// unit); a claim's own `blind` says more.
     const BLIND: Option<&'static str> = None;
+    /// Whether the kind judges the printed side's units alone: a function applied in it
+    /// (`w(x, y, t)` read from the paper) is then taken as the function's value, whose unit is
+    /// the function's, rather than refused as opaque.
+    const UNITS_ONLY: bool = false;
     /// Checks the keys, formulas, units and scenes, and builds the checked claim.
     fn validate(cx: &Checked, head: &Head, spec: Self::Spec) -> Result<Self, VerifyError>;
     /// Computes the verdict, its detail and any figures.
@@ -108,6 +112,8 @@ pub struct KindEntry {
     pub printed: &'static [&'static str],
     /// What no check of the kind can see ([`Kind::BLIND`]).
     pub blind: Option<&'static str>,
+    /// Whether it judges units alone ([`Kind::UNITS_ONLY`]).
+    pub units_only: bool,
     pub(crate) validate: Validate,
 }
 
@@ -120,6 +126,7 @@ pub const fn kind<K: Kind>() -> KindEntry {
         name: K::NAME,
         printed: K::PRINTED,
         blind: K::BLIND,
+        units_only: K::UNITS_ONLY,
         validate: validate_as::<K>,
     }
 }
@@ -456,6 +463,9 @@ impl<'a> Checked<'a> {
                 && !self.defs.contains_key(&s)
                 && !also.contains(&s.as_str())
                 && !s.starts_with("at_ref_")
+                // infinity, read from a paper (a limit, a bound): it has whatever unit its
+                // place needs, as a literal 0 has
+                && s != crate::algebra::units::INFINITY
             {
                 let known = if self.units.is_empty() {
                     String::new()

@@ -118,7 +118,31 @@ impl Kind for Probability {
             None => Verdict::Holds,
             Some((e, rel, x)) => {
                 let meets = |v: f64| rel.holds(v, *x);
-                if meets(lo) && meets(hi) {
+                // "never" (p <= 0) and "always" (p >= 1): no interval of finite samples lies
+                // inside, so a sample that shows the event (or misses it) refutes the
+                // statement, and none holds it as far as n samples can tell
+                let never = *x <= 0.0 && *rel == Rel::Le;
+                let always = *x >= 1.0 && *rel == Rel::Ge;
+                if never || always {
+                    let against = if never { k } else { n - k };
+                    if n > 0 && against == 0 {
+                        detail.push_str(&format!(
+                            "; p {e} as stated: no sample of {n} goes against it (p is at {} {} at {:.0} %)",
+                            if never { "most" } else { "least" },
+                            g4(if never { hi } else { lo }),
+                            100.0 * conf
+                        ));
+                        Verdict::Holds
+                    } else if n > 0 {
+                        detail.push_str(&format!(
+                            "; p {e} is refuted by {against} sample(s) of {n}, each a computed counterexample"
+                        ));
+                        Verdict::Fails
+                    } else {
+                        detail.push_str("; no sample ran");
+                        Verdict::NotCheckable
+                    }
+                } else if meets(lo) && meets(hi) {
                     detail.push_str(&format!("; the whole interval is {e}"));
                     Verdict::Holds
                 } else if !meets(lo) && !meets(hi) {
