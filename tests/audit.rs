@@ -1100,3 +1100,34 @@ where $\tau$ is a time in seconds.
     assert!(ids.contains(&"x.eq2.units"), "{ids:?}");
     assert!(run.iter().all(|(_, v, _)| v == "holds"), "{run:?}");
 }
+
+/// A claim naming a symbol with no unit is refused before anything runs (exit 2, naming it),
+/// while infinity, as a paper writes it in a bound or a limit, needs no unit: `x + infinity` is
+/// a length when x is (every unit fits infinity, as a literal 0).
+#[test]
+fn a_claim_on_an_unknown_symbol_is_refused_and_infinity_is_known() {
+    let dir = scratch("unknown-symbol");
+    let write = |printed: &str| {
+        let claims = dir.join("claims.toml");
+        std::fs::write(
+            &claims,
+            format!(
+                "paper = \"u\"\ntitle = \"u\"\nreport = \"u.md\"\n[symbols]\nx = \"m\"\n\n[[claim]]\nid = \"u.one\"\nequation = \"(1)\"\nreading = \"r\"\nkind = \"dimension\"\nprinted = \"{printed}\"\nexpect = \"m\"\n"
+            ),
+        )
+        .unwrap();
+        verify(&["--claims", claims.to_str().unwrap(), "--format", "json"])
+    };
+    let known = write("x + infinity");
+    assert_eq!(
+        known.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&known.stderr)
+    );
+    assert_eq!(verdicts(&known), [("u.one".to_string(), "holds".to_string())]);
+    let unknown = write("x + y");
+    assert_eq!(unknown.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&unknown.stderr);
+    assert!(err.contains("unknown symbol `y`"), "{err}");
+}
