@@ -1125,7 +1125,10 @@ fn a_claim_on_an_unknown_symbol_is_refused_and_infinity_is_known() {
         "{}",
         String::from_utf8_lossy(&known.stderr)
     );
-    assert_eq!(verdicts(&known), [("u.one".to_string(), "holds".to_string())]);
+    assert_eq!(
+        verdicts(&known),
+        [("u.one".to_string(), "holds".to_string())]
+    );
     let unknown = write("x + y");
     assert_eq!(unknown.status.code(), Some(2));
     let err = String::from_utf8_lossy(&unknown.stderr);

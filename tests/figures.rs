@@ -126,6 +126,29 @@ fn is_number(t: &str) -> bool {
 }
 
 /// What is wrong with one laid-out figure; `ids` are the claim ids no title may show.
+/// Whether an axis title gives a unit: `dimensionless`, or a parenthesised unit the library's
+/// unit parser reads (a bare number is no unit), or degrees.
+fn has_unit(title: &str) -> bool {
+    if title.contains("dimensionless") {
+        return true;
+    }
+    let mut rest = title;
+    while let Some(i) = rest.find('(') {
+        let Some(j) = rest[i..].find(')') else { break };
+        let inside = rest[i + 1..i + j].trim();
+        let number = inside.parse::<f64>().is_ok();
+        if inside == "degrees"
+            || (!number
+                && !inside.is_empty()
+                && impactcheck::algebra::units::Unit::parse(inside).is_ok())
+        {
+            return true;
+        }
+        rest = &rest[i + j + 1..];
+    }
+    false
+}
+
 fn problems_of(name: &str, f: &Laid, ids: &[String]) -> Vec<String> {
     let mut out = Vec::new();
     let (w, h) = f.size;
@@ -162,6 +185,21 @@ fn problems_of(name: &str, f: &Laid, ids: &[String]) -> Vec<String> {
                 a.text
             ));
         }
+    }
+    // the y axis says its quantity's unit (issue 67): its title, wrapped over lines, holds
+    // `dimensionless` or a unit in parentheses that the unit parser reads (`(m s^-1)`), or
+    // degrees
+    let turned: Vec<&str> = f
+        .boxes
+        .iter()
+        .filter(|b| b.turned)
+        .map(|b| b.text.as_str())
+        .collect();
+    if !turned.is_empty() && !has_unit(&turned.join(" ")) {
+        out.push(format!(
+            "{name}: the y axis `{}` has no unit",
+            turned.join(" ")
+        ));
     }
     // the title: the topmost texts, above the first plot frame's top
     if let Some(first) = f.boxes.first() {
@@ -300,6 +338,55 @@ fn the_check_sees_overlaps_covered_points_and_a_canvas_left() {
     assert!(has("`legend` covers the data point"), "{p:?}");
     assert!(has("says neither relative nor absolute"), "{p:?}");
     assert!(has("lie on each other, neither dashed"), "{p:?}");
+}
+
+#[test]
+fn every_committed_figure_has_a_y_axis_with_a_unit_and_a_bare_quantity_fails() {
+    // every SVG of reports/ (the benchmarks' figures too), laid out as a renderer does
+    let opt = options();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("reports");
+    let mut problems = Vec::new();
+    let mut figures = 0;
+    for dir in [root.clone(), root.join("timing")] {
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        for entry in entries {
+            let path = entry.expect("entry").path();
+            if path.extension().is_some_and(|e| e == "svg") {
+                figures += 1;
+                let svg = std::fs::read_to_string(&path).expect("svg");
+                let name = path.file_name().unwrap().to_string_lossy().to_string();
+                problems.extend(
+                    problems_of(&name, &lay_out(&svg, &opt), &[])
+                        .into_iter()
+                        .filter(|p| p.contains("has no unit")),
+                );
+            }
+        }
+    }
+    assert!(figures >= 30, "only {figures} figures");
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+    // planted: a force without its unit, a log scale that is no unit, a bare number; each fails,
+    // and the same axes with a unit pass
+    for (title, ok) in [
+        ("force", false),
+        ("force (log scale)", false),
+        ("x (2)", false),
+        ("force (kg m s^-2)", true),
+        ("phi (degrees)", true),
+        ("energy / E0 (dimensionless)", true),
+    ] {
+        let svg = format!(
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="300" height="300" font-family="sans-serif" font-size="12"><text x="16" y="150" transform="rotate(-90 16 150)" text-anchor="middle">{title}</text></svg>"#
+        );
+        let p = problems_of("t", &lay_out(&svg, &opt), &[]);
+        assert_eq!(
+            p.iter().any(|x| x.contains("has no unit")),
+            !ok,
+            "{title}: {p:?}"
+        );
+    }
 }
 
 #[test]

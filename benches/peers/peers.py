@@ -107,7 +107,7 @@ def svg_plot(series, path, title):
            f'<line x1="{pad}" y1="{h-pad}" x2="{w-pad}" y2="{h-pad}" stroke="black"/>',
            f'<line x1="{pad}" y1="{pad}" x2="{pad}" y2="{h-pad}" stroke="black"/>',
            f'<text x="{w/2}" y="{h-15}" text-anchor="middle">time per solve (s, log)</text>',
-           f'<text x="15" y="{h/2}" transform="rotate(-90 15 {h/2})" text-anchor="middle">achieved error (log)</text>']
+           f'<text x="15" y="{h/2}" transform="rotate(-90 15 {h/2})" text-anchor="middle">relative error (dimensionless, log)</text>']
     for k in range(int(np.ceil(x0)), int(np.floor(x1)) + 1):
         X = pad + (k - x0) / (x1 - x0) * (w - 2 * pad)
         out.append(f'<text x="{X:.1f}" y="{h-pad+16}" text-anchor="middle">1e{k}</text>')

@@ -82,7 +82,7 @@ fn diagram(p: &Problem, x_is_time: bool) -> String {
         } else {
             "right-hand-side evaluations"
         },
-        "achieved error, relative to max(1, |y|) (max norm at the end)",
+        "achieved error, relative to max(1, |y|), max norm at the end (dimensionless)",
         Scale::Log,
         Scale::Log,
         &series,

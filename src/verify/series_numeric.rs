@@ -305,7 +305,7 @@ pub fn check(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Outcome
     let svg = plot(
         "series against integration, cone on the paper's viscoelastic half-space",
         "t (s)",
-        "relative error",
+        "relative error (dimensionless)",
         Scale::Log,
         Scale::Log,
         &series_plot,
@@ -319,7 +319,7 @@ pub fn check(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Outcome
             (svg_name, svg),
             (
                 "000_series_error.csv".into(),
-                crate::report::svg::csv("t (s)", "relative error", &series_plot),
+                crate::report::svg::csv("t (s)", "relative error (dimensionless)", &series_plot),
             ),
         ]
     };

@@ -263,6 +263,11 @@ impl Scene {
     }
 
     fn field_unit(&self, field: &str) -> Option<String> {
+        // fields varied together (`solve.samples.0 solve.t_end`) hold one value: the unit of
+        // the first that has one
+        if field.contains(' ') {
+            return field.split_whitespace().find_map(|f| self.field_unit(f));
+        }
         let (table, field) = match field.split_once('.') {
             Some((run, rest)) if self.runs.iter().any(|(r, _)| r == run) => (None, rest),
             _ => (Some(&self.base), field),
@@ -299,11 +304,26 @@ impl Scene {
             .run_point(&[])
             .ok()
             .and_then(|(_, out)| self.model_units(&out).get(quantity).map(|u| u.to_string()));
-        match unit.as_deref() {
-            Some("1") => format!("{quantity} (dimensionless)"),
-            Some(u) => format!("{quantity} ({u})"),
-            None => quantity.to_string(),
-        }
+        labelled(
+            quantity,
+            unit.as_deref(),
+            self.scaled_unit(quantity).as_deref(),
+        )
+    }
+
+    /// The scale of a number the model states as a pure number in units of its own (`1 (f N)`
+    /// gives `f N`).
+    fn scaled_unit(&self, quantity: &str) -> Option<String> {
+        let doc = self
+            .base
+            .get("model")
+            .and_then(|m| m.as_str())
+            .and_then(|m| crate::scene::describe(m).ok())?;
+        let out = doc
+            .all_outcomes()
+            .find(|o| crate::models::doc::covers(o.path, quantity))?;
+        let scale = out.unit.strip_prefix("1 (")?.strip_suffix(')')?;
+        Some(scale.to_string())
     }
 
     /// The unit of each number the model produced in `outcome` (a run's JSON, or with `runs`
@@ -842,4 +862,62 @@ pub(super) fn numeric_paths(v: &Value) -> Vec<String> {
     let mut out = Vec::new();
     go("", v, &mut out);
     out
+}
+
+/// An axis title: the quantity and its unit, or its scale for a number the model gives in units
+/// of its own (`1 (f N)`: |F|/(f N)).
+fn labelled(quantity: &str, unit: Option<&str>, scale: Option<&str>) -> String {
+    match (unit, scale) {
+        (Some("1"), _) => format!("{quantity} (dimensionless)"),
+        (Some(u), _) => format!("{quantity} ({u})"),
+        (None, Some(scale)) => format!("{quantity} / ({scale}) (dimensionless)"),
+        (None, None) => quantity.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Scene, labelled};
+
+    #[test]
+    fn an_axis_title_gives_the_unit_or_the_scale() {
+        assert_eq!(labelled("v", Some("m s^-1"), None), "v (m s^-1)");
+        assert_eq!(labelled("e", Some("1"), None), "e (dimensionless)");
+        assert_eq!(
+            labelled("force", None, Some("f N")),
+            "force / (f N) (dimensionless)"
+        );
+        assert_eq!(labelled("q", None, None), "q");
+    }
+
+    fn scene(model: &str) -> Scene {
+        Scene {
+            name: "t".into(),
+            label: "t".into(),
+            base: toml::from_str(&format!("model = \"{model}\"")).unwrap(),
+            bind: Default::default(),
+            runs: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn fields_varied_together_have_the_unit_of_the_one_that_has_one() {
+        // by the models' documentation: solve.t_end is a time, impactor.v0 a speed
+        let s = scene("hertz");
+        assert_eq!(
+            s.field_label("solve.samples.0 solve.t_end"),
+            "solve.samples.0 solve.t_end (s)"
+        );
+        assert_eq!(s.field_label("impactor.v0"), "impactor.v0 (m s^-1)");
+        assert_eq!(s.field_label("no.such"), "no.such");
+    }
+
+    #[test]
+    fn a_number_in_units_of_its_own_is_labelled_by_its_scale() {
+        // the disk model gives |F|/(f N) and |M|/(f N a) (its documentation: `1 (f N)`)
+        let s = scene("disk-friction");
+        assert_eq!(s.scaled_unit("force").as_deref(), Some("f N"));
+        assert_eq!(s.scaled_unit("moment").as_deref(), Some("f N a"));
+        assert_eq!(s.scaled_unit("k"), None);
+    }
 }
