@@ -58,11 +58,18 @@ pub fn weak_conflicts(
         // chapter reuses it (M a moment there)
         // (by the symbol a unit is that of: the sigmoid's `M(\alpha - \alpha_0)`, where the
         // chapter applies M elsewhere, is M's)
+        // a letter the relation itself takes for a pure number (its own `\cos s`) is used as
+        // the definition uses it: that definition still decides
+        let pure_here: BTreeSet<String> = inputs[i]
+            .iter()
+            .flat_map(|r| r.sides.iter().flat_map(|e| forced_pure(e, declared)))
+            .map(|x| unit_name(&x))
+            .collect();
         let uses: BTreeSet<String> = inputs[i]
             .iter()
             .flat_map(|r| r.sides.iter().flat_map(Expr::symbols))
             .map(|x| unit_name(&x))
-            .filter(|x| !declared.contains_key(x))
+            .filter(|x| !declared.contains_key(x) && !pure_here.contains(x))
             .collect();
         let mut subset: Vec<Option<Relation>> = core
             .iter()
@@ -70,7 +77,7 @@ pub fn weak_conflicts(
             .filter(|&&k| {
                 !inputs[k].iter().any(|r| {
                     r.sides.get(1).is_some_and(|rhs| {
-                        forced_pure(rhs)
+                        forced_pure(rhs, declared)
                             .iter()
                             .any(|x| uses.contains(&unit_name(x)))
                     })
@@ -87,30 +94,49 @@ pub fn weak_conflicts(
     weak
 }
 
-/// The symbols `e` makes pure numbers: those in the argument of a function that takes a pure
-/// number (`exp`, `ln`, `sin`, ...: not `sqrt`, `abs`, `sign`, Heaviside's step) or in an
-/// exponent.
-fn forced_pure(e: &Expr) -> Vec<String> {
+/// The letters `e` makes pure numbers on their own: in the argument of a function that takes a
+/// pure number (`exp`, `ln`, `sin`, ...: not `sqrt`, `abs`, `sign`, Heaviside's step) or in an
+/// exponent, a lone symbol no unit is declared for, beside symbols declared pure numbers only
+/// (the steepness M of `e^{-M(\alpha - \alpha_0)}`, the s of `\sin s`); a product of two unknown
+/// letters there (`e^{-d t}` with d and t unknown) makes neither pure alone.
+fn forced_pure(e: &Expr, declared: &BTreeMap<String, Unit>) -> Vec<String> {
     use crate::algebra::expr::{Func, Op};
+    let lone = |arg: &Expr| -> Vec<String> {
+        let symbols = arg.symbols();
+        let unknown: Vec<&String> = symbols
+            .iter()
+            .filter(|x| !declared.contains_key(&unit_name(x)))
+            .collect();
+        let others_pure = symbols
+            .iter()
+            .filter_map(|x| declared.get(&unit_name(x)))
+            .all(Unit::is_one);
+        match unknown.as_slice() {
+            [one] if others_pure => vec![(*one).clone()],
+            _ => Vec::new(),
+        }
+    };
     match e {
         Expr::Num(_) | Expr::Sym(_) | Expr::Pi => Vec::new(),
-        Expr::Neg(a) => forced_pure(a),
+        Expr::Neg(a) => forced_pure(a, declared),
         Expr::Bin(Op::Pow, a, b) => {
-            let mut out = forced_pure(a);
-            out.extend(b.symbols());
+            let mut out = forced_pure(a, declared);
+            out.extend(lone(b));
             out
         }
         Expr::Bin(_, a, b) => {
-            let mut out = forced_pure(a);
-            out.extend(forced_pure(b));
+            let mut out = forced_pure(a, declared);
+            out.extend(forced_pure(b, declared));
             out
         }
-        Expr::Call(Func::Sqrt | Func::Abs | Func::Sign | Func::Heaviside, a) => forced_pure(a),
-        Expr::Call(_, a) => a.symbols(),
+        Expr::Call(Func::Sqrt | Func::Abs | Func::Sign | Func::Heaviside, a) => {
+            forced_pure(a, declared)
+        }
+        Expr::Call(_, a) => lone(a),
         Expr::Calc(_, a, _, rest) => {
-            let mut out = forced_pure(a);
+            let mut out = forced_pure(a, declared);
             for r in rest {
-                out.extend(forced_pure(r));
+                out.extend(forced_pure(r, declared));
             }
             out
         }
@@ -501,8 +527,40 @@ mod tests {
             inf.statuses
         );
         assert!(weak_conflicts(&inputs, &inf, &declared).contains(&1));
-        // what the rule reads: a function's argument and an exponent, not a root's argument
-        let pure = forced_pure(&parse("sqrt(x) + exp(y) + z^w + abs(v)").unwrap());
+        // what the rule reads: a function's argument and an exponent, not a root's argument;
+        // a lone unknown letter, beside letters declared pure numbers only
+        let none = BTreeMap::new();
+        let pure = forced_pure(&parse("sqrt(x) + exp(y) + z^w + abs(v)").unwrap(), &none);
         assert_eq!(pure, ["y", "w"]);
+        let pure = forced_pure(&parse("exp(-d*t) + sin(q*a)").unwrap(), &declared);
+        assert_eq!(pure, ["q"]);
+        assert!(forced_pure(&parse("exp(d*J)").unwrap(), &declared).is_empty());
+    }
+
+    #[test]
+    fn a_relation_that_takes_the_letter_for_a_pure_number_too_is_still_decided() {
+        // by hand: `y = R sin(s)` makes s a pure number and y a length (R in m); `x = y cos(s) R`
+        // (x in m) takes s for a pure number as well, so the definition decides it: m = m^2, a
+        // conflict that stays (a misprint of the relation, caught)
+        let declared: BTreeMap<String, Unit> = [
+            ("x".to_string(), Unit::parse("m").unwrap()),
+            ("R".to_string(), Unit::parse("m").unwrap()),
+        ]
+        .into_iter()
+        .collect();
+        let inputs = vec![rel("y = R*sin(s)"), rel("x = y*cos(s)*R")];
+        let inf = infer_ordered(&inputs, &declared, true);
+        assert!(
+            matches!(inf.statuses[1], Status::Inconsistent { .. }),
+            "{:?}",
+            inf.statuses
+        );
+        assert!(!weak_conflicts(&inputs, &inf, &declared).contains(&1));
+        // the same relation taking s for a length (`x = y s`): the definition's pure s is
+        // another letter there, and decides nothing of it
+        let inputs = vec![rel("y = R*sin(s)"), rel("x = y*s*R")];
+        let inf = infer_ordered(&inputs, &declared, true);
+        assert!(matches!(inf.statuses[1], Status::Inconsistent { .. }));
+        assert!(weak_conflicts(&inputs, &inf, &declared).contains(&1));
     }
 }
