@@ -1189,6 +1189,8 @@ fn the_guide_lists_every_key_of_every_kind() {
         "printed_equations_from",
         "printed_matrix_from",
         "retyped",
+        "correction",
+        "printed_where",
     ] {
         want.insert(("every kind".to_string(), key.to_string()));
     }

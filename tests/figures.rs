@@ -135,7 +135,12 @@ fn has_unit(title: &str) -> bool {
     let mut rest = title;
     while let Some(i) = rest.find('(') {
         let Some(j) = rest[i..].find(')') else { break };
-        let inside = rest[i + 1..i + j].trim();
+        // `(s, log)`: the unit, then what else the parentheses say of the axis
+        let inside = rest[i + 1..i + j]
+            .split(',')
+            .next()
+            .unwrap_or_default()
+            .trim();
         let number = inside.parse::<f64>().is_ok();
         if inside == "degrees"
             || (!number
@@ -147,6 +152,35 @@ fn has_unit(title: &str) -> bool {
         rest = &rest[i + j + 1..];
     }
     false
+}
+
+/// The x axis titles of a figure as written (the writers mark them `class="xlabel"`).
+fn x_titles(svg: &str) -> Vec<String> {
+    svg.split("<text class=\"xlabel\"")
+        .skip(1)
+        .filter_map(|rest| {
+            let (_, after) = rest.split_once('>')?;
+            let (text, _) = after.split_once("</text>")?;
+            Some(
+                text.replace("&lt;", "<")
+                    .replace("&gt;", ">")
+                    .replace("&amp;", "&"),
+            )
+        })
+        .collect()
+}
+
+/// What is wrong with the x axes of one figure: none marked, or one without a unit.
+fn x_problems(name: &str, svg: &str) -> Vec<String> {
+    let titles = x_titles(svg);
+    if titles.is_empty() {
+        return vec![format!("{name}: no x axis title (class=\"xlabel\")")];
+    }
+    titles
+        .iter()
+        .filter(|t| !has_unit(t))
+        .map(|t| format!("{name}: the x axis `{t}` has no unit"))
+        .collect()
 }
 
 fn problems_of(name: &str, f: &Laid, ids: &[String]) -> Vec<String> {
@@ -341,7 +375,7 @@ fn the_check_sees_overlaps_covered_points_and_a_canvas_left() {
 }
 
 #[test]
-fn every_committed_figure_has_a_y_axis_with_a_unit_and_a_bare_quantity_fails() {
+fn every_committed_figure_has_axes_with_units_and_a_bare_quantity_fails() {
     // every SVG of reports/ (the benchmarks' figures too), laid out as a renderer does
     let opt = options();
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("reports");
@@ -362,6 +396,7 @@ fn every_committed_figure_has_a_y_axis_with_a_unit_and_a_bare_quantity_fails() {
                         .into_iter()
                         .filter(|p| p.contains("has no unit")),
                 );
+                problems.extend(x_problems(&name, &svg));
             }
         }
     }
@@ -386,7 +421,16 @@ fn every_committed_figure_has_a_y_axis_with_a_unit_and_a_bare_quantity_fails() {
             !ok,
             "{title}: {p:?}"
         );
+        // the same title on the x axis
+        let svg = format!(
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="300" height="300"><text class="xlabel" x="150" y="290" text-anchor="middle">{title}</text></svg>"#
+        );
+        assert_eq!(x_problems("t", &svg).is_empty(), ok, "x axis {title}");
     }
+    // a figure with no marked x axis fails, and a time axis with its unit and scale passes
+    assert!(!x_problems("t", "<svg><text x=\"1\" y=\"1\">t (s)</text></svg>").is_empty());
+    let timed = r#"<svg><text class="xlabel" x="1" y="1">time per solve (s, log)</text></svg>"#;
+    assert!(x_problems("t", timed).is_empty());
 }
 
 #[test]

@@ -309,3 +309,68 @@ fn every_claim_moves_under_a_misprint_or_says_why_not() {
         "is tried {own_tried} time(s) and changes the verdict {own_killed} time(s)"
     )));
 }
+
+/// Every finding names its true cause: each claim that fails or holds only with a correction
+/// (and does not extend the paper) states the correction the finding names (`correction`, or
+/// its `corrected` form), and with it applied the claim's own check holds. Computed here, claim
+/// by claim, by the kinds' checks, not read from the reports; `summary.json` must say the same.
+#[test]
+fn every_finding_holds_with_its_correction_applied() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let papers = load_claims(&root.join("verify")).expect("claims load");
+    let out = impactcheck::verify::correction::check_all(&papers, root).expect("runs");
+    let mut bad = Vec::new();
+    let mut confirmed = std::collections::BTreeSet::new();
+    let mut showing = 0;
+    for (o, fix) in &out {
+        if !matches!(o.verdict, Verdict::Fails | Verdict::HoldsWithCorrection)
+            || o.extends.is_some()
+        {
+            assert!(
+                fix.is_none(),
+                "{}: a correction run for a claim with no finding",
+                o.id
+            );
+            continue;
+        }
+        showing += 1;
+        match fix {
+            None => bad.push(format!("{}: no correction stated", o.id)),
+            Some(c) if !c.holds => {
+                bad.push(format!("{}: {} ({})", o.id, c.verdict.as_str(), c.detail))
+            }
+            Some(_) => {
+                confirmed.insert(o.id.clone());
+            }
+        }
+    }
+    assert!(showing >= 45, "{showing} claims show findings");
+    assert!(
+        bad.is_empty(),
+        "findings whose correction does not hold:\n{}",
+        bad.join("\n")
+    );
+    // the committed summary says the same of every finding
+    let summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(root.join("reports/summary.json")).expect("summary"),
+    )
+    .expect("summary is JSON");
+    for f in summary["findings"].as_array().expect("findings") {
+        let held: Vec<&str> = f["corrected_hold"]
+            .as_array()
+            .map(|a| a.iter().filter_map(|s| s.as_str()).collect())
+            .unwrap_or_default();
+        for c in f["claims"].as_array().expect("claims") {
+            let id = c.as_str().unwrap();
+            assert!(
+                held.contains(&id),
+                "summary.json: {id} of {} not confirmed",
+                f["name"]
+            );
+            assert!(
+                confirmed.contains(id),
+                "{id} is in summary.json's findings but not here"
+            );
+        }
+    }
+}

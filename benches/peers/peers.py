@@ -106,7 +106,7 @@ def svg_plot(series, path, title):
            f'<text x="{w/2}" y="20" text-anchor="middle" font-size="14">{title}</text>',
            f'<line x1="{pad}" y1="{h-pad}" x2="{w-pad}" y2="{h-pad}" stroke="black"/>',
            f'<line x1="{pad}" y1="{pad}" x2="{pad}" y2="{h-pad}" stroke="black"/>',
-           f'<text x="{w/2}" y="{h-15}" text-anchor="middle">time per solve (s, log)</text>',
+           f'<text class="xlabel" x="{w/2}" y="{h-15}" text-anchor="middle">time per solve (s, log)</text>',
            f'<text x="15" y="{h/2}" transform="rotate(-90 15 {h/2})" text-anchor="middle">relative error (dimensionless, log)</text>']
     for k in range(int(np.ceil(x0)), int(np.floor(x1)) + 1):
         X = pad + (k - x0) / (x1 - x0) * (w - 2 * pad)

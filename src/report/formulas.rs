@@ -194,29 +194,15 @@ mod tests {
 
     fn claim(id: &str, printed: &str, survivors: &[&str]) -> Outcome {
         Outcome {
-            id: id.into(),
-            paper: "p".into(),
-            equation: "(1)".into(),
-            quote: String::new(),
-            reading: None,
-            verdict: Verdict::Holds,
-            detail: String::new(),
-            printed_latex: None,
             printed: Some(printed.into()),
-            derived_latex: None,
-            extra_md: None,
-            files: vec![],
             kind: "identity".into(),
-            extra: BTreeMap::new(),
             power: Some(Power {
                 mutants: 10,
                 killed: 10 - survivors.len(),
                 survivors: survivors.iter().map(|s| s.to_string()).collect(),
                 ..Power::default()
             }),
-            finding: None,
-            extends: None,
-            retyped: None,
+            ..Outcome::bare(id, Verdict::Holds)
         }
     }
 

@@ -4,12 +4,15 @@
 //! Files are rendered in memory, written to a temporary folder beside the target and only then
 //! moved into place, so a run that fails leaves the old reports untouched.
 
+mod findings;
 pub mod formulas;
 mod outcome;
 pub mod plot;
 pub mod svg;
 
-pub use outcome::{Outcome, PaperInfo, Power, Verdict};
+use findings::findings_section;
+pub use findings::{Finding, findings};
+pub use outcome::{Corrected, Outcome, PaperInfo, Power, Verdict};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -63,35 +66,6 @@ pub struct Summary {
     pub formulas: Vec<formulas::FormulaPower>,
     /// The version that wrote it.
     pub generated_by: GeneratedBy,
-}
-
-/// One distinct error of a paper, and every claim that shows it.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Eq)]
-pub struct Finding {
-    /// Its short name (a claim's `finding`, or the claim's id when it names none).
-    pub name: String,
-    /// The claims that show it (verdict `fails` or `holds-with-correction`).
-    pub claims: Vec<String>,
-}
-
-/// The distinct errors the outcomes show: every claim that fails or holds only with a
-/// correction, and does not extend the paper (`extends`), is in exactly one, grouped by its `finding` (a claim naming none is a finding of
-/// its own), sorted by name.
-pub fn findings(outcomes: &[Outcome]) -> Vec<Finding> {
-    let mut by: BTreeMap<String, Vec<String>> = BTreeMap::new();
-    for o in outcomes {
-        if matches!(o.verdict, Verdict::Fails | Verdict::HoldsWithCorrection) && o.extends.is_none()
-        {
-            let name = o.finding.clone().unwrap_or_else(|| o.id.clone());
-            by.entry(name).or_default().push(o.id.clone());
-        }
-    }
-    by.into_iter()
-        .map(|(name, mut claims)| {
-            claims.sort_by(|a, b| natural_cmp(a, b));
-            Finding { name, claims }
-        })
-        .collect()
 }
 
 /// Claim ids in the order a reader expects: runs of digits compared as numbers, so `eq2`
@@ -229,8 +203,12 @@ pub fn render(papers: &[PaperInfo], outcomes: &[Outcome]) -> Vec<(String, String
     );
     let showing: usize = paper_findings.iter().map(|f| f.claims.len()).sum();
     let extending: Vec<&Outcome> = outcomes.iter().filter(|o| o.extends.is_some()).collect();
+    let confirmed = paper_findings
+        .iter()
+        .filter(|f| f.correction_holds())
+        .count();
     readme.push_str(&format!(
-        "{n_papers} claims of the papers: {papers_list}. The {showing} claims that fail or hold only with a correction show **{} distinct findings** (claims that show the same error share one: `findings` in `summary.json`, listed in each paper's report). {} claims test more than the paper states (`extends`: a range, a model or a condition the paper does not claim); their verdicts are the tool's extension, not the paper's errors ({} of them fail).",
+        "{n_papers} claims of the papers: {papers_list}. The {showing} claims that fail or hold only with a correction show **{} distinct findings** (claims that show the same error share one: `findings` in `summary.json`, listed in each paper's report). {confirmed} of them are confirmed by their correction: each of their claims, checked again with the correction applied (its `correction`, or its `corrected` form), holds. {} claims test more than the paper states (`extends`: a range, a model or a condition the paper does not claim); their verdicts are the tool's extension, not the paper's errors ({} of them fail).",
         paper_findings.len(),
         extending.len(),
         extending.iter().filter(|o| o.verdict == Verdict::Fails).count()
@@ -367,30 +345,6 @@ pub fn render(papers: &[PaperInfo], outcomes: &[Outcome]) -> Vec<(String, String
     let json = serde_json::to_string_pretty(&summary(outcomes)).unwrap_or_default();
     files.push(("summary.json".to_string(), json + "\n"));
     files
-}
-
-/// A paper's distinct findings, each with the claims that show it.
-fn findings_section(list: &[&Outcome]) -> String {
-    let owned: Vec<Outcome> = list.iter().map(|o| (*o).clone()).collect();
-    let found = findings(&owned);
-    if found.is_empty() {
-        return "No claim of this paper fails or needs a correction.\n\n".into();
-    }
-    let showing: usize = found.iter().map(|f| f.claims.len()).sum();
-    let mut md = format!(
-        "## Findings\n\n{showing} claims fail or hold only with a correction; they show {} distinct findings:\n\n| finding | claims |\n|---|---|\n",
-        found.len()
-    );
-    for f in &found {
-        let links: Vec<String> = f
-            .claims
-            .iter()
-            .map(|id| format!("[{id}](#{})", anchor(id)))
-            .collect();
-        md.push_str(&format!("| {} | {} |\n", f.name, links.join(", ")));
-    }
-    md.push('\n');
-    md
 }
 
 /// The report file of `paper`.
@@ -899,54 +853,5 @@ mod tests {
             "{p}"
         );
         assert!(!p.contains("Source: ``"), "{p}");
-    }
-
-    #[test]
-    fn every_error_is_in_one_finding_and_shared_names_group() {
-        let o = |id: &str, verdict: Verdict, finding: Option<&str>| Outcome {
-            id: id.into(),
-            paper: "p".into(),
-            equation: "(1)".into(),
-            quote: String::new(),
-            reading: None,
-            verdict,
-            detail: String::new(),
-            printed_latex: None,
-            printed: None,
-            derived_latex: None,
-            extra_md: None,
-            files: vec![],
-            kind: String::new(),
-            extra: BTreeMap::new(),
-            power: None,
-            finding: finding.map(str::to_string),
-            extends: None,
-            retyped: None,
-        };
-        let out = [
-            o("p.a", Verdict::Fails, Some("wrong-a1")),
-            o("p.b", Verdict::Fails, Some("wrong-a1")),
-            o("p.c", Verdict::HoldsWithCorrection, None),
-            o("p.d", Verdict::Fails, None),
-            o("p.e", Verdict::Holds, Some("wrong-a1")),
-        ];
-        let f = findings(&out);
-        let got: Vec<(&str, Vec<&str>)> = f
-            .iter()
-            .map(|f| {
-                (
-                    f.name.as_str(),
-                    f.claims.iter().map(String::as_str).collect(),
-                )
-            })
-            .collect();
-        assert_eq!(
-            got,
-            vec![
-                ("p.c", vec!["p.c"]),
-                ("p.d", vec!["p.d"]),
-                ("wrong-a1", vec!["p.a", "p.b"]),
-            ]
-        );
     }
 }

@@ -124,10 +124,63 @@ pub struct Power {
     /// the key is the same.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub key: Option<String>,
+    /// The claim checked with its finding's correction applied (`verify::correction`), for a
+    /// claim that fails or holds only with a correction and states one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub correction: Option<Corrected>,
+}
+
+/// A claim checked with its finding's correction applied.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Corrected {
+    /// Whether it then holds.
+    pub holds: bool,
+    /// Its verdict then.
+    pub verdict: Verdict,
+    /// Its detail then.
+    pub detail: String,
 }
 
 fn is_zero(n: &usize) -> bool {
     *n == 0
+}
+
+impl Outcome {
+    /// The outcome of claim `id` of `paper` at `equation`: its verdict and detail, nothing else.
+    pub(crate) fn new(
+        id: &str,
+        paper: &str,
+        equation: &str,
+        verdict: Verdict,
+        detail: String,
+    ) -> Outcome {
+        Outcome {
+            id: id.into(),
+            paper: paper.into(),
+            equation: equation.into(),
+            quote: String::new(),
+            reading: None,
+            verdict,
+            detail,
+            printed_latex: None,
+            printed: None,
+            derived_latex: None,
+            extra_md: None,
+            files: vec![],
+            kind: String::new(),
+            extra: BTreeMap::new(),
+            power: None,
+            finding: None,
+            extends: None,
+            retyped: None,
+        }
+    }
+
+    /// A bare outcome of claim `id` of paper `p` (for the report writers' tests).
+    #[cfg(test)]
+    pub(crate) fn bare(id: &str, verdict: Verdict) -> Outcome {
+        Outcome::new(id, "p", "(1)", verdict, String::new())
+    }
 }
 
 impl Power {

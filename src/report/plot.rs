@@ -560,7 +560,7 @@ pub fn figure(f: &Figure) -> String {
         f.xlabel.to_string()
     };
     out.push_str(&format!(
-        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>\n",
+        "<text class=\"xlabel\" x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>\n",
         left + PW / 2.0,
         last_bottom + 38.0,
         escape(&xlabel)

@@ -171,7 +171,7 @@ pub fn region_map(title: &str, x: &MapAxis, y: &MapAxis, cells: &[Option<bool>])
     }
     let scale = |log: bool| if log { " (log scale)" } else { "" };
     out.push_str(&format!(
-        "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}{}</text>\n<text x=\"18\" y=\"{:.1}\" transform=\"rotate(-90 18 {:.1})\" text-anchor=\"middle\">{}{}</text>\n",
+        "<text class=\"xlabel\" x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{}{}</text>\n<text x=\"18\" y=\"{:.1}\" transform=\"rotate(-90 18 {:.1})\" text-anchor=\"middle\">{}{}</text>\n",
         left + pw / 2.0,
         h - 24.0,
         escape(xlabel),

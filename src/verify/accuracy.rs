@@ -80,7 +80,7 @@ fn diagram(p: &Problem, x_is_time: bool) -> String {
         if x_is_time {
             "time per solve (s)"
         } else {
-            "right-hand-side evaluations"
+            "right-hand-side evaluations (a count, dimensionless)"
         },
         "achieved error, relative to max(1, |y|), max norm at the end (dimensionless)",
         Scale::Log,

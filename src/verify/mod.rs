@@ -7,6 +7,7 @@
 
 pub mod accuracy;
 pub mod audit_reports;
+pub mod correction;
 pub mod coverage;
 mod fingerprint;
 /// FNV-1a with a 128-bit state: a stable hash for change detection (the keys of
@@ -22,6 +23,7 @@ pub mod paper001;
 pub mod paper002;
 pub mod power;
 pub mod power_cache;
+mod power_targets;
 pub mod series_numeric;
 pub mod tex_claims;
 
@@ -121,6 +123,15 @@ pub struct Head {
     /// and a fail of it is no finding.
     #[serde(default)]
     pub extends: Option<String>,
+    /// The finding's correction: the claim's keys as the paper should have printed them
+    /// (`correction = { printed = "..." }`), each replacing the key of its name; applied, the
+    /// claim must hold ([`correction`]).
+    #[serde(default)]
+    pub correction: Option<toml::Table>,
+    /// The entries of the claim's `where` that the paper prints (its definitions, not test
+    /// inputs): misprinted by [`power`] as the printed side is.
+    #[serde(default)]
+    pub printed_where: Vec<String>,
     /// Why the printed side is typed by hand rather than read from the paper's LaTeX
     /// (`printed_from`): a formula printed in prose, a number read off a figure, a form the
     /// reader has no construct for. The report shows it; reports/README.md counts both.
@@ -137,7 +148,7 @@ pub struct Head {
 
 impl Head {
     /// The keys of a head; every other key of a claim belongs to its kind.
-    const KEYS: [&str; 10] = [
+    const KEYS: [&str; 12] = [
         "id",
         "equation",
         "quote",
@@ -148,6 +159,8 @@ impl Head {
         "finding",
         "extends",
         "retyped",
+        "correction",
+        "printed_where",
     ];
 }
 
@@ -281,24 +294,12 @@ pub(crate) fn with_assumption(mut o: Outcome, c: &Head) -> Outcome {
 
 pub(crate) fn outcome(paper: &PaperClaims, c: &Head, verdict: Verdict, detail: String) -> Outcome {
     Outcome {
-        id: c.id.clone(),
-        paper: paper.paper.clone(),
-        equation: c.equation.clone(),
         quote: c.quote.clone(),
         reading: c.reading.clone(),
-        verdict,
-        detail,
-        printed_latex: None,
-        printed: None,
-        derived_latex: None,
-        extra_md: None,
-        files: vec![],
-        kind: String::new(),
-        extra: BTreeMap::new(),
-        power: None,
         finding: c.finding.clone(),
         extends: c.extends.clone(),
         retyped: c.retyped.clone(),
+        ..Outcome::new(&c.id, &paper.paper, &c.equation, verdict, detail)
     }
 }
 
@@ -507,13 +508,7 @@ pub fn run_with_progress(
         .iter()
         .map(|p| kinds::Checked::validate_with(p, kinds))
         .collect::<Result<_, _>>()?;
-    let new_session = || kinds::Session {
-        derivations: kinds::Derivations::default(),
-        named: Named {
-            root,
-            paper000: paper000::Context::new(root),
-        },
-    };
+    let new_session = || session(root);
     let mut session = new_session();
     let mut per_file = Vec::new();
     for file in &checked {
@@ -528,4 +523,30 @@ pub fn run_with_progress(
     }
     out.sort_by(|a, b| crate::report::natural_cmp(&a.id, &b.id));
     Ok(out)
+}
+
+/// A fresh session of checks, with scenes of `check` claims read relative to `root`.
+pub fn session(root: &Path) -> kinds::Session<'_> {
+    kinds::Session {
+        derivations: kinds::Derivations::default(),
+        named: Named {
+            root,
+            paper000: paper000::Context::new(root),
+        },
+    }
+}
+
+/// A claims file written from `body` (after a header naming `paper`) to a fresh temporary
+/// file, and loaded: for the unit tests of checks and kinds.
+#[cfg(test)]
+pub(crate) fn test_claims(paper: &str, body: &str) -> Result<(Vec<PaperClaims>, PathBuf), String> {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    static NEXT: AtomicUsize = AtomicUsize::new(0);
+    let d = std::env::temp_dir().join(format!("impactcheck-unit-{}", std::process::id()));
+    std::fs::create_dir_all(&d).map_err(|e| e.to_string())?;
+    let f = d.join(format!("c{}.toml", NEXT.fetch_add(1, Ordering::Relaxed)));
+    let text = format!("paper = \"{paper}\"\ntitle = \"t\"\nreport = \"t.md\"\n{body}");
+    std::fs::write(&f, text).map_err(|e| e.to_string())?;
+    let papers = load_claims(&f).map_err(|e| e.to_string())?;
+    Ok((papers, d))
 }

@@ -80,11 +80,25 @@ fn operator_growing_mode(paper: &PaperClaims, c: &NamedCheck) -> Result<Outcome,
         let nu_k = q(-80 + 3 * k, 80);
         for l in [q(1, 10), q(1, 1), q(10, 1)] {
             points += 1;
-            let v = alpha
-                .subst(nu, &RatFunc::from_q(nu_k.clone()))
-                .and_then(|r| r.subst(lam, &RatFunc::from_q(l)))
-                .and_then(|r| r.as_constant());
-            if v.is_some_and(|v| v < q(0, 1)) {
+            let at = |l: crate::algebra::poly::Q| {
+                alpha
+                    .subst(nu, &RatFunc::from_q(nu_k.clone()))
+                    .and_then(|r| r.subst(lam, &RatFunc::from_q(l)))
+                    .and_then(|r| r.as_constant())
+            };
+            // a rate that is not a number there (a symbol besides nu and lambda, a pole) is no
+            // rate: refused, never counted as "not negative"
+            let v = at(l.clone()).ok_or_else(|| {
+                bad(
+                    c,
+                    &format!(
+                        "printed: alpha = {alpha} is not a number at nu = {}, lambda = {} (a rate in nu and lambda only)",
+                        crate::algebra::poly::q_text(&nu_k),
+                        crate::algebra::poly::q_text(&l)
+                    ),
+                )
+            })?;
+            if v < q(0, 1) {
                 neg_points += 1;
                 negative.push(nu_k.clone());
             }
@@ -170,4 +184,45 @@ fn passivity(ctx: &Context, paper: &PaperClaims, c: &NamedCheck) -> Result<Outco
         let scene = c.scene.clone().ok_or_else(|| bad(c, "needs `scene`"))?;
         super::series_numeric::passivity(paper, c, &ctx.root.join(scene))?
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::verify::{Verdict, run_all, test_claims};
+
+    /// Runs `operator-growing-mode` on each printed rate, from a claims file of paper 000.
+    fn rates(printed: &[&str]) -> Vec<Result<Verdict, String>> {
+        printed
+            .iter()
+            .map(|p| {
+                let (papers, d) = test_claims(
+                    "000",
+                    &format!(
+                        "[symbols]\nnu = \"1\"\nlambda = \"1/s\"\nE = \"Pa\"\n[[claim]]\nid = \"000.t\"\nequation = \"(1)\"\nreading = \"q\"\nkind = \"check\"\ncheck = \"operator-growing-mode\"\nprinted = \"{p}\"\n"
+                    ),
+                )?;
+                run_all(&papers, &d)
+                    .map(|o| o[0].verdict)
+                    .map_err(|e| e.to_string())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_rate_grows_where_it_is_negative_and_a_rate_that_is_no_number_is_refused() {
+        // by hand: lambda > 0 never grows; -lambda always does; the printed
+        // -2 (nu + 1) lambda/(1 - 2 nu) is negative for every nu in (-1, 1/2); E lambda is no
+        // rate in nu and lambda alone
+        let r = rates(&[
+            "lambda",
+            "-lambda",
+            "-2*(nu + 1)*lambda/(1 - 2*nu)",
+            "E*lambda",
+        ]);
+        assert_eq!(r[0], Ok(Verdict::Holds));
+        assert_eq!(r[1], Ok(Verdict::Fails));
+        assert_eq!(r[2], Ok(Verdict::Fails));
+        let e = r[3].clone().unwrap_err();
+        assert!(e.contains("is not a number at nu"), "{e}");
+    }
 }

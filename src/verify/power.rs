@@ -33,6 +33,7 @@
 
 use super::fingerprint::{Depends, depends_of, fingerprint, fnv, same};
 use super::kinds::{Checked, KindEntry, Session};
+use super::power_targets::{PathPart, Target, claim_targets, path_text, replaced};
 use super::{ClaimSpec, Outcome, Verdict};
 use crate::algebra::expr::{self, Expr, Inequality, Op};
 use crate::algebra::poly::Q;
@@ -338,79 +339,6 @@ fn sibling(f: expr::Func) -> Option<expr::Func> {
     })
 }
 
-/// A printed key of a claim: where it is in the claim's keys, and its text.
-#[derive(Clone, Debug)]
-struct Target {
-    /// `printed`, `printed_equations[2]`, `printed_matrix[0][1]`.
-    path: Vec<PathPart>,
-    text: String,
-}
-
-#[derive(Clone, Debug)]
-enum PathPart {
-    Key(String),
-    Index(usize),
-}
-
-fn targets(keys: &toml::Table, names: &[&str]) -> Vec<Target> {
-    fn go(v: &toml::Value, path: Vec<PathPart>, out: &mut Vec<Target>) {
-        match v {
-            toml::Value::String(s) => out.push(Target {
-                path,
-                text: s.clone(),
-            }),
-            toml::Value::Array(a) => {
-                for (i, x) in a.iter().enumerate() {
-                    let mut p = path.clone();
-                    p.push(PathPart::Index(i));
-                    go(x, p, out);
-                }
-            }
-            _ => {}
-        }
-    }
-    let mut out = Vec::new();
-    for name in names {
-        if let Some(v) = keys.get(*name) {
-            go(v, vec![PathPart::Key(name.to_string())], &mut out);
-        }
-    }
-    out
-}
-
-fn path_text(path: &[PathPart]) -> String {
-    path.iter()
-        .map(|p| match p {
-            PathPart::Key(k) => k.clone(),
-            PathPart::Index(i) => format!("[{i}]"),
-        })
-        .collect()
-}
-
-fn replaced(keys: &toml::Table, path: &[PathPart], text: String) -> toml::Table {
-    fn put(v: &mut toml::Value, path: &[PathPart], text: String) {
-        match path.split_first() {
-            None => *v = toml::Value::String(text),
-            Some((PathPart::Index(i), rest)) => {
-                if let Some(x) = v.as_array_mut().and_then(|a| a.get_mut(*i)) {
-                    put(x, rest, text);
-                }
-            }
-            Some((PathPart::Key(k), rest)) => {
-                if let Some(x) = v.as_table_mut().and_then(|t| t.get_mut(k)) {
-                    put(x, rest, text);
-                }
-            }
-        }
-    }
-    let mut v = toml::Value::Table(keys.clone());
-    put(&mut v, path, text);
-    match v {
-        toml::Value::Table(t) => t,
-        _ => keys.clone(),
-    }
-}
-
 /// A misprint of a side: what was changed, the side's text with it, and whether it states the
 /// same as the side (then not run, and named so that no claim on the formula counts it).
 #[derive(Debug)]
@@ -568,6 +496,22 @@ pub fn measure<'s>(
     original: &Outcome,
     new_session: &(dyn Fn() -> Session<'s> + Sync),
 ) -> Power {
+    let mut power = misprinted(cx, entry, spec, original, new_session);
+    // a finding's claim: checked with its correction applied too
+    if super::correction::shows_finding(original.verdict) && spec.head.extends.is_none() {
+        power.correction = super::correction::apply(cx, entry, spec, &mut new_session());
+    }
+    power
+}
+
+/// [`measure`]'s misprints: each validated and checked as the claim would be.
+fn misprinted<'s>(
+    cx: &Checked,
+    entry: &KindEntry,
+    spec: &ClaimSpec,
+    original: &Outcome,
+    new_session: &(dyn Fn() -> Session<'s> + Sync),
+) -> Power {
     use rayon::prelude::*;
     let keys = match measured_keys(entry, spec, original.verdict) {
         Ok(k) => k,
@@ -577,7 +521,8 @@ pub fn measure<'s>(
     let mut all: Vec<(String, Target, String)> = Vec::new();
     let mut equivalent: Vec<String> = Vec::new();
     let mut unread = Vec::new();
-    for t in targets(&spec.keys, &keys) {
+    let all_targets = claim_targets(spec, &keys);
+    for t in all_targets.iter().cloned() {
         let Some(side) = Side::read(&t.text, cx) else {
             unread.push(path_text(&t.path));
             continue;
@@ -612,7 +557,7 @@ pub fn measure<'s>(
     }
     // drawn by the printed text, not the claim: claims printing the same formula meet the same
     // misprints, so that a formula's power is that of all its claims (`report::formulas`)
-    let seed: String = targets(&spec.keys, &keys)
+    let seed: String = all_targets
         .iter()
         .map(|t| t.text.as_str())
         .collect::<Vec<_>>()
@@ -659,6 +604,7 @@ pub fn measure<'s>(
         killed_names: Vec::new(),
         equivalent,
         weaker: Vec::new(),
+        correction: None,
         not_applied: unread
             .iter()
             .map(|k| {
@@ -669,7 +615,7 @@ pub fn measure<'s>(
             .collect(),
         key: None,
     };
-    if let [one] = targets(&spec.keys, &keys).as_slice() {
+    if let [one] = all_targets.as_slice() {
         power.formula = Some(one.text.clone());
     }
     for fate in fates {

@@ -442,7 +442,18 @@ pub fn passivity(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Out
     let t_end = s.solve.t_end.unwrap_or(1e-3);
     let mut lines = Vec::new();
     let mut curves: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
-    let mut bulk_passive = true;
+    // the law whose passivity is the verdict: the paper's (constant bulk modulus) unless the
+    // claim's `part` names the other (a correction of the law)
+    let judged = c.part.as_deref().unwrap_or("constant-bulk");
+    if !matches!(judged, "constant-bulk" | "constant-poisson") {
+        return Err(VerifyError::BadClaim {
+            id: c.id.clone(),
+            message: format!(
+                "part: `{judged}` is no law of the cone; allowed: constant-bulk, constant-poisson"
+            ),
+        });
+    }
+    let mut judged_passive = true;
     for (law, name) in [
         (Law::ConstantBulk, "constant-bulk"),
         (Law::ConstantPoisson, "constant-poisson"),
@@ -480,8 +491,8 @@ pub fn passivity(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Out
         let min_work = work.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);
         let first_negative = work.iter().find(|x| x.1 < -1e-9).map(|x| x.0);
         let passive = first_negative.is_none();
-        if law == Law::ConstantBulk {
-            bulk_passive = passive;
+        if name == judged {
+            judged_passive = passive;
         }
         let (alpha, _) = sys.rates();
         lines.push(format!(
@@ -546,7 +557,7 @@ pub fn passivity(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Out
         equation: c.equation.clone(),
         quote: c.quote.clone(),
         reading: c.reading.clone(),
-        verdict: if bulk_passive {
+        verdict: if judged_passive {
             Verdict::Holds
         } else {
             Verdict::Fails
@@ -576,4 +587,33 @@ pub fn passivity(paper: &PaperClaims, c: &NamedCheck, path: &Path) -> Result<Out
         retyped: None,
         extra: std::collections::BTreeMap::new(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::verify::{Verdict, run_all, test_claims};
+
+    /// `passivity` on the repository's cone scene, judging the law `part` names.
+    fn judged(part: &str) -> Result<Verdict, String> {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let (papers, _) = test_claims(
+            "000",
+            &format!(
+                "[[claim]]\nid = \"000.t\"\nequation = \"(1)\"\nreading = \"q\"\nkind = \"check\"\ncheck = \"passivity\"\nscene = \"scenes/cone_series.toml\"\n{part}\n"
+            ),
+        )?;
+        run_all(&papers, root)
+            .map(|o| o[0].verdict)
+            .map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn the_verdict_is_the_passivity_of_the_law_the_claim_names() {
+        // the constant-bulk law has a growing mode (000.op.growing-mode, by exact algebra) and
+        // feeds the motion; with a constant Poisson ratio the law is a Kelvin-Voigt solid
+        assert_eq!(judged(""), Ok(Verdict::Fails));
+        assert_eq!(judged("part = \"constant-poisson\""), Ok(Verdict::Holds));
+        let e = judged("part = \"maxwell\"").unwrap_err();
+        assert!(e.contains("no law of the cone"), "{e}");
+    }
 }

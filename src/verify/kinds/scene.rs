@@ -290,10 +290,37 @@ impl Scene {
             .iter()
             .flat_map(|g| g.iter())
             .find(|k| k.key == field)?;
-        (key.unit != "-").then(|| {
-            Unit::parse(key.unit)
+        // a unit that depends on a law (`s/m (hertz), N s/m (linear)`): the one of the law the
+        // scene names beside the field (`contact.law`), or of the law's default
+        let mut unit = key.unit;
+        if let Some((table, _)) = field.split_once('.')
+            && unit.contains(" (")
+        {
+            let law_key = format!("{table}.law");
+            let law = base
+                .get(table)
+                .and_then(|t| t.get("law"))
+                .and_then(|v| v.as_str())
+                .map(str::to_string)
+                .or_else(|| {
+                    doc.keys
+                        .iter()
+                        .flat_map(|g| g.iter())
+                        .find(|k| k.key == law_key)
+                        .map(|k| k.default.trim_matches('"').to_string())
+                });
+            if let Some(law) = law
+                && let Some(one) = unit
+                    .split(", ")
+                    .find_map(|alt| alt.strip_suffix(&format!(" ({law})")))
+            {
+                unit = one;
+            }
+        }
+        (unit != "-").then(|| {
+            Unit::parse(unit)
                 .map(|u| u.to_string())
-                .unwrap_or_else(|_| key.unit.to_string())
+                .unwrap_or_else(|_| unit.to_string())
         })
     }
 
@@ -910,6 +937,19 @@ mod tests {
         );
         assert_eq!(s.field_label("impactor.v0"), "impactor.v0 (m s^-1)");
         assert_eq!(s.field_label("no.such"), "no.such");
+    }
+
+    #[test]
+    fn a_unit_that_depends_on_the_law_is_the_scene_laws() {
+        // by the Hertz model's documentation: the damping is c in s/m for the Hertz law (the
+        // default), a dashpot in N s/m for the linear one
+        let mut s = scene("hertz");
+        assert_eq!(s.field_label("contact.damping"), "contact.damping (m^-1 s)");
+        s.base = toml::from_str("model = \"hertz\"\n[contact]\nlaw = \"linear\"").unwrap();
+        assert_eq!(
+            s.field_label("contact.damping"),
+            "contact.damping (kg s^-1)"
+        );
     }
 
     #[test]
