@@ -591,3 +591,40 @@ pub fn figure(f: &Figure) -> String {
     out.push_str("</svg>\n");
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_figure_names_its_axes_with_their_units_and_says_its_caption() {
+        let svg = figure(&Figure {
+            title: "the indentation against time",
+            xlabel: "t (s)",
+            xs: Scale::Linear,
+            panels: vec![Panel {
+                ylabel: "z (m)",
+                ys: Scale::Linear,
+                series: vec![Series {
+                    name: "z",
+                    points: vec![(0.0, 0.0), (1.0, 2.0), (2.0, 1.0)],
+                }],
+            }],
+            caption: vec!["Claim t.a: the caption.".into()],
+        });
+        assert!(svg.starts_with("<svg"), "{svg}");
+        // the x axis title is marked for tests/figures.rs, which requires its unit
+        assert!(svg.contains("<text class=\"xlabel\""), "{svg}");
+        assert!(svg.contains(">t (s)</text>"), "{svg}");
+        assert!(svg.contains(">z (m)</text>"), "{svg}");
+        assert!(svg.contains("Claim t.a: the caption."), "{svg}");
+        let log = figure(&Figure {
+            xs: Scale::Log,
+            xlabel: "t (s)",
+            title: "t",
+            panels: vec![],
+            caption: vec![],
+        });
+        assert!(log.contains(">t (s) (log scale)</text>"), "{log}");
+    }
+}

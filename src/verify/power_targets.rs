@@ -102,3 +102,60 @@ pub(super) fn replaced(keys: &toml::Table, path: &[PathPart], text: String) -> t
         _ => keys.clone(),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_misprint_replaces_the_one_value_its_path_names() {
+        let keys: toml::Table = toml::from_str(
+            "printed = \"a\"\nprinted_equations = [\"b\", \"c\"]\nwhere = { x = \"d\", y = \"e\" }",
+        )
+        .unwrap();
+        let get = |t: &toml::Table, path: &[&str]| -> String {
+            let mut v = t.get(path[0]).unwrap();
+            for p in &path[1..] {
+                v = match p.parse::<usize>() {
+                    Ok(i) => &v.as_array().unwrap()[i],
+                    Err(_) => v.get(*p).unwrap(),
+                };
+            }
+            v.as_str().unwrap().to_string()
+        };
+        let k = replaced(
+            &keys,
+            &[PathPart::Key("where".into()), PathPart::Key("x".into())],
+            "2*d".into(),
+        );
+        assert_eq!(get(&k, &["where", "x"]), "2*d");
+        assert_eq!(get(&k, &["where", "y"]), "e");
+        assert_eq!(get(&k, &["printed"]), "a");
+        let k = replaced(
+            &keys,
+            &[
+                PathPart::Key("printed_equations".into()),
+                PathPart::Index(1),
+            ],
+            "-c".into(),
+        );
+        assert_eq!(get(&k, &["printed_equations", "1"]), "-c");
+        assert_eq!(get(&k, &["printed_equations", "0"]), "b");
+        // the targets: the printed keys, then the `where` entries the paper prints
+        let spec: ClaimSpec = toml::from_str(
+            "id = \"t.a\"\nequation = \"(1)\"\nkind = \"identity\"\nprinted_where = [\"x\"]\nprinted = \"a\"\nwhere = { x = \"d\", y = \"e\" }",
+        )
+        .unwrap();
+        let t = claim_targets(&spec, &["printed"]);
+        let named: Vec<(String, &str)> = t
+            .iter()
+            .map(|t| (path_text(&t.path), t.text.as_str()))
+            .collect();
+        assert_eq!(
+            named,
+            [("printed".to_string(), "a"), ("where.x".to_string(), "d")]
+        );
+        // a `corrected` side is measured alone: the paper's `where` is no part of it
+        assert_eq!(claim_targets(&spec, &["corrected"]).len(), 0);
+    }
+}
