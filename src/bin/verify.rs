@@ -328,6 +328,7 @@ fn check_claims(
     root: &std::path::Path,
     measured: &std::collections::BTreeSet<String>,
     progress: bool,
+    slowest: usize,
 ) -> Result<Vec<verify::Outcome>> {
     use std::sync::atomic::{AtomicU64, Ordering};
     let claims: u64 = papers.iter().map(|p| p.claim.len() as u64).sum();
@@ -336,7 +337,15 @@ fn check_claims(
     bar.enable_steady_tick(std::time::Duration::from_millis(500));
     let (checked, powered) = (AtomicU64::new(0), AtomicU64::new(0));
     let start = std::time::Instant::now();
+    // each verdict's wall clock (the time since the one before it), for --timing
+    let last = std::sync::Mutex::new((std::time::Instant::now(), Vec::<(String, f64)>::new()));
     let tick = |id: &str, power: bool| {
+        if !power && let Ok(mut l) = last.lock() {
+            let now = std::time::Instant::now();
+            let t = (now - l.0).as_secs_f64();
+            l.1.push((id.to_string(), t));
+            l.0 = now;
+        }
         let c = if power { &powered } else { &checked };
         c.fetch_add(1, Ordering::Relaxed);
         let (c, p) = (
@@ -361,6 +370,11 @@ fn check_claims(
         &tick,
     )?;
     bar.finish_and_clear();
+    if slowest > 0
+        && let Ok(l) = last.lock()
+    {
+        eprint!("verify: {}", verify::phases::slowest(&l.1, slowest));
+    }
     outcomes.sort_by(|a, b| report::natural_cmp(&a.id, &b.id));
     Ok(outcomes)
 }
@@ -446,14 +460,17 @@ fn write_reports(
     outcomes: &[verify::Outcome],
     out_dir: &std::path::Path,
     progress: bool,
+    phases: &mut verify::phases::Phases,
 ) -> Result<()> {
     let custom = args.claims.is_some();
     let mut files = report::render(&verify::paper_infos(papers), outcomes);
+    phases.mark("the reports rendered (Markdown, figures, summary.json)");
     // the coverage table opens the index, after its first paragraphs
     let coverage = verify::coverage::table(
         &verify::coverage::compute(papers, args.papers.as_deref()),
         outcomes,
     );
+    phases.mark("the coverage of each paper's equations");
     if let Some((_, readme)) = files.iter_mut().find(|(n, _)| n == "README.md") {
         let at = readme
             .find("## Power of the checks")
@@ -467,9 +484,11 @@ fn write_reports(
         };
         readme.insert_str(at, &format!("{coverage}{audits}"));
     }
+    phases.mark("the audits' index and the audits from the papers' words");
     if !custom {
         // the units of every relation of each paper, from its LaTeX and its claims' units
         files.extend(verify::audit_reports::paper_audits(papers));
+        phases.mark("each paper's units audit");
         if args.timing {
             if progress {
                 eprintln!("verify: work-precision diagrams ...");
@@ -477,6 +496,16 @@ fn write_reports(
             files.extend(
                 verify::accuracy::render(args.repeats.max(1)).context("work-precision runs")?,
             );
+            phases.mark("the work-precision diagrams (--timing)");
+            // where the main job's time goes, measured in this run: a file of timing/, the only
+            // folder that holds measured times
+            files.push((
+                "timing/main_job.md".into(),
+                format!(
+                    "# Where the main job's time goes\n\nThe wall clock of each part of one `verify --timing` run (the last part, writing, is not in it), on this machine; the work-precision diagrams are made only under --timing.\n\n{}",
+                    phases.table()
+                ),
+            ));
         }
     }
     // the reports link only files that are there: those written now, and for the project's
@@ -517,6 +546,10 @@ fn write_reports(
     #[cfg(not(unix))]
     let written = write();
     written.with_context(|| format!("writing {}", out_dir.display()))?;
+    phases.mark("the reports written");
+    if args.timing {
+        eprintln!("verify: where the time went:\n{}", phases.table());
+    }
     let mut counts = std::collections::BTreeMap::new();
     for o in outcomes {
         *counts.entry(o.verdict.as_str()).or_insert(0) += 1;
@@ -695,6 +728,7 @@ fn run(args: Args) -> Result<bool> {
             None,
         );
     }
+    let mut phases = verify::phases::Phases::new();
     let all = verify::load_claims_with(&claims_dir, args.papers.as_deref())
         .with_context(|| format!("reading claims from {}", claims_dir.display()))?;
     let papers = verify::select(&all, args.only.as_deref());
@@ -720,9 +754,13 @@ fn run(args: Args) -> Result<bool> {
         verify::coverage::check_equations(p, args.papers.as_deref())?;
         verify::coverage::check_quotes(p, args.papers.as_deref())?;
     }
+    phases.mark("the claims read, validated, their equations and quotes found in the papers");
     let mut measured = measured_claims(&args, &papers, write);
     let reused = reusable_power(&args, &papers, &out_dir, &mut measured);
-    let mut outcomes = check_claims(&papers, &root, &measured, progress)?;
+    phases.mark("the power keys (what each claim's power depends on, hashed)");
+    let slowest = if args.timing { 12 } else { 0 };
+    let mut outcomes = check_claims(&papers, &root, &measured, progress, slowest)?;
+    phases.mark("every verdict, and the power of the claims measured");
     for o in &mut outcomes {
         match (reused.get(&o.id), o.power.as_mut()) {
             (Some(p), _) => o.power = Some(p.clone()),
@@ -761,7 +799,7 @@ fn run(args: Args) -> Result<bool> {
         );
         return Ok(gate(args.fail_on, &outcomes));
     }
-    write_reports(&args, &papers, &outcomes, &out_dir, progress)?;
+    write_reports(&args, &papers, &outcomes, &out_dir, progress, &mut phases)?;
     Ok(gate(args.fail_on, &outcomes))
 }
 

@@ -21,6 +21,7 @@ pub mod kinds;
 pub mod paper000;
 pub mod paper001;
 pub mod paper002;
+pub mod phases;
 pub mod power;
 pub mod power_cache;
 mod power_targets;
