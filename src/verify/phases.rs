@@ -76,6 +76,7 @@ mod tests {
 
     #[test]
     fn parts_add_up_and_the_slowest_come_first() {
+        assert!(Phases::default().parts.is_empty());
         let mut p = Phases::new();
         p.record("read", 1.0);
         p.record("verdicts", 3.0);
