@@ -96,8 +96,9 @@ impl Evaluator {
                 names: missing.join(", "),
             });
         }
-        let taylor = (0..TAYLOR_TERMS as u32)
-            .map(|n| q_to_f64(&exact_taylor(&parts, n)))
+        let taylor = exact_taylor(&parts, TAYLOR_TERMS as u32)
+            .iter()
+            .map(q_to_f64)
             .collect();
         let parts_f = parts
             .iter()
@@ -185,15 +186,21 @@ impl Evaluator {
     }
 }
 
-fn exact_taylor(parts: &[(Q, u32, Q)], n: u32) -> Q {
-    let mut acc = Q::zero();
+/// The Taylor coefficients at 0 of $\sum c\,t^k e^{-r t}$, exactly, for the powers below `terms`:
+/// the coefficient of $t^n$ is $\sum c\,(-r)^{n-k}/(n-k)!$. Each part's terms are made one from
+/// the one before (times $-r/j$), not each power and factorial afresh.
+fn exact_taylor(parts: &[(Q, u32, Q)], terms: u32) -> Vec<Q> {
+    let mut acc = vec![Q::zero(); terms as usize];
     for (r, k, c) in parts {
-        if *k > n {
-            continue;
+        let minus_r = -r;
+        // c (-r)^j / j! with j = n - k
+        let mut term = c.clone();
+        for (j, slot) in acc.iter_mut().skip(*k as usize).enumerate() {
+            if j > 0 {
+                term = term * &minus_r / Q::from_integer(j.into());
+            }
+            *slot += &term;
         }
-        let j = n - k;
-        let fact = (1..=j).fold(Q::one(), |a, i| a * Q::from_integer(i.into()));
-        acc += c * (-r).pow(j as i32) / fact;
     }
     acc
 }
@@ -273,6 +280,24 @@ mod tests {
     use super::*;
     use crate::algebra::poly::{Poly, q};
     use crate::algebra::ratfunc::RatFunc;
+
+    #[test]
+    fn the_taylor_coefficients_are_the_closed_form() {
+        // 5 e^{-2t} + (1/3) t^2 e^{3t/2}: the coefficient of t^n is
+        // 5 (-2)^n / n! + (1/3) (3/2)^(n-2) / (n-2)!, each power and factorial made afresh here
+        let parts = vec![(q(2, 1), 0, q(5, 1)), (q(-3, 2), 2, q(1, 3))];
+        let got = exact_taylor(&parts, 12);
+        assert_eq!(got.len(), 12);
+        let fact = |j: u32| (1..=j).fold(Q::one(), |a, i| a * Q::from_integer(i.into()));
+        for (n, c) in got.iter().enumerate() {
+            let n = n as u32;
+            let mut want = q(5, 1) * q(-2, 1).pow(n as i32) / fact(n);
+            if n >= 2 {
+                want += q(1, 3) * q(3, 2).pow(n as i32 - 2) / fact(n - 2);
+            }
+            assert_eq!(*c, want, "t^{n}");
+        }
+    }
 
     #[test]
     fn an_exponential_with_a_fractional_rate_is_read_exactly() {

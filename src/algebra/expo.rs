@@ -159,15 +159,29 @@ impl Expo {
     }
 
     /// $\sum_i f_i g_i$ with every coefficient summed once (the $A_k = \sum a_i a_{k-i}$ of (19)).
+    ///
+    /// The products of a part of `f_i` with the parts of `g_i` are independent and run in
+    /// parallel (rayon); they are collected in the order of the loops, so the sums see their
+    /// terms in the same order whatever the threads do.
     pub fn sum_of_products(pairs: &[(&Expo, &Expo)]) -> Expo {
-        let mut out = Acc::default();
-        for (f, g) in pairs {
-            for ((r1, k1), v1) in &f.parts {
+        use rayon::prelude::*;
+        let rows: Vec<(&PartKey, &RatFunc, &Expo)> = pairs
+            .iter()
+            .flat_map(|(f, g)| f.parts.iter().map(move |(key, v)| (key, v, *g)))
+            .collect();
+        let products: Vec<Vec<(PartKey, RatFunc)>> = rows
+            .par_iter()
+            .map(|((r1, k1), v1, g)| {
                 let v1 = v1.fraction_free();
-                for ((r2, k2), v2) in &g.parts {
-                    out.push(r1 + r2, k1 + k2, v1.mul(v2));
-                }
-            }
+                g.parts
+                    .iter()
+                    .map(|((r2, k2), v2)| ((r1 + r2, k1 + k2), v1.mul(v2)))
+                    .collect()
+            })
+            .collect();
+        let mut out = Acc::default();
+        for ((r, k), c) in products.into_iter().flatten() {
+            out.push(r, k, c);
         }
         out.finish()
     }

@@ -198,18 +198,24 @@ impl RatFunc {
             .iter()
             .map(|(den, nums)| {
                 let n = FPoly::sum(nums);
-                let cofactor = lcm.iter().fold(Poly::one(), |acc, (f, e)| {
+                // what this denominator lacks of the common one, multiplied out fraction-free
+                // (no conversion to rational coefficients between the factors)
+                let mut cofactor: Option<FPoly> = None;
+                for (f, e) in &lcm {
                     let have = den.iter().find(|(g, _)| g == f).map_or(0, |x| x.1);
                     if *e > have {
-                        &acc * &f.pow(e - have)
-                    } else {
-                        acc
+                        let f = FPoly::from_poly(f);
+                        for _ in have..*e {
+                            cofactor = Some(match cofactor {
+                                None => f.clone(),
+                                Some(c) => c.mul(&f),
+                            });
+                        }
                     }
-                });
-                if cofactor.as_constant().is_some() {
-                    n
-                } else {
-                    n.mul(&FPoly::from_poly(&cofactor))
+                }
+                match cofactor {
+                    None => n,
+                    Some(c) => n.mul(&c),
                 }
             })
             .collect();

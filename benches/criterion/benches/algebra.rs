@@ -1,6 +1,7 @@
-//! Benchmarks of the exact algebra: the Adomian terms a0..a4 of 000_92d54b11128ea1ec.txt with
-//! every symbol free (target: under a second), the Galerkin coefficients for (m, n) = (3, 5), and
-//! identity (21) up to k = 12.
+//! Benchmarks of the exact algebra: the Adomian terms a0..a4 and a0..a8 of
+//! 000_92d54b11128ea1ec.txt with every symbol free (targets: under a second, and under two), the
+//! Galerkin coefficients for (m, n) = (3, 5), and identity (21) up to k = 12; and the main job's
+//! verdicts (every claim of verify/, the power reused: nothing measured).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use impactcheck::algebra::series::{self, SeriesParams, Viscous};
@@ -15,6 +16,9 @@ fn bench(c: &mut Criterion) {
     });
     g.bench_function("series a0..a3 symbolic (2zz)", |b| {
         b.iter(|| series::adomian_terms(black_box(&SeriesParams::symbolic()), 3, Viscous::TwoZZ))
+    });
+    g.bench_function("series a0..a8 symbolic (2zz)", |b| {
+        b.iter(|| series::adomian_terms(black_box(&SeriesParams::symbolic()), 8, Viscous::TwoZZ))
     });
     g.bench_function("galerkin (3,5)", |b| {
         b.iter(|| galerkin::derive(black_box(3), 5))
@@ -34,5 +38,21 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench);
+/// Every verdict of the main job (`verify`'s claims, read and validated each time), without the
+/// misprints' power, the reports or the audits: the part of `cargo run --release --bin verify`
+/// that the exact algebra and the integrators decide.
+fn main_job(c: &mut Criterion) {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut g = c.benchmark_group("main job");
+    g.sample_size(10);
+    g.bench_function("every verdict of verify/", |b| {
+        b.iter(|| {
+            let papers = impactcheck::verify::load_claims(&root.join("verify")).expect("claims");
+            impactcheck::verify::run_all(&papers, &root).map(|o| o.len())
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench, main_job);
 criterion_main!(benches);

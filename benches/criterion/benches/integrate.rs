@@ -70,9 +70,20 @@ fn sweep(c: &mut Criterion) {
         &scene,
         "model = \"hertz\"\n[impactor]\nmass = 0.05\nv0 = 1.0\n[contact]\nk = 3e8\n[solve]\nrtol = 1e-9\natol = 1e-16\n",
     );
+    // the same impacts with the model written as text (benches/peers/peers.py's HERTZ_ODE)
+    let text = dir.join("hertz_ode.toml");
+    let _ = std::fs::write(
+        &text,
+        "model = \"ode\"\n[parameters]\nm = 0.05\nk = 3e8\nv0 = 1.0\n[units]\nt = \"s\"\nm = \"kg\"\nk = \"N/m^1.5\"\nv0 = \"m/s\"\nz = \"m\"\nv = \"m/s\"\n[state]\nz = 0.0\nv = \"v0\"\n[equations]\nz = \"v\"\nv = \"-k*max(z, 0)^(3/2)/m\"\n[[event]]\nname = \"contact-end\"\nwhen = \"z\"\ndirection = \"down\"\naction = \"stop\"\n[[event]]\nname = \"max-indentation\"\nwhen = \"v\"\ndirection = \"down\"\n[[event]]\nname = \"peak-force\"\nwhen = \"k*max(z, 0)^(1/2)*v\"\ndirection = \"down\"\n[solve]\nrtol = 1e-9\natol = 1e-16\nt_end = 1.0\n",
+    );
     let sv = impactcheck::cli::parse_vary("impactor.v0=0.5:2:2000", false).expect("vary");
+    let sv_text = impactcheck::cli::parse_vary("parameters.v0=0.5:2:2000", false).expect("vary");
     let mut g = c.benchmark_group("sweep");
     g.sample_size(20);
+    // the floor: the same impacts integrated, nothing read or written
+    g.bench_function("2000 hertz integration alone", |b| {
+        b.iter(|| impactcheck::perf::bench_hertz_sweep(black_box(2000)))
+    });
     for (name, format) in [
         ("2000 hertz csv", impactcheck::cli::Format::Csv),
         ("2000 hertz json", impactcheck::cli::Format::Json),
@@ -81,6 +92,17 @@ fn sweep(c: &mut Criterion) {
             b.iter(|| impactcheck::cli::sweep(&scene, &sv, format, false, &mut std::io::sink()))
         });
     }
+    g.bench_function("2000 hertz csv, the model as text", |b| {
+        b.iter(|| {
+            impactcheck::cli::sweep(
+                &text,
+                &sv_text,
+                impactcheck::cli::Format::Csv,
+                false,
+                &mut std::io::sink(),
+            )
+        })
+    });
     g.finish();
 }
 

@@ -108,6 +108,37 @@ fn at(e: &Expr, x: &str, v: &Expr) -> Expr {
 }
 
 impl Expr {
+    /// The formula as [`Expr::eval`] will evaluate it, made once for many evaluations: every
+    /// operation that `eval` lowers at each call (`diff`, `at`, `prod`, `max`, ...) is replaced
+    /// by its lowering, computed here once; `sum` keeps its numeric loop with its parts prepared,
+    /// `int` stays as written (its body is lowered by `eval` itself). `eval` of the result is
+    /// `eval` of `self`, to the bit, at every point: the same lowered trees are evaluated.
+    /// An operation whose lowering fails stays, so that `eval` reports it as before.
+    pub fn prepared(&self) -> Expr {
+        match self {
+            Expr::Num(_) | Expr::Sym(_) | Expr::Pi => self.clone(),
+            Expr::Neg(a) => Expr::Neg(Box::new(a.prepared())),
+            Expr::Call(f, a) => Expr::Call(*f, Box::new(a.prepared())),
+            // an exponent `eval` would find to be a small integer, found once
+            Expr::Bin(Op::Pow, a, b) if super::small_power(b).is_some() => Expr::Bin(
+                Op::Pow,
+                Box::new(a.prepared()),
+                Box::new(Expr::Num(Q::from_integer(
+                    super::small_power(b).unwrap_or(0).into(),
+                ))),
+            ),
+            Expr::Bin(op, a, b) => Expr::Bin(*op, Box::new(a.prepared()), Box::new(b.prepared())),
+            Expr::Calc(Calc::Int, ..) => self.clone(),
+            Expr::Calc(Calc::Sum, body, i, extra) => Expr::Calc(
+                Calc::Sum,
+                Box::new(body.prepared()),
+                i.clone(),
+                extra.iter().map(Expr::prepared).collect(),
+            ),
+            Expr::Calc(..) => self.lower().unwrap_or_else(|_| self.clone()),
+        }
+    }
+
     /// The formula with every `diff` and `at` carried out (an `int` stays, with its parts
     /// lowered). Errors name the operation that has no rule (`diff` of `abs` at a kink is the
     /// only one).

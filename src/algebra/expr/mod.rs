@@ -895,15 +895,26 @@ impl Expr {
                     Op::Sub => x - y,
                     Op::Mul => x * y,
                     Op::Div => x / y,
-                    Op::Pow => match b.exact_constant() {
-                        Some(e) if e.denom().is_one() && e.numer().abs() < BigInt::from(64) => {
-                            x.powi(e.to_integer().to_i32().unwrap_or(0))
-                        }
-                        _ => x.powf(y),
+                    Op::Pow => match small_power(b) {
+                        Some(n) => x.powi(n),
+                        None => x.powf(y),
                     },
                 }
             }
         })
+    }
+}
+
+/// The exponent as [`Expr::eval`] raises to it with `powi`: an exact integer below 64 in size
+/// (a number read as such without the exact algebra).
+pub(crate) fn small_power(b: &Expr) -> Option<i32> {
+    let small = |e: &Q| {
+        (e.denom().is_one() && e.numer().abs() < BigInt::from(64))
+            .then(|| e.to_integer().to_i32().unwrap_or(0))
+    };
+    match b {
+        Expr::Num(e) => small(e),
+        _ => small(&b.exact_constant()?),
     }
 }
 

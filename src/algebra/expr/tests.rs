@@ -137,3 +137,59 @@ fn sines_at_rational_multiples_of_pi_are_exact() {
     assert_eq!(v("sin(pi/4)"), None);
     assert_eq!(v("sin(x)"), None);
 }
+
+#[test]
+fn a_prepared_formula_evaluates_to_the_same_bits() {
+    // `prepared` takes the derivatives, substitutions and products once; `eval` of it must be
+    // `eval` of the formula as written, to the bit, at every point (the reference is the
+    // unprepared formula, lowered by `eval` itself at each call)
+    let texts = [
+        "diff(x^3*sin(x), x) + y^2",
+        "at(diff(x^2*y, x), x, 2*y) - y^(3/2)",
+        "sum(k*x^k, k, 1, 4) / (1 + x^(1/3))",
+        "diff(x^2*y, y) * (x + 1)^2 + int(s^2*x, s, 0, y)",
+        "max(x, y) + x^2^2 + (x + y)^(0 - 2)",
+    ];
+    for text in texts {
+        let e = parse(text).unwrap();
+        let p = e.prepared();
+        assert!(!format!("{p}").contains("diff"), "{text}: {p}");
+        for (x, y) in [(0.3, 1.7), (2.5, 0.2), (1.0, 4.0)] {
+            let v = |s: &str| match s {
+                "x" => Some(x),
+                "y" => Some(y),
+                _ => None,
+            };
+            let (a, b) = (e.eval(&v).unwrap(), p.eval(&v).unwrap());
+            assert_eq!(
+                a.to_bits(),
+                b.to_bits(),
+                "{text} at x = {x}, y = {y}: {a} vs {b}"
+            );
+        }
+    }
+    // a lowering that fails stays, so that `eval` says why as before
+    let mean = Expr::Calc(Calc::Mean, Box::new(Expr::sym("x")), "x".into(), vec![]);
+    let v = |_: &str| Some(0.0);
+    assert_eq!(mean.prepared(), mean);
+    let why = mean
+        .prepared()
+        .eval(&v)
+        .expect_err("a mean is not computed");
+    assert!(why.contains("mean"), "{why}");
+}
+
+#[test]
+fn small_integer_powers_are_found_as_eval_raises_to_them() {
+    let p = |s: &str| small_power(&parse(s).unwrap());
+    assert_eq!(p("3"), Some(3));
+    assert_eq!(p("6/2"), Some(3));
+    assert_eq!(p("0 - 63"), Some(-63));
+    assert_eq!(p("64"), None, "64 and over is powf");
+    assert_eq!(p("3/2"), None);
+    assert_eq!(p("x"), None);
+    // the power of a number is `powi` of it (2^10 = 1024 exactly either way; 3^-2 by powi)
+    let e = parse("x^(0 - 2)").unwrap();
+    let v = |_: &str| Some(3.0);
+    assert_eq!(e.eval(&v).unwrap().to_bits(), 3f64.powi(-2).to_bits());
+}

@@ -675,7 +675,18 @@ impl Samples {
         let draws: Vec<Vec<(String, f64)>> =
             self.unit_draws().iter().map(|u| self.point_at(u)).collect();
         let rows = match scene {
-            None => draws.iter().map(|pt| Self::sides(None, ineq, pt)).collect(),
+            None => {
+                // the sides' derivatives taken once, not at every draw
+                let ineq = Inequality {
+                    lhs: ineq.lhs.prepared(),
+                    rel: ineq.rel,
+                    rhs: ineq.rhs.prepared(),
+                };
+                draws
+                    .iter()
+                    .map(|pt| Self::sides(None, &ineq, pt))
+                    .collect()
+            }
             Some(_) => draws
                 .par_iter()
                 .map(|pt| Self::sides(scene, ineq, pt))
