@@ -110,7 +110,9 @@ def section(best, repeats, rounds, gfortran):
               "| time (us) | error | ratio |", "|---|---|---|---|---|---|---|---|---|"]
     lines += rows(best, "dop853", ("hertz", "cone", "pendulum"), ("steps", "rejected", "rhs_evals"), 2, ratios)
     worst = {m: min(x for x in ratios if x[1] == m) for m in ("RADAU5", "DOP853")}
-    lines += [""] + [f"Target for {m} (every ratio >= 1.0): " + ("met" if w[0] >= 1.0 else "NOT met")
+    # RADAU5's bar is issue 68's (1.5x on every row, the cone's rows included); DOP853's stays 1.0
+    bar = {"RADAU5": 1.5, "DOP853": 1.0}
+    lines += [""] + [f"Target for {m} (every ratio >= {bar[m]:.1f}): " + ("met" if w[0] >= bar[m] else "NOT met")
                      + f" (smallest {w[0]:.2f}x, {w[2]} at {w[3]:g})." for m, w in worst.items()]
     lines.append(END)
     return lines
