@@ -10,6 +10,7 @@ use crate::algebra::galerkin;
 use crate::algebra::poly::{Q, parse_q};
 use crate::algebra::ratfunc::RatFunc;
 use crate::algebra::series::{self, SeriesParams, Viscous};
+use crate::scene::cells::{Cells, Leaf};
 use crate::scene::row::Node;
 use serde_json::{Value, json};
 use std::collections::BTreeMap;
@@ -404,7 +405,8 @@ pub fn merge(paths: &[std::path::PathBuf], format: Format) -> Result<String, Run
             for (r, res) in runs.iter().zip(&results) {
                 let v = r["value"].as_f64().unwrap_or(f64::NAN);
                 let i = r["index"].as_u64().unwrap_or(0) as usize;
-                let (head, warnings, tail) = csv_row_parts(v, i, res, &cols);
+                let (head, warnings, tail) =
+                    csv_row_parts(v, i, &node_cells(res, &cols), cols.len());
                 text.push_str(&head);
                 text.push(',');
                 text.push_str(&csv_quote(&said.cell(i, &warnings)));
@@ -482,8 +484,13 @@ pub fn sweep(
     };
     // a bad value is an error before anything runs, as for a single run (on the typed
     // parameters this is a range check per point)
-    for v in &sv.values {
-        scene_at(*v)?;
+    // (checked on every core; the first bad value in order is the one reported)
+    if let Some(bad) = sv
+        .values
+        .par_iter()
+        .position_first(|v| scene_at(*v).is_err())
+    {
+        scene_at(sv.values[bad])?;
     }
     let total = sv.values.len();
     let bar = if progress {
@@ -517,10 +524,18 @@ pub fn sweep(
     } else {
         Vec::new()
     };
+    // where the first point's leaves went: the other points' walks check against it first
+    let plan: Vec<usize> = match (format, sv.values.first()) {
+        (Format::Csv, Some(&v)) => scene_at(v)
+            .and_then(|scene| scene.run_cells(&columns, &[]))
+            .map(|c| c.order)
+            .unwrap_or_default(),
+        _ => Vec::new(),
+    };
     // one point, formatted where it ran (in parallel): the row's text, and for CSV its warnings
     // and the rest of its line apart (said once per wording, in index order); `true` marks a
     // failed point
-    let row = |v: f64, i: usize| -> (String, Vec<String>, String, bool) {
+    let row = |v: f64, i: usize| -> Row {
         let text = match format {
             Format::Json => {
                 // one run per line (compact): a sweep of 10^7 runs stays greppable and small;
@@ -544,11 +559,14 @@ pub fn sweep(
                 }
             }
             Format::Csv => {
+                // the cells straight from the outcome (no tree), the first point's walk as plan
                 let r = scene_at(v)
-                    .and_then(|scene| scene.run_node())
+                    .and_then(|scene| scene.run_cells(&columns, &plan))
                     .map_err(|e| e.to_string());
-                let (head, warnings, tail) = csv_row_parts(v, i, &r, &columns);
-                bar.inc(1);
+                let (head, warnings, tail) = csv_row_parts(v, i, &r, columns.len());
+                if progress {
+                    bar.inc(1);
+                }
                 return (head, warnings, tail, r.is_err());
             }
             _ => match scene_at(v).and_then(|scene| run_validated(&scene)) {
@@ -564,7 +582,9 @@ pub fn sweep(
             },
         };
         let (text, bad) = text;
-        bar.inc(1);
+        if progress {
+            bar.inc(1);
+        }
         (text, Vec::new(), String::new(), bad)
     };
     let mut said = crate::scene::warnings::Said::default();
@@ -584,40 +604,34 @@ pub fn sweep(
         out.write_all(csv_header(param, &columns).as_bytes())
             .map_err(io)?;
     }
-    for (block_v, block_i) in sv
+    let blocks: Vec<(&[f64], &[usize])> = sv
         .values
         .chunks(SWEEP_BLOCK)
         .zip(sv.indices.chunks(SWEEP_BLOCK))
-    {
-        let rows: Vec<(String, Vec<String>, String, bool)> = block_v
+        .collect();
+    let compute = |(block_v, block_i): (&[f64], &[usize])| -> Vec<Row> {
+        block_v
             .par_iter()
             .zip(block_i.par_iter())
             .map(|(&v, &i)| row(v, i))
-            .collect();
-        let mut text = String::with_capacity(rows.iter().map(|r| r.0.len() + 8).sum());
-        for ((body, warnings, tail, bad), &i) in rows.iter().zip(block_i) {
-            failed += usize::from(*bad);
-            match format {
-                Format::Json => {
-                    text.push_str(if first { "\n    " } else { ",\n    " });
-                    text.push_str(body);
-                }
-                Format::Csv => {
-                    text.push_str(body);
-                    text.push(',');
-                    text.push_str(&csv_quote(&said.cell(i, warnings)));
-                    text.push_str(tail);
-                }
-                _ => {
-                    if !first {
-                        text.push('\n');
-                    }
-                    text.push_str(body);
-                }
+            .collect()
+    };
+    // the next block runs on the pool while this thread writes the one before: the cores do
+    // not wait on the writing between blocks
+    let mut pending: Option<Vec<Row>> = blocks.first().map(|b| compute(*b));
+    for (k, &(_, block_i)) in blocks.iter().enumerate() {
+        let rows = pending.take().unwrap_or_default();
+        let mut next: Option<Vec<Row>> = None;
+        let written = rayon::in_place_scope(|scope| {
+            if let Some(b) = blocks.get(k + 1) {
+                let (compute, next) = (&compute, &mut next);
+                scope.spawn(move |_| *next = Some(compute(*b)));
             }
-            first = false;
-        }
-        out.write_all(text.as_bytes()).map_err(io)?;
+            let text = block_text(&rows, block_i, format, &mut said, &mut failed, &mut first);
+            out.write_all(text.as_bytes()).map_err(io)
+        });
+        written?;
+        pending = next;
         // the rate as a reader says it: whole points per second (indicatif's `per_sec` prints
         // "83,589.898/s")
         let secs = started.elapsed().as_secs_f64();
@@ -686,6 +700,46 @@ fn csv_quote(s: &str) -> String {
     }
 }
 
+/// One point of a sweep, formatted where it ran: the row's text, and for CSV its warnings and
+/// the rest of its line apart; `true` marks a failed point.
+type Row = (String, Vec<String>, String, bool);
+
+/// The text of one block of rows, in index order: a CSV row's warnings said once per wording
+/// (`said`), the failed points counted, `first` cleared after the first row of the sweep.
+fn block_text(
+    rows: &[Row],
+    indices: &[usize],
+    format: Format,
+    said: &mut crate::scene::warnings::Said,
+    failed: &mut usize,
+    first: &mut bool,
+) -> String {
+    let mut text = String::with_capacity(rows.iter().map(|r| r.0.len() + 8).sum());
+    for ((body, warnings, tail, bad), &i) in rows.iter().zip(indices) {
+        *failed += usize::from(*bad);
+        match format {
+            Format::Json => {
+                text.push_str(if *first { "\n    " } else { ",\n    " });
+                text.push_str(body);
+            }
+            Format::Csv => {
+                text.push_str(body);
+                text.push(',');
+                text.push_str(&csv_quote(&said.cell(i, warnings)));
+                text.push_str(tail);
+            }
+            _ => {
+                if !*first {
+                    text.push('\n');
+                }
+                text.push_str(body);
+            }
+        }
+        *first = false;
+    }
+    text
+}
+
 fn csv_header(param: &str, cols: &[String]) -> String {
     format!(
         "{},{},warnings,error,index\n",
@@ -745,40 +799,23 @@ fn csv_cells<'v>(
 
 #[cfg(test)]
 fn csv_row(v: f64, index: usize, r: &Result<Node, String>, cols: &[String]) -> String {
-    let (head, warnings, tail) = csv_row_parts(v, index, r, cols);
+    let (head, warnings, tail) = csv_row_parts(v, index, &node_cells(r, cols), cols.len());
     format!("{head},{}{tail}", csv_quote(&warnings.join("; ")))
 }
 
-/// A CSV row in three parts: the value and the outcome's cells; the run's warnings (the cell
-/// between, which a sweep writes once per wording, `scene::warnings`); the error, the index and
-/// the line's end.
-fn csv_row_parts(
-    v: f64,
-    index: usize,
-    r: &Result<Node, String>,
-    cols: &[String],
-) -> (String, Vec<String>, String) {
-    // the row as bytes: numbers written by serde_json's own formatter, no `fmt` machinery
-    let mut out = Vec::with_capacity(24 * (cols.len() + 3));
-    let _ = serde_json::to_writer(&mut out, &v);
-    let mut cells = vec![None; cols.len()];
-    if let Ok(res) = r {
-        csv_cells(
-            res,
-            &mut String::with_capacity(64),
-            cols,
-            &mut 0,
-            &mut cells,
-        );
-    }
-    for cell in cells {
-        out.push(b',');
-        if let Some(c) = cell {
-            c.cell(&mut out);
-        }
-    }
-    // what the run says beside its numbers: its warnings and its error
-    let warnings = match r.as_ref().ok().and_then(|res| res.get("warnings")) {
+/// The cells of an outcome's tree (a merged shard's rows), as [`crate::scene::cells::of`]
+/// gives them from the outcome itself.
+fn node_cells(r: &Result<Node, String>, cols: &[String]) -> Result<Cells, String> {
+    let res = r.as_ref().map_err(Clone::clone)?;
+    let mut found = vec![None; cols.len()];
+    csv_cells(
+        res,
+        &mut String::with_capacity(64),
+        cols,
+        &mut 0,
+        &mut found,
+    );
+    let warnings = match res.get("warnings") {
         Some(Node::Arr(w)) => w
             .iter()
             .filter_map(|x| match x {
@@ -788,7 +825,40 @@ fn csv_row_parts(
             .collect(),
         _ => Vec::new(),
     };
-    let err = r.as_ref().err().map(String::as_str).unwrap_or("");
+    Ok(Cells {
+        leaves: found.into_iter().map(|n| n.and_then(Leaf::of)).collect(),
+        warnings,
+        order: Vec::new(),
+    })
+}
+
+/// A CSV row in three parts: the value and the outcome's cells; the run's warnings (the cell
+/// between, which a sweep writes once per wording, `scene::warnings`); the error, the index and
+/// the line's end. A failed run has a cell for each column too, empty.
+fn csv_row_parts(
+    v: f64,
+    index: usize,
+    r: &Result<Cells, String>,
+    columns: usize,
+) -> (String, Vec<String>, String) {
+    // the row as bytes: numbers written by serde_json's own formatter, no `fmt` machinery
+    let mut out = Vec::with_capacity(256);
+    let _ = serde_json::to_writer(&mut out, &v);
+    match r {
+        Ok(cells) => {
+            for cell in &cells.leaves {
+                out.push(b',');
+                if let Some(c) = cell {
+                    c.write(&mut out);
+                }
+            }
+        }
+        Err(_) => out.extend(std::iter::repeat_n(b',', columns)),
+    }
+    let (warnings, err) = match r {
+        Ok(cells) => (cells.warnings.clone(), ""),
+        Err(e) => (Vec::new(), e.as_str()),
+    };
     let head = String::from_utf8(out).unwrap_or_default();
     (head, warnings, format!(",{},{index}\n", csv_quote(err)))
 }

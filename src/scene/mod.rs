@@ -6,6 +6,7 @@
 //! files. Errors name the file, the field and what is allowed; unknown keys get a near-miss
 //! suggestion.
 
+pub mod cells;
 pub mod row;
 pub mod sweep;
 pub mod warnings;
@@ -76,6 +77,7 @@ trait AnyModel: Send + Sync {
     fn name(&self) -> &'static str;
     fn run_value(&self) -> Result<(serde_json::Value, Curves), RunError>;
     fn run_node(&self) -> Result<row::Node, RunError>;
+    fn run_cells(&self, cols: &[String], plan: &[usize]) -> Result<cells::Cells, RunError>;
     fn run_traced(&self) -> Result<(serde_json::Value, Traced), RunError>;
     fn as_any(&self) -> &dyn Any;
     fn with_number(&self, field: &str, v: f64, path: &str) -> Option<Result<Scene, SceneError>>;
@@ -104,6 +106,13 @@ impl<M: Model> AnyModel for M {
     fn run_node(&self) -> Result<row::Node, RunError> {
         let (out, _) = self.run()?;
         row::Node::of(&out).map_err(|e| RunError::BadArgument {
+            arg: M::NAME.into(),
+            message: format!("the outcome does not serialize: {e}"),
+        })
+    }
+    fn run_cells(&self, cols: &[String], plan: &[usize]) -> Result<cells::Cells, RunError> {
+        let (out, _) = self.run()?;
+        cells::of(&out, cols, plan).map_err(|e| RunError::BadArgument {
             arg: M::NAME.into(),
             message: format!("the outcome does not serialize: {e}"),
         })
@@ -141,6 +150,12 @@ impl Scene {
     /// `impact sweep`).
     pub fn run_node(&self) -> Result<row::Node, RunError> {
         self.0.run_node()
+    }
+
+    /// Runs it: the outcome's CSV cells under `cols` ([`cells::of`]; `plan`, the `order` of an
+    /// earlier run of the same model, makes the walk quicker and changes no cell).
+    pub fn run_cells(&self, cols: &[String], plan: &[usize]) -> Result<cells::Cells, RunError> {
+        self.0.run_cells(cols, plan)
     }
 
     /// A copy with a numeric field set on the typed parameters (checked as when read from a

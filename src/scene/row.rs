@@ -36,7 +36,7 @@ pub enum Node {
 /// What cannot become a [`Node`] (a map key that is not a string or a number, an integer
 /// beyond 64 bits, a custom serializer's error).
 #[derive(Debug)]
-pub struct NodeError(String);
+pub struct NodeError(pub(crate) String);
 
 impl std::fmt::Display for NodeError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -332,7 +332,7 @@ impl ser::Serializer for NodeSer {
 }
 
 impl SeqSer {
-    fn push<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), NodeError> {
+    fn element<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), NodeError> {
         self.items.push(v.serialize(NodeSer)?);
         Ok(())
     }
@@ -341,31 +341,38 @@ impl SeqSer {
     }
 }
 
-/// The four sequence shapes of serde, all built the same way.
+/// serde's four sequence shapes for a builder `$ty` that is done as `$ok`, all built the same
+/// way: an element goes to `$ty::element`, the end to `$ty::done` (here, and in
+/// [`super::cells`]).
 macro_rules! seq_shapes {
-    ($($tr:ident :: $method:ident),*) => {$(
-        impl ser::$tr for SeqSer {
-            type Ok = Node;
-            type Error = NodeError;
-            fn $method<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), NodeError> {
-                self.push(v)
+    ($ty:ty, $ok:ty) => {
+        $crate::scene::row::seq_shapes!(@one $ty, $ok, SerializeSeq::serialize_element);
+        $crate::scene::row::seq_shapes!(@one $ty, $ok, SerializeTuple::serialize_element);
+        $crate::scene::row::seq_shapes!(@one $ty, $ok, SerializeTupleStruct::serialize_field);
+        $crate::scene::row::seq_shapes!(@one $ty, $ok, SerializeTupleVariant::serialize_field);
+    };
+    (@one $ty:ty, $ok:ty, $tr:ident :: $method:ident) => {
+        impl serde::ser::$tr for $ty {
+            type Ok = $ok;
+            type Error = $crate::scene::row::NodeError;
+            fn $method<T: serde::Serialize + ?Sized>(
+                &mut self,
+                v: &T,
+            ) -> Result<(), $crate::scene::row::NodeError> {
+                self.element(v)
             }
-            fn end(self) -> Result<Node, NodeError> {
+            fn end(self) -> Result<$ok, $crate::scene::row::NodeError> {
                 self.done()
             }
         }
-    )*};
+    };
 }
+pub(crate) use seq_shapes;
 
-seq_shapes!(
-    SerializeSeq::serialize_element,
-    SerializeTuple::serialize_element,
-    SerializeTupleStruct::serialize_field,
-    SerializeTupleVariant::serialize_field
-);
+seq_shapes!(SeqSer, Node);
 
 /// A map key as `serde_json` writes it: a string, or a number or boolean as its text.
-fn key_text(k: Node) -> Result<Cow<'static, str>, NodeError> {
+pub(crate) fn key_text(k: Node) -> Result<Cow<'static, str>, NodeError> {
     Ok(Cow::Owned(match k {
         Node::Str(s) => s,
         Node::U64(x) => x.to_string(),
@@ -380,6 +387,12 @@ fn key_text(k: Node) -> Result<Cow<'static, str>, NodeError> {
 }
 
 impl ObjSer {
+    fn field<T: Serialize + ?Sized>(&mut self, key: &'static str, v: &T) -> Result<(), NodeError> {
+        self.fields
+            .push((Cow::Borrowed(key), v.serialize(NodeSer)?));
+        Ok(())
+    }
+
     fn done(self) -> Result<Node, NodeError> {
         Ok(under(self.variant, sorted(self.fields)))
     }
@@ -405,28 +418,34 @@ impl ser::SerializeMap for ObjSer {
     }
 }
 
-/// The two struct shapes of serde (plain and under a variant), built the same way.
+/// serde's two struct shapes (plain and under a variant) for a builder `$ty` that is done as
+/// `$ok`, built the same way: a field goes to `$ty::field`, the end to `$ty::done` (here, and in
+/// [`super::cells`]).
 macro_rules! struct_shapes {
-    ($($tr:ident),*) => {$(
-        impl ser::$tr for ObjSer {
-            type Ok = Node;
-            type Error = NodeError;
-            fn serialize_field<T: Serialize + ?Sized>(
+    ($ty:ty, $ok:ty) => {
+        $crate::scene::row::struct_shapes!(@one $ty, $ok, SerializeStruct);
+        $crate::scene::row::struct_shapes!(@one $ty, $ok, SerializeStructVariant);
+    };
+    (@one $ty:ty, $ok:ty, $tr:ident) => {
+        impl serde::ser::$tr for $ty {
+            type Ok = $ok;
+            type Error = $crate::scene::row::NodeError;
+            fn serialize_field<T: serde::Serialize + ?Sized>(
                 &mut self,
                 key: &'static str,
                 v: &T,
-            ) -> Result<(), NodeError> {
-                self.fields.push((Cow::Borrowed(key), v.serialize(NodeSer)?));
-                Ok(())
+            ) -> Result<(), $crate::scene::row::NodeError> {
+                self.field(key, v)
             }
-            fn end(self) -> Result<Node, NodeError> {
+            fn end(self) -> Result<$ok, $crate::scene::row::NodeError> {
                 self.done()
             }
         }
-    )*};
+    };
 }
+pub(crate) use struct_shapes;
 
-struct_shapes!(SerializeStruct, SerializeStructVariant);
+struct_shapes!(ObjSer, Node);
 
 #[cfg(test)]
 mod tests {

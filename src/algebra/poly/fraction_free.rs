@@ -6,6 +6,7 @@ use super::{Monomial, Poly, Q};
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_traits::{One, Signed, Zero};
+use smallvec::SmallVec;
 use std::collections::BTreeMap;
 
 /// A polynomial kept fraction-free, `(1/d) * sum z_m m` with big-integer `z_m`: the working form
@@ -289,8 +290,9 @@ impl Packing {
         a: &[(Monomial, BigInt)],
         b: &[(Monomial, BigInt)],
     ) -> Vec<(Monomial, BigInt)> {
-        let ka: Vec<u128> = a.iter().map(|(m, _)| self.pack(m)).collect();
-        let kb: Vec<u128> = b.iter().map(|(m, _)| self.pack(m)).collect();
+        // most products are of a few terms: their keys, coefficients and pairs stay inline
+        let ka: SmallVec<[u128; 8]> = a.iter().map(|(m, _)| self.pack(m)).collect();
+        let kb: SmallVec<[u128; 8]> = b.iter().map(|(m, _)| self.pack(m)).collect();
         if let Some(terms) = self.product_small(a, &ka, b, &kb) {
             return terms;
         }
@@ -334,10 +336,10 @@ impl Packing {
         if bits(a) + bits(b) + headroom > 126 {
             return None;
         }
-        let ca: Vec<i128> = a.iter().map(|(_, c)| c.to_i128()).collect::<Option<_>>()?;
-        let cb: Vec<i128> = b.iter().map(|(_, c)| c.to_i128()).collect::<Option<_>>()?;
-        let mut pairs: Vec<(u128, i128)> = if a.len() * b.len() <= SORTED_UP_TO {
-            let mut pairs = Vec::with_capacity(a.len() * b.len());
+        let ca: SmallVec<[i128; 8]> = a.iter().map(|(_, c)| c.to_i128()).collect::<Option<_>>()?;
+        let cb: SmallVec<[i128; 8]> = b.iter().map(|(_, c)| c.to_i128()).collect::<Option<_>>()?;
+        let mut pairs: SmallVec<[(u128, i128); 16]> = if a.len() * b.len() <= SORTED_UP_TO {
+            let mut pairs = SmallVec::with_capacity(a.len() * b.len());
             for (c1, k1) in ca.iter().zip(ka) {
                 for (c2, k2) in cb.iter().zip(kb) {
                     pairs.push((k1 + k2, c1 * c2));
