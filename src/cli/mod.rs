@@ -867,6 +867,79 @@ fn csv_row_parts(
 mod tests {
     use super::*;
 
+    /// A Hertz scene in a fresh folder (`atol` loose enough that each run warns it was tightened).
+    fn hertz_scene(name: &str, atol: &str) -> std::path::PathBuf {
+        let d = std::env::temp_dir().join(format!("impactcheck-cli-{}-{name}", std::process::id()));
+        std::fs::create_dir_all(&d).expect("a temporary folder");
+        let f = d.join("hertz.toml");
+        let text = format!(
+            "model = \"hertz\"\n[impactor]\nmass = 0.05\nv0 = 1.0\n[contact]\nk = 3e8\n[solve]\nrtol = 1e-9\natol = {atol}\n"
+        );
+        std::fs::write(&f, text).expect("the scene written");
+        f
+    }
+
+    /// A sweep over more than two blocks: every row in index order, each row's cells those of
+    /// its outcome's tree (the reference: `run_node` and the tree's own walk, which share no code
+    /// with the rows' walk), a warning said in full once and referred to after.
+    #[test]
+    fn a_sweep_writes_each_point_as_its_outcome_says_across_blocks() {
+        let scene = hertz_scene("blocks", "1e-6");
+        let n = 2 * SWEEP_BLOCK + 5;
+        let sv = crate::scene::sweep::parse_vary(&format!("impactor.v0=0.5:2:{n}"), false)
+            .expect("a range");
+        let mut out = Vec::new();
+        sweep(&scene, &sv, Format::Csv, false, &mut out).expect("the sweep runs");
+        let text = String::from_utf8(out).expect("utf-8");
+        let mut lines = text.lines();
+        let header = lines.next().expect("a header");
+        let cols: Vec<String> = header.split(',').skip(1).map(str::to_string).collect();
+        let cols = &cols[..cols.len() - 3];
+        assert!(header.ends_with(",warnings,error,index"), "{header}");
+        let rows: Vec<&str> = lines.collect();
+        assert_eq!(rows.len(), n);
+        let base = crate::scene::parse_table(
+            &crate::scene::read_table(&scene).expect("reads"),
+            "hertz.toml",
+        )
+        .expect("valid");
+        for (i, row) in rows.iter().enumerate() {
+            assert!(row.ends_with(&format!(",{i}")), "row {i}: {row}");
+            if i % 4099 == 0 || i == n - 1 {
+                let v = sv.values[i];
+                let tree = base
+                    .with_number("impactor.v0", v, "hertz.toml")
+                    .expect("a typed field")
+                    .expect("in range")
+                    .run_node()
+                    .map_err(|e| e.to_string());
+                let (head, _, tail) = csv_row_parts(v, i, &node_cells(&tree, cols), cols.len());
+                assert!(
+                    row.starts_with(&format!("{head},")),
+                    "row {i}: {row} against {head}"
+                );
+                assert!(
+                    row.ends_with(tail.trim_end()),
+                    "row {i}: {row} against {tail}"
+                );
+            }
+        }
+        assert!(rows[0].contains("atol tightened"), "{}", rows[0]);
+        assert!(rows[1].contains("like row 0"), "{}", rows[1]);
+        // JSON and text: every point once, in order
+        let mut json_out = Vec::new();
+        sweep(&scene, &sv, Format::Json, false, &mut json_out).expect("runs");
+        let all: Value = serde_json::from_slice(&json_out).expect("one JSON document");
+        let runs = all["runs"].as_array().expect("runs");
+        assert_eq!(runs.len(), n);
+        assert!(runs.iter().enumerate().all(|(i, r)| r["index"] == json!(i)));
+        let few = crate::scene::sweep::parse_vary("impactor.v0=0.5:2:3", false).expect("a range");
+        let mut text_out = Vec::new();
+        sweep(&scene, &few, Format::Text, false, &mut text_out).expect("runs");
+        let text = String::from_utf8(text_out).expect("utf-8");
+        assert_eq!(text.matches("impactor.v0 = ").count(), 3, "{text}");
+    }
+
     /// The expected rows are written out by hand from the outcome's fields.
     #[test]
     fn csv_rows_put_each_leaf_under_its_column() {
