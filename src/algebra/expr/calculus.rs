@@ -119,15 +119,15 @@ impl Expr {
             Expr::Num(_) | Expr::Sym(_) | Expr::Pi => self.clone(),
             Expr::Neg(a) => Expr::Neg(Box::new(a.prepared())),
             Expr::Call(f, a) => Expr::Call(*f, Box::new(a.prepared())),
-            // an exponent `eval` would find to be a small integer, found once
-            Expr::Bin(Op::Pow, a, b) if super::small_power(b).is_some() => Expr::Bin(
-                Op::Pow,
-                Box::new(a.prepared()),
-                Box::new(Expr::Num(Q::from_integer(
-                    super::small_power(b).unwrap_or(0).into(),
-                ))),
-            ),
-            Expr::Bin(op, a, b) => Expr::Bin(*op, Box::new(a.prepared()), Box::new(b.prepared())),
+            Expr::Bin(op, a, b) => {
+                // an exponent `eval` would find to be a small integer, found once
+                let small = (*op == Op::Pow).then(|| super::small_power(b)).flatten();
+                let b = match small {
+                    Some(n) => Expr::Num(Q::from_integer(n.into())),
+                    None => b.prepared(),
+                };
+                Expr::Bin(*op, Box::new(a.prepared()), Box::new(b))
+            }
             Expr::Calc(Calc::Int, ..) => self.clone(),
             Expr::Calc(Calc::Sum, body, i, extra) => Expr::Calc(
                 Calc::Sum,

@@ -278,10 +278,7 @@ impl Packing {
             *e = (k & mask) as u32;
             k >>= self.bits;
         }
-        while v.last() == Some(&0) {
-            v.pop();
-        }
-        Monomial(v)
+        Monomial(v).trim()
     }
 
     /// The terms of `a b`, sorted, without zeros.
