@@ -405,12 +405,8 @@ pub fn merge(paths: &[std::path::PathBuf], format: Format) -> Result<String, Run
             for (r, res) in runs.iter().zip(&results) {
                 let v = r["value"].as_f64().unwrap_or(f64::NAN);
                 let i = r["index"].as_u64().unwrap_or(0) as usize;
-                let (head, warnings, tail) =
-                    csv_row_parts(v, i, &node_cells(res, &cols), cols.len());
-                text.push_str(&head);
-                text.push(',');
-                text.push_str(&csv_quote(&said.cell(i, &warnings)));
-                text.push_str(&tail);
+                csv_row_parts(v, i, node_cells(res, &cols), cols.len())
+                    .write_into(&mut text, &mut said, i);
             }
             text
         }
@@ -563,11 +559,11 @@ pub fn sweep(
                 let r = scene_at(v)
                     .and_then(|scene| scene.run_cells(&columns, &plan))
                     .map_err(|e| e.to_string());
-                let (head, warnings, tail) = csv_row_parts(v, i, &r, columns.len());
+                let bad = r.is_err();
                 if progress {
                     bar.inc(1);
                 }
-                return (head, warnings, tail, r.is_err());
+                return (csv_row_parts(v, i, r, columns.len()), bad);
             }
             _ => match scene_at(v).and_then(|scene| run_validated(&scene)) {
                 Ok((res, _)) => (
@@ -585,7 +581,7 @@ pub fn sweep(
         if progress {
             bar.inc(1);
         }
-        (text, Vec::new(), String::new(), bad)
+        (CsvRow::whole(text), bad)
     };
     let mut said = crate::scene::warnings::Said::default();
     let started = std::time::Instant::now();
@@ -700,9 +696,39 @@ fn csv_quote(s: &str) -> String {
     }
 }
 
-/// One point of a sweep, formatted where it ran: the row's text, and for CSV its warnings and
-/// the rest of its line apart; `true` marks a failed point.
-type Row = (String, Vec<String>, String, bool);
+/// One point of a sweep, formatted where it ran: its text (for CSV, with its warnings apart);
+/// `true` marks a failed point.
+type Row = (CsvRow, bool);
+
+/// A row's text, and for CSV the place of its warnings cell: the line holds the value and the
+/// outcome's cells before `split`, the error, the index and the line's end after it; the run's
+/// warnings are written there once per wording ([`crate::scene::warnings::Said`]), in index
+/// order, where the rows are joined. One allocation for the line.
+#[derive(Debug)]
+struct CsvRow {
+    line: String,
+    split: usize,
+    warnings: Vec<String>,
+}
+
+impl CsvRow {
+    /// A row of JSON or text: all of it is the line.
+    fn whole(line: String) -> CsvRow {
+        CsvRow {
+            split: line.len(),
+            line,
+            warnings: Vec::new(),
+        }
+    }
+
+    /// Appends the CSV row of point `index` to `text`, its warnings said as `said` has them.
+    fn write_into(&self, text: &mut String, said: &mut crate::scene::warnings::Said, index: usize) {
+        text.push_str(&self.line[..self.split]);
+        text.push(',');
+        text.push_str(&csv_quote(&said.cell(index, &self.warnings)));
+        text.push_str(&self.line[self.split..]);
+    }
+}
 
 /// The text of one block of rows, in index order: a CSV row's warnings said once per wording
 /// (`said`), the failed points counted, `first` cleared after the first row of the sweep.
@@ -714,25 +740,20 @@ fn block_text(
     failed: &mut usize,
     first: &mut bool,
 ) -> String {
-    let mut text = String::with_capacity(rows.iter().map(|r| r.0.len() + 8).sum());
-    for ((body, warnings, tail, bad), &i) in rows.iter().zip(indices) {
+    let mut text = String::with_capacity(rows.iter().map(|r| r.0.line.len() + 8).sum());
+    for ((row, bad), &i) in rows.iter().zip(indices) {
         *failed += usize::from(*bad);
         match format {
             Format::Json => {
                 text.push_str(if *first { "\n    " } else { ",\n    " });
-                text.push_str(body);
+                text.push_str(&row.line);
             }
-            Format::Csv => {
-                text.push_str(body);
-                text.push(',');
-                text.push_str(&csv_quote(&said.cell(i, warnings)));
-                text.push_str(tail);
-            }
+            Format::Csv => row.write_into(&mut text, said, i),
             _ => {
                 if !*first {
                     text.push('\n');
                 }
-                text.push_str(body);
+                text.push_str(&row.line);
             }
         }
         *first = false;
@@ -799,8 +820,9 @@ fn csv_cells<'v>(
 
 #[cfg(test)]
 fn csv_row(v: f64, index: usize, r: &Result<Node, String>, cols: &[String]) -> String {
-    let (head, warnings, tail) = csv_row_parts(v, index, &node_cells(r, cols), cols.len());
-    format!("{head},{}{tail}", csv_quote(&warnings.join("; ")))
+    let row = csv_row_parts(v, index, node_cells(r, cols), cols.len());
+    let (head, tail) = row.line.split_at(row.split);
+    format!("{head},{}{tail}", csv_quote(&row.warnings.join("; ")))
 }
 
 /// The cells of an outcome's tree (a merged shard's rows), as [`crate::scene::cells::of`]
@@ -832,19 +854,13 @@ fn node_cells(r: &Result<Node, String>, cols: &[String]) -> Result<Cells, String
     })
 }
 
-/// A CSV row in three parts: the value and the outcome's cells; the run's warnings (the cell
-/// between, which a sweep writes once per wording, `scene::warnings`); the error, the index and
-/// the line's end. A failed run has a cell for each column too, empty.
-fn csv_row_parts(
-    v: f64,
-    index: usize,
-    r: &Result<Cells, String>,
-    columns: usize,
-) -> (String, Vec<String>, String) {
+/// A CSV row ([`CsvRow`]): the value and the outcome's cells, then (after the warnings cell)
+/// the error, the index and the line's end. A failed run has a cell for each column too, empty.
+fn csv_row_parts(v: f64, index: usize, r: Result<Cells, String>, columns: usize) -> CsvRow {
     // the row as bytes: numbers written by serde_json's own formatter, no `fmt` machinery
     let mut out = Vec::with_capacity(256);
     let _ = serde_json::to_writer(&mut out, &v);
-    match r {
+    match &r {
         Ok(cells) => {
             for cell in &cells.leaves {
                 out.push(b',');
@@ -855,12 +871,23 @@ fn csv_row_parts(
         }
         Err(_) => out.extend(std::iter::repeat_n(b',', columns)),
     }
-    let (warnings, err) = match r {
-        Ok(cells) => (cells.warnings.clone(), ""),
-        Err(e) => (Vec::new(), e.as_str()),
+    let split = out.len();
+    out.push(b',');
+    let warnings = match r {
+        Ok(cells) => cells.warnings,
+        Err(e) => {
+            out.extend_from_slice(csv_quote(&e).as_bytes());
+            Vec::new()
+        }
     };
-    let head = String::from_utf8(out).unwrap_or_default();
-    (head, warnings, format!(",{},{index}\n", csv_quote(err)))
+    out.push(b',');
+    let _ = serde_json::to_writer(&mut out, &index);
+    out.push(b'\n');
+    CsvRow {
+        line: String::from_utf8(out).unwrap_or_default(),
+        split,
+        warnings,
+    }
 }
 
 #[cfg(test)]
@@ -913,7 +940,8 @@ mod tests {
                     .expect("in range")
                     .run_node()
                     .map_err(|e| e.to_string());
-                let (head, _, tail) = csv_row_parts(v, i, &node_cells(&tree, cols), cols.len());
+                let want = csv_row_parts(v, i, node_cells(&tree, cols), cols.len());
+                let (head, tail) = want.line.split_at(want.split);
                 assert!(
                     row.starts_with(&format!("{head},")),
                     "row {i}: {row} against {head}"

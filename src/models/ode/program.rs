@@ -226,6 +226,13 @@ fn apply1(ins: Ins, acc: f64, var: impl Fn(u32) -> f64) -> f64 {
         Ins::Const(c) => c,
         Ins::Var(i) => var(i),
         Ins::RampV(i) => ramp(var(i)),
+        // the Hertz force's power 3/2 and its rate's 1/2 with the power known here (no choice
+        // among the powers at run time; `1 * sqrt(r)` is `sqrt(r)` to the bit)
+        Ins::RampPowHalfV(i, 0) => ramp(var(i)).sqrt(),
+        Ins::RampPowHalfV(i, 1) => {
+            let r = ramp(var(i));
+            r * r.sqrt()
+        }
         Ins::RampPowHalfV(i, n) => {
             let r = ramp(var(i));
             powi(r, n) * r.sqrt()
@@ -248,6 +255,34 @@ fn apply1(ins: Ins, acc: f64, var: impl Fn(u32) -> f64) -> f64 {
         Ins::Powi(n) => powi(acc, n),
         Ins::PowHalf(n) => powi(acc, n) * acc.sqrt(),
         other => apply_un(other, acc),
+    }
+}
+
+/// One instruction of a one-register program at every point: `acc[p]` and the variable `x(p)`
+/// ([`Program::eval_batch`]). One loop per common instruction (the match inside [`apply1`] then
+/// folds away), the others through the same loop with the match inside.
+#[inline(always)]
+fn each_point(ins: Ins, acc: &mut [f64], x: impl Fn(usize) -> f64) {
+    macro_rules! each {
+        () => {
+            for (p, a) in acc.iter_mut().enumerate() {
+                *a = apply1(ins, *a, |_| x(p));
+            }
+        };
+    }
+    match ins {
+        Ins::RampPowHalfV(_, 0) => each!(),
+        Ins::RampPowHalfV(_, 1) => each!(),
+        Ins::RampPowHalfV(..) => each!(),
+        Ins::RampV(_) => each!(),
+        Ins::MulV(_) => each!(),
+        Ins::MulNegV(_) => each!(),
+        Ins::DivV(_) => each!(),
+        Ins::AddV(_) => each!(),
+        Ins::SubV(_) => each!(),
+        Ins::MulC(_) => each!(),
+        Ins::Neg => each!(),
+        _ => each!(),
     }
 }
 
@@ -447,44 +482,18 @@ impl Program {
     /// [`Program::batchable`] program.
     pub fn eval_batch(&self, base: &[f64], n: usize, ts: &[f64], ys: &[f64], out: &mut [f64]) {
         debug_assert!(self.batchable() && ys.len() == ts.len() * n && out.len() == ts.len());
-        const CHUNK: usize = 16;
-        for (c, out) in out.chunks_mut(CHUNK).enumerate() {
-            let (first, k) = (c * CHUNK, out.len());
-            // the variable an instruction reads, gathered for every point before it runs
-            let mut col = [0.0f64; CHUNK];
-            out.fill(0.0);
-            for &ins in &self.code {
-                match ins.slot().map(|i| i as usize) {
-                    Some(0) => col[..k].copy_from_slice(&ts[first..first + k]),
-                    Some(i) if i <= n => {
-                        for (p, x) in col[..k].iter_mut().enumerate() {
-                            *x = ys[(first + p) * n + i - 1];
-                        }
-                    }
-                    Some(i) => col[..k].fill(base[i]),
-                    None => {}
+        out.fill(0.0);
+        for &ins in &self.code {
+            // the variable an instruction reads, from where it lives: `t`, every n-th entry of
+            // the states (no gathering into a column first), or a parameter (one number)
+            match ins.slot().map(|i| i as usize) {
+                Some(0) => each_point(ins, out, |p| ts[p]),
+                Some(i) if i <= n => each_point(ins, out, |p| ys[p * n + i - 1]),
+                Some(i) => {
+                    let x = base[i];
+                    each_point(ins, out, |_| x);
                 }
-                // one loop per common instruction (the match inside `apply1` then folds away),
-                // the others through the same loop with the match inside
-                macro_rules! each {
-                    () => {
-                        for (acc, x) in out.iter_mut().zip(&col[..k]) {
-                            *acc = apply1(ins, *acc, |_| *x);
-                        }
-                    };
-                }
-                match ins {
-                    Ins::RampPowHalfV(..) => each!(),
-                    Ins::RampV(_) => each!(),
-                    Ins::MulV(_) => each!(),
-                    Ins::MulNegV(_) => each!(),
-                    Ins::DivV(_) => each!(),
-                    Ins::AddV(_) => each!(),
-                    Ins::SubV(_) => each!(),
-                    Ins::MulC(_) => each!(),
-                    Ins::Neg => each!(),
-                    _ => each!(),
-                }
+                None => each_point(ins, out, |_| 0.0),
             }
         }
     }
