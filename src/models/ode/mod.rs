@@ -74,6 +74,7 @@
 //! `doc` (the model's reference).
 use crate::models::doc as d;
 
+mod closures;
 mod compile;
 mod doc;
 mod formulas;
@@ -356,30 +357,31 @@ impl OdeScene {
 struct Held<'a> {
     m: &'a OdeScene,
     held: Vec<f64>,
-    /// `[t, y..., parameters..., held...]`, the parameters and the held values written once
-    /// ([`Held::new`], [`Held::set_held`]): a right side writes only `t` and `y`.
-    vars: std::cell::RefCell<Vec<f64>>,
+    /// The right sides as nested closures ([`closures`]), reading `t` and the state in place.
+    slopes: Vec<closures::Slope>,
+    /// The variables after the states, in slot order: the parameters, then the held values
+    /// (written by [`Held::set_held`]).
+    rest: Vec<f64>,
 }
 
 impl<'a> Held<'a> {
     fn new(m: &'a OdeScene) -> Self {
         let n = m.states.len();
-        let mut vars = vec![0.0; 1 + n + m.params.len() + m.switches.len()];
-        vars[1 + n..1 + n + m.params.len()].copy_from_slice(&m.params);
+        let mut rest = m.params.clone();
+        rest.resize(m.params.len() + m.switches.len(), 0.0);
         Held {
             m,
             held: vec![0.0; m.switches.len()],
-            vars: std::cell::RefCell::new(vars),
+            slopes: m.rhs.iter().map(|p| p.slope(n)).collect(),
+            rest,
         }
     }
 
     /// Sets the held values (each switch's side) from `(t, y)` ([`OdeScene::sides`]).
     fn set_held(&mut self, t: f64, y: &[f64]) {
         self.m.sides(t, y, &mut self.held);
-        let k = self.held.len();
-        let vars = self.vars.get_mut();
-        let at = vars.len() - k;
-        vars[at..].copy_from_slice(&self.held);
+        let at = self.rest.len() - self.held.len();
+        self.rest[at..].copy_from_slice(&self.held);
     }
 }
 
@@ -389,19 +391,15 @@ impl OdeSystem for Held<'_> {
     }
     #[inline(always)]
     fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-        let Ok(mut vars) = self.vars.try_borrow_mut() else {
-            return self.m.rhs_held(&self.held, t, y, dy);
-        };
-        vars[0] = t;
-        for (slot, v) in vars[1..].iter_mut().zip(y) {
-            *slot = *v;
+        let (f, r) = (&self.slopes, self.rest.as_slice());
+        // two states (a contact coordinate and its rate): written at fixed places, which a
+        // stepper of that fixed size keeps in registers
+        if let ([d0, d1], [f0, f1]) = (&mut *dy, f.as_slice()) {
+            (*d0, *d1) = (f0(t, y, r), f1(t, y, r));
+            return;
         }
-        for (d, p) in dy.iter_mut().zip(&self.m.rhs) {
-            // a bare variable (`z' = v`) read without a call
-            *d = match p.variable() {
-                Some(slot) => vars[slot],
-                None => p.eval(&vars),
-            };
+        for (d, f) in dy.iter_mut().zip(f) {
+            *d = f(t, y, r);
         }
     }
     fn jacobian(&self, t: f64, y: &[f64], jac: &mut nalgebra::DMatrix<f64>) -> bool {

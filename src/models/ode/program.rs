@@ -16,7 +16,7 @@ use num_traits::ToPrimitive;
 pub const MAX_DEPTH: usize = 48;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Ins {
+pub(super) enum Ins {
     Const(f64),
     Var(u32),
     Neg,
@@ -53,6 +53,11 @@ enum Ins {
     RampV(u32),
     /// `max(x, 0)^(n + 1/2)` of a variable (the Hertz force's `max(z, 0)^(3/2)`).
     RampPowHalfV(u32, i32),
+    /// `max(x, 0)^(1/2)` of a variable (the Hertz force's rate), and `max(x, 0)^(3/2)` (the
+    /// force): the two powers evaluated with the power known, no choice among powers at run
+    /// time.
+    RampSqrtV(u32),
+    RampPow32V(u32),
     /// `-(x*v)`: a product with a variable, negated (the `-k*F` of a restoring force: one
     /// instruction for two, the same operations in the same order).
     MulNegV(u32),
@@ -61,7 +66,7 @@ enum Ins {
 /// A compiled formula of the variables a slot map names.
 #[derive(Clone, Debug)]
 pub struct Program {
-    code: Vec<Ins>,
+    pub(super) code: Vec<Ins>,
     /// The deepest stack it needs.
     depth: usize,
 }
@@ -176,7 +181,7 @@ fn fuse(code: &mut Vec<Ins>) {
                 {
                     Some((4, Ins::RampV(*i)))
                 }
-                [.., Ins::RampV(i), Ins::PowHalf(k)] => Some((2, Ins::RampPowHalfV(*i, *k))),
+                [.., Ins::RampV(i), Ins::PowHalf(k)] => Some((2, ramp_power(*i, *k))),
                 [.., Ins::MulV(i), Ins::Neg] => Some((2, Ins::MulNegV(*i))),
                 _ => None,
             };
@@ -212,7 +217,9 @@ impl Ins {
             | Ins::RSubV(i)
             | Ins::RDivV(i)
             | Ins::RampV(i)
-            | Ins::RampPowHalfV(i, _) => Some(i),
+            | Ins::RampPowHalfV(i, _)
+            | Ins::RampSqrtV(i)
+            | Ins::RampPow32V(i) => Some(i),
             _ => None,
         }
     }
@@ -226,10 +233,9 @@ fn apply1(ins: Ins, acc: f64, var: impl Fn(u32) -> f64) -> f64 {
         Ins::Const(c) => c,
         Ins::Var(i) => var(i),
         Ins::RampV(i) => ramp(var(i)),
-        // the Hertz force's power 3/2 and its rate's 1/2 with the power known here (no choice
-        // among the powers at run time; `1 * sqrt(r)` is `sqrt(r)` to the bit)
-        Ins::RampPowHalfV(i, 0) => ramp(var(i)).sqrt(),
-        Ins::RampPowHalfV(i, 1) => {
+        // `powi(r, 0) * sqrt(r)` and `powi(r, 1) * sqrt(r)` to the bit (`1 * s` is `s`)
+        Ins::RampSqrtV(i) => ramp(var(i)).sqrt(),
+        Ins::RampPow32V(i) => {
             let r = ramp(var(i));
             r * r.sqrt()
         }
@@ -270,9 +276,10 @@ fn each_point(ins: Ins, acc: &mut [f64], x: impl Fn(usize) -> f64) {
             }
         };
     }
+    // every instruction named (no arm for "the rest"), each its own loop
     match ins {
-        Ins::RampPowHalfV(_, 0) => each!(),
-        Ins::RampPowHalfV(_, 1) => each!(),
+        Ins::RampSqrtV(_) => each!(),
+        Ins::RampPow32V(_) => each!(),
         Ins::RampPowHalfV(..) => each!(),
         Ins::RampV(_) => each!(),
         Ins::MulV(_) => each!(),
@@ -280,9 +287,24 @@ fn each_point(ins: Ins, acc: &mut [f64], x: impl Fn(usize) -> f64) {
         Ins::DivV(_) => each!(),
         Ins::AddV(_) => each!(),
         Ins::SubV(_) => each!(),
+        Ins::RSubV(_) => each!(),
+        Ins::RDivV(_) => each!(),
         Ins::MulC(_) => each!(),
+        Ins::AddC(_) => each!(),
+        Ins::DivC(_) => each!(),
+        Ins::RSubC(_) => each!(),
+        Ins::RDivC(_) => each!(),
         Ins::Neg => each!(),
-        _ => each!(),
+        Ins::Sqrt => each!(),
+        Ins::Abs => each!(),
+        Ins::Powi(_) => each!(),
+        Ins::PowHalf(_) => each!(),
+        Ins::PowC(_) => each!(),
+        Ins::Call(_) => each!(),
+        Ins::Const(_) => each!(),
+        Ins::Var(_) => each!(),
+        // never in a one-register program (they take two values)
+        Ins::Add | Ins::Sub | Ins::Mul | Ins::Div | Ins::Pow => each!(),
     }
 }
 
@@ -296,15 +318,38 @@ fn apply_bin(op: Ins, x: f64, y: f64) -> f64 {
     }
 }
 
-/// `max(x, 0)` as the reader writes it, `(x + |x|)/2` (NaN stays NaN).
+/// `max(x, 0)` as the reader writes it, `(x + |x|)/2`, to the bit, by cases: `x` itself for
+/// `0 < x < 2^1023` (`x + x` and its half are exact there), infinity above (the sum
+/// overflows), `+0` for zero of either sign and below, NaN for NaN and for `-inf` (`-inf + inf`).
+/// On the chain of a step's stages, where each right side waits for the one before, the three
+/// operations of the formula were a tenth of a Hertz step's time; a comparison is not on it.
 #[inline(always)]
-fn ramp(x: f64) -> f64 {
-    (x + x.abs()) / 2.0
+pub(super) fn ramp(x: f64) -> f64 {
+    if x > 0.0 {
+        if x < RAMP_OVERFLOW { x } else { f64::INFINITY }
+    } else if x > f64::NEG_INFINITY {
+        0.0
+    } else {
+        x + x.abs()
+    }
+}
+
+/// 2^1023: from here on `x + x` overflows.
+const RAMP_OVERFLOW: f64 = f64::from_bits(0x7fe0_0000_0000_0000);
+
+/// The fused `max(x, 0)^(n + 1/2)` of variable `i`: its own instruction for the powers 1/2
+/// and 3/2.
+fn ramp_power(i: u32, n: i32) -> Ins {
+    match n {
+        0 => Ins::RampSqrtV(i),
+        1 => Ins::RampPow32V(i),
+        _ => Ins::RampPowHalfV(i, n),
+    }
 }
 
 /// `x^n` by products for the small powers formulas use (no library call), `powi` beyond.
 #[inline]
-fn powi(x: f64, n: i32) -> f64 {
+pub(super) fn powi(x: f64, n: i32) -> f64 {
     match n {
         0 => 1.0,
         1 => x,
@@ -556,6 +601,15 @@ impl Program {
                     st[sp] = ramp(vars[i as usize]);
                     sp += 1;
                 }
+                Ins::RampSqrtV(i) => {
+                    st[sp] = ramp(vars[i as usize]).sqrt();
+                    sp += 1;
+                }
+                Ins::RampPow32V(i) => {
+                    let r = ramp(vars[i as usize]);
+                    st[sp] = r * r.sqrt();
+                    sp += 1;
+                }
                 Ins::RampPowHalfV(i, n) => {
                     let r = ramp(vars[i as usize]);
                     st[sp] = powi(r, n) * r.sqrt();
@@ -612,14 +666,11 @@ mod tests {
         let force = prog("-k*max(z, 0)^(3/2)/m");
         assert_eq!(
             force.code,
-            [Ins::RampPowHalfV(1, 1), Ins::MulNegV(4), Ins::DivV(3)]
+            [Ins::RampPow32V(1), Ins::MulNegV(4), Ins::DivV(3)]
         );
         assert_eq!(force.depth, 1);
         let rate = prog("k*max(z, 0)^(1/2)*v");
-        assert_eq!(
-            rate.code,
-            [Ins::RampPowHalfV(1, 0), Ins::MulV(4), Ins::MulV(2)]
-        );
+        assert_eq!(rate.code, [Ins::RampSqrtV(1), Ins::MulV(4), Ins::MulV(2)]);
         assert_eq!(prog("max(z, 0)").code, [Ins::RampV(1)]);
         for z in [0.3f64, 2.5e-5, 0.0, -0.0, -1e-9, 7.0] {
             let vars = [0.0, z, -1.25, 0.05, 3e8];
@@ -665,6 +716,38 @@ mod tests {
                 "{text}: {flat} vs {tree}"
             );
         }
+    }
+
+    /// The ramp is `(x + |x|)/2` to the bit everywhere (the reference: that formula itself),
+    /// at the ends of its short cut (`MAX/2`, the next number above it, `MAX`, the smallest
+    /// subnormal), at zero of either sign, below zero, at the infinities and at NaN.
+    #[test]
+    fn the_ramp_is_the_readers_formula_to_the_bit() {
+        let half = f64::MAX / 2.0;
+        let above = f64::from_bits(half.to_bits() + 1);
+        for x in [
+            0.3,
+            2.5e-5,
+            half,
+            above,
+            f64::MAX,
+            5e-324,
+            f64::MIN_POSITIVE,
+            0.0,
+            -0.0,
+            -1e-9,
+            -5e-324,
+            f64::MIN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ] {
+            let want = (x + x.abs()) / 2.0;
+            assert_eq!(ramp(x).to_bits(), want.to_bits(), "x = {x:e}");
+        }
+        assert!(ramp(f64::NAN).is_nan());
+        // above MAX/2 the sum overflows: the formula's infinity, not x
+        assert_eq!(ramp(f64::MAX).to_bits(), f64::INFINITY.to_bits());
+        assert_eq!(ramp(half).to_bits(), half.to_bits());
     }
 
     #[test]
