@@ -521,20 +521,10 @@ impl OdeScene {
             .map(|e| &e.when)
             .chain(self.switches.iter().map(|s| &s.arg))
             .map(|p| {
-                // `[t, y..., parameters...]`, the parameters written once: a call writes t and y
-                let mut vars = vec![0.0; 1 + n + self.params.len()];
-                vars[1 + n..].copy_from_slice(&self.params);
-                let vars = std::cell::RefCell::new(vars);
-                Box::new(move |t: f64, y: &[f64]| match vars.try_borrow_mut() {
-                    Ok(mut v) => {
-                        v[0] = t;
-                        for (slot, x) in v[1..].iter_mut().zip(y) {
-                            *slot = *x;
-                        }
-                        p.eval(&v)
-                    }
-                    Err(_) => Vars { m: self, held: &[] }.with(t, y, |v| p.eval(v)),
-                }) as EventFn
+                // t, the state and the parameters read where they live ([`closures`]: no
+                // buffer written per evaluation)
+                let (f, rest) = (p.slope(n), self.params.clone());
+                Box::new(move |t: f64, y: &[f64]| f(t, y, &rest)) as EventFn
             })
             .collect();
         // the same formulas at several points in one call, where the program allows it
@@ -867,5 +857,51 @@ impl OdeScene {
             warnings,
             stats,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// A right side with a switch: `z'' = -a sign(z)` from `z = 1` at rest reaches `z = 0` at
+    /// `t = sqrt(2/a)` with `v = -sqrt(2 a)` (by hand: `z = 1 - a t^2/2` while `z > 0`); the
+    /// sign's held value sits after the parameter among the variables the right sides read.
+    #[test]
+    fn a_held_sign_is_read_after_the_parameters() {
+        let text = r#"model = "ode"
+[parameters]
+a = 2.0
+[units]
+t = "s"
+a = "m/s^2"
+z = "m"
+v = "m/s"
+[state]
+z = 1.0
+v = 0.0
+[equations]
+z = "v"
+v = "-a*sign(z)"
+[[event]]
+name = "crossing"
+when = "z"
+direction = "down"
+action = "stop"
+[outcome]
+t1 = "t@crossing"
+v1 = "v@crossing"
+[solve]
+rtol = 1e-10
+atol = 1e-12
+t_end = 5.0
+"#;
+        use crate::models::Model;
+        let table: toml::Table = toml::from_str(text).expect("toml");
+        let scene = super::OdeScene::from_table(&table, "s.toml").expect("a valid scene");
+        let (out, _) = scene.run().expect("runs");
+        let t1 = out.outcome["t1"].expect("t1");
+        let v1 = out.outcome["v1"].expect("v1");
+        assert!((t1 - 1.0).abs() < 1e-9, "{out:?}");
+        assert!((v1 + 2.0).abs() < 1e-9, "{out:?}");
+        assert_eq!(out.switches, 1, "{out:?}");
     }
 }
