@@ -391,15 +391,8 @@ impl OdeSystem for Held<'_> {
     }
     #[inline(always)]
     fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-        let (f, r) = (&self.slopes, self.rest.as_slice());
-        // two states (a contact coordinate and its rate): written at fixed places, which a
-        // stepper of that fixed size keeps in registers
-        if let ([d0, d1], [f0, f1]) = (&mut *dy, f.as_slice()) {
-            (*d0, *d1) = (f0(t, y, r), f1(t, y, r));
-            return;
-        }
-        for (d, f) in dy.iter_mut().zip(f) {
-            *d = f(t, y, r);
+        for (d, f) in dy.iter_mut().zip(&self.slopes) {
+            *d = f(t, y, &self.rest);
         }
     }
     fn jacobian(&self, t: f64, y: &[f64], jac: &mut nalgebra::DMatrix<f64>) -> bool {
