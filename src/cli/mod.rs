@@ -336,7 +336,10 @@ fn write_made(out: &std::path::Path, arg: &str, text: String) -> Result<(), RunE
     std::fs::write(out, text).map_err(|e| bad(out, e))
 }
 
+mod rows;
 mod trace;
+
+use rows::{Rows, csv_quote};
 use trace::trace_kind;
 pub use trace::{TRACED, Trace, run_scene_traced, run_traced, trace_csv};
 
@@ -400,15 +403,16 @@ pub fn merge(paths: &[std::path::PathBuf], format: Format) -> Result<String, Run
             let mut cols = csv_columns(&results);
             // as `sweep`: the swept field once, each warning's wording in full once
             cols.retain(|c| *c != param);
-            let mut text = csv_header(&param, &cols);
-            let mut said = crate::scene::warnings::Said::default();
+            let mut rows = Rows::default();
             for (r, res) in runs.iter().zip(&results) {
                 let v = r["value"].as_f64().unwrap_or(f64::NAN);
                 let i = r["index"].as_u64().unwrap_or(0) as usize;
-                csv_row_parts(v, i, node_cells(res, &cols), cols.len())
-                    .write_into(&mut text, &mut said, i);
+                rows.csv(v, i, node_cells(res, &cols), cols.len());
             }
-            text
+            let mut text = csv_header(&param, &cols).into_bytes();
+            let mut said = crate::scene::warnings::Said::default();
+            let _ = rows.write_to(&mut text, &mut said, 0);
+            String::from_utf8(text).unwrap_or_default()
         }
         _ => serde_json::to_string_pretty(&json!({"param": param, "total": total, "runs": runs}))
             .unwrap_or_default(),
@@ -418,6 +422,9 @@ pub fn merge(paths: &[std::path::PathBuf], format: Format) -> Result<String, Run
 /// Points run per block: results are formatted and written block by block, in index order, so
 /// memory stays bounded at any sweep size.
 const SWEEP_BLOCK: usize = 8192;
+
+/// Consecutive points run by one thread with their rows in one buffer.
+const SWEEP_RUN: usize = 64;
 
 /// A varied `parameters.X` or `state.X` of a text model (`model = "ode"`) that the scene does
 /// not have: an error naming it and listing what the scene has (setting it would add a
@@ -528,11 +535,10 @@ pub fn sweep(
             .unwrap_or_default(),
         _ => Vec::new(),
     };
-    // one point, formatted where it ran (in parallel): the row's text, and for CSV its warnings
-    // and the rest of its line apart (said once per wording, in index order); `true` marks a
-    // failed point
-    let row = |v: f64, i: usize| -> Row {
-        let text = match format {
+    // one point, formatted where it ran (in parallel) and appended to the rows of its run of
+    // points: for CSV its warnings apart (said once per wording, in index order)
+    let row = |rows: &mut Rows, v: f64, i: usize| {
+        match format {
             Format::Json => {
                 // one run per line (compact): a sweep of 10^7 runs stays greppable and small;
                 // the outcome written from its light tree, as its `Value` would be
@@ -546,10 +552,11 @@ pub fn sweep(
                         line.extend_from_slice(b",\"result\":");
                         res.write_json(&mut line);
                         line.push(b'}');
-                        (String::from_utf8(line).unwrap_or_default(), false)
+                        rows.line(",\n    ", &String::from_utf8_lossy(&line), false);
                     }
-                    Err(e) => (
-                        json!({"index": i, "value": v, "error": e.to_string()}).to_string(),
+                    Err(e) => rows.line(
+                        ",\n    ",
+                        &json!({"index": i, "value": v, "error": e.to_string()}).to_string(),
                         true,
                     ),
                 }
@@ -559,34 +566,23 @@ pub fn sweep(
                 let r = scene_at(v)
                     .and_then(|scene| scene.run_cells(&columns, &plan))
                     .map_err(|e| e.to_string());
-                let bad = r.is_err();
-                if progress {
-                    bar.inc(1);
-                }
-                return (csv_row_parts(v, i, r, columns.len()), bad);
+                rows.csv(v, i, r, columns.len());
             }
             _ => match scene_at(v).and_then(|scene| run_validated(&scene)) {
-                Ok((res, _)) => (
-                    format!(
-                        "{param} = {}\n{}\n",
-                        json!(v),
-                        render_run(&res, Format::Text)
-                    ),
-                    false,
-                ),
-                Err(e) => (format!("{param} = {}\nerror: {e}\n", json!(v)), true),
+                Ok((res, _)) => {
+                    let text = render_run(&res, Format::Text);
+                    rows.line("\n", &format!("{param} = {}\n{text}\n", json!(v)), false);
+                }
+                Err(e) => rows.line("\n", &format!("{param} = {}\nerror: {e}\n", json!(v)), true),
             },
-        };
-        let (text, bad) = text;
+        }
         if progress {
             bar.inc(1);
         }
-        (CsvRow::whole(text), bad)
     };
     let mut said = crate::scene::warnings::Said::default();
     let started = std::time::Instant::now();
     let mut failed = 0;
-    let mut first = true;
     if format == Format::Json {
         write!(
             out,
@@ -605,26 +601,40 @@ pub fn sweep(
         .chunks(SWEEP_BLOCK)
         .zip(sv.indices.chunks(SWEEP_BLOCK))
         .collect();
-    let compute = |(block_v, block_i): (&[f64], &[usize])| -> Vec<Row> {
+    // a block as runs of consecutive points, each run's rows in one buffer
+    let compute = |(block_v, block_i): (&[f64], &[usize])| -> Vec<Rows> {
         block_v
-            .par_iter()
-            .zip(block_i.par_iter())
-            .map(|(&v, &i)| row(v, i))
+            .par_chunks(SWEEP_RUN)
+            .zip(block_i.par_chunks(SWEEP_RUN))
+            .map(|(vs, is)| {
+                let mut rows = Rows::with_capacity(256 * vs.len());
+                for (&v, &i) in vs.iter().zip(is) {
+                    row(&mut rows, v, i);
+                }
+                rows
+            })
             .collect()
     };
+    // the separator before the first row of the sweep is left out (JSON and text rows open
+    // with one; a CSV row does not)
+    let mut skip = usize::from(format != Format::Csv);
     // the next block runs on the pool while this thread writes the one before: the cores do
     // not wait on the writing between blocks
-    let mut pending: Option<Vec<Row>> = blocks.first().map(|b| compute(*b));
-    for (k, &(_, block_i)) in blocks.iter().enumerate() {
-        let rows = pending.take().unwrap_or_default();
-        let mut next: Option<Vec<Row>> = None;
-        let written = rayon::in_place_scope(|scope| {
+    let mut pending: Option<Vec<Rows>> = blocks.first().map(|b| compute(*b));
+    for k in 0..blocks.len() {
+        let runs = pending.take().unwrap_or_default();
+        let mut next: Option<Vec<Rows>> = None;
+        let written: Result<(), RunError> = rayon::in_place_scope(|scope| {
             if let Some(b) = blocks.get(k + 1) {
                 let (compute, next) = (&compute, &mut next);
                 scope.spawn(move |_| *next = Some(compute(*b)));
             }
-            let text = block_text(&rows, block_i, format, &mut said, &mut failed, &mut first);
-            out.write_all(text.as_bytes()).map_err(io)
+            for rows in &runs {
+                failed += rows.failed;
+                rows.write_to(out, &mut said, skip).map_err(io)?;
+                skip = 0;
+            }
+            Ok(())
         });
         written?;
         pending = next;
@@ -688,79 +698,6 @@ fn csv_columns(results: &[Result<Node, String>]) -> Vec<String> {
     cols
 }
 
-fn csv_quote(s: &str) -> String {
-    if s.contains([',', '"', '\n']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
-    }
-}
-
-/// One point of a sweep, formatted where it ran: its text (for CSV, with its warnings apart);
-/// `true` marks a failed point.
-type Row = (CsvRow, bool);
-
-/// A row's text, and for CSV the place of its warnings cell: the line holds the value and the
-/// outcome's cells before `split`, the error, the index and the line's end after it; the run's
-/// warnings are written there once per wording ([`crate::scene::warnings::Said`]), in index
-/// order, where the rows are joined. One allocation for the line.
-#[derive(Debug)]
-struct CsvRow {
-    line: String,
-    split: usize,
-    warnings: Vec<String>,
-}
-
-impl CsvRow {
-    /// A row of JSON or text: all of it is the line.
-    fn whole(line: String) -> CsvRow {
-        CsvRow {
-            split: line.len(),
-            line,
-            warnings: Vec::new(),
-        }
-    }
-
-    /// Appends the CSV row of point `index` to `text`, its warnings said as `said` has them.
-    fn write_into(&self, text: &mut String, said: &mut crate::scene::warnings::Said, index: usize) {
-        text.push_str(&self.line[..self.split]);
-        text.push(',');
-        text.push_str(&csv_quote(&said.cell(index, &self.warnings)));
-        text.push_str(&self.line[self.split..]);
-    }
-}
-
-/// The text of one block of rows, in index order: a CSV row's warnings said once per wording
-/// (`said`), the failed points counted, `first` cleared after the first row of the sweep.
-fn block_text(
-    rows: &[Row],
-    indices: &[usize],
-    format: Format,
-    said: &mut crate::scene::warnings::Said,
-    failed: &mut usize,
-    first: &mut bool,
-) -> String {
-    let mut text = String::with_capacity(rows.iter().map(|r| r.0.line.len() + 8).sum());
-    for ((row, bad), &i) in rows.iter().zip(indices) {
-        *failed += usize::from(*bad);
-        match format {
-            Format::Json => {
-                text.push_str(if *first { "\n    " } else { ",\n    " });
-                text.push_str(&row.line);
-            }
-            Format::Csv => row.write_into(&mut text, said, i),
-            _ => {
-                if !*first {
-                    text.push('\n');
-                }
-                text.push_str(&row.line);
-            }
-        }
-        *first = false;
-    }
-    text
-}
-
 fn csv_header(param: &str, cols: &[String]) -> String {
     format!(
         "{},{},warnings,error,index\n",
@@ -820,9 +757,11 @@ fn csv_cells<'v>(
 
 #[cfg(test)]
 fn csv_row(v: f64, index: usize, r: &Result<Node, String>, cols: &[String]) -> String {
-    let row = csv_row_parts(v, index, node_cells(r, cols), cols.len());
-    let (head, tail) = row.line.split_at(row.split);
-    format!("{head},{}{tail}", csv_quote(&row.warnings.join("; ")))
+    let mut line = Vec::new();
+    let (at, warnings) = rows::csv_line(&mut line, v, index, node_cells(r, cols), cols.len());
+    let (head, tail) = line.split_at(at);
+    let (head, tail) = (String::from_utf8_lossy(head), String::from_utf8_lossy(tail));
+    format!("{head}{}{tail}", csv_quote(&warnings.join("; ")))
 }
 
 /// The cells of an outcome's tree (a merged shard's rows), as [`crate::scene::cells::of`]
@@ -852,42 +791,6 @@ fn node_cells(r: &Result<Node, String>, cols: &[String]) -> Result<Cells, String
         warnings,
         order: Vec::new(),
     })
-}
-
-/// A CSV row ([`CsvRow`]): the value and the outcome's cells, then (after the warnings cell)
-/// the error, the index and the line's end. A failed run has a cell for each column too, empty.
-fn csv_row_parts(v: f64, index: usize, r: Result<Cells, String>, columns: usize) -> CsvRow {
-    // the row as bytes: numbers written by serde_json's own formatter, no `fmt` machinery
-    let mut out = Vec::with_capacity(256);
-    let _ = serde_json::to_writer(&mut out, &v);
-    match &r {
-        Ok(cells) => {
-            for cell in &cells.leaves {
-                out.push(b',');
-                if let Some(c) = cell {
-                    c.write(&mut out);
-                }
-            }
-        }
-        Err(_) => out.extend(std::iter::repeat_n(b',', columns)),
-    }
-    let split = out.len();
-    out.push(b',');
-    let warnings = match r {
-        Ok(cells) => cells.warnings,
-        Err(e) => {
-            out.extend_from_slice(csv_quote(&e).as_bytes());
-            Vec::new()
-        }
-    };
-    out.push(b',');
-    let _ = serde_json::to_writer(&mut out, &index);
-    out.push(b'\n');
-    CsvRow {
-        line: String::from_utf8(out).unwrap_or_default(),
-        split,
-        warnings,
-    }
 }
 
 #[cfg(test)]
@@ -940,12 +843,11 @@ mod tests {
                     .expect("in range")
                     .run_node()
                     .map_err(|e| e.to_string());
-                let want = csv_row_parts(v, i, node_cells(&tree, cols), cols.len());
-                let (head, tail) = want.line.split_at(want.split);
-                assert!(
-                    row.starts_with(&format!("{head},")),
-                    "row {i}: {row} against {head}"
-                );
+                let mut want = Vec::new();
+                let (at, _) = rows::csv_line(&mut want, v, i, node_cells(&tree, cols), cols.len());
+                let (head, tail) = want.split_at(at);
+                let (head, tail) = (String::from_utf8_lossy(head), String::from_utf8_lossy(tail));
+                assert!(row.starts_with(&*head), "row {i}: {row} against {head}");
                 assert!(
                     row.ends_with(tail.trim_end()),
                     "row {i}: {row} against {tail}"

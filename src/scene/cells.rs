@@ -30,13 +30,14 @@ pub enum Leaf {
 impl Leaf {
     /// The cell's text as [`Node::cell`] writes it (`serde_json`'s format of the number).
     pub fn write(self, out: &mut Vec<u8>) {
-        let node = match self {
-            Leaf::Bool(b) => Node::Bool(b),
-            Leaf::U64(x) => Node::U64(x),
-            Leaf::I64(x) => Node::I64(x),
-            Leaf::F64(x) => Node::F64(x),
+        // serde_json's formatter straight (writing to a `Vec` cannot fail), no node made and
+        // dropped per cell
+        let _ = match self {
+            Leaf::Bool(b) => serde_json::to_writer(out, &b),
+            Leaf::U64(x) => serde_json::to_writer(out, &x),
+            Leaf::I64(x) => serde_json::to_writer(out, &x),
+            Leaf::F64(x) => serde_json::to_writer(out, &x),
         };
-        node.cell(out);
     }
 
     /// The leaf of a node that is one.
@@ -527,6 +528,15 @@ mod tests {
             (Leaf::U64(9), Node::U64(9)),
             (Leaf::I64(-4), Node::I64(-4)),
             (Leaf::Bool(true), Node::Bool(true)),
+            (Leaf::Bool(false), Node::Bool(false)),
+            (
+                Leaf::F64(7.703347838415442e-14),
+                Node::F64(7.703347838415442e-14),
+            ),
+            (Leaf::F64(1070.5636842899323), Node::F64(1070.5636842899323)),
+            (Leaf::F64(-0.0), Node::F64(-0.0)),
+            (Leaf::U64(u64::MAX), Node::U64(u64::MAX)),
+            (Leaf::I64(i64::MIN), Node::I64(i64::MIN)),
         ] {
             let (mut a, mut b) = (Vec::new(), Vec::new());
             leaf.write(&mut a);
