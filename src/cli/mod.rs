@@ -470,6 +470,18 @@ pub fn sweep(
     progress: bool,
     out: &mut dyn std::io::Write,
 ) -> Result<(), RunError> {
+    sweep_counted(path, sv, format, progress, out).map(|_| ())
+}
+
+/// [`sweep`], returning the number of points whose run failed (each has its row, with the
+/// error).
+fn sweep_counted(
+    path: &std::path::Path,
+    sv: &SweepValues,
+    format: Format,
+    progress: bool,
+    out: &mut dyn std::io::Write,
+) -> Result<usize, RunError> {
     use rayon::prelude::*;
     let base_table = crate::scene::read_table(path)?;
     let label = path.display().to_string();
@@ -607,7 +619,7 @@ pub fn sweep(
             .par_chunks(SWEEP_RUN)
             .zip(block_i.par_chunks(SWEEP_RUN))
             .map(|(vs, is)| {
-                let mut rows = Rows::with_capacity(256 * vs.len());
+                let mut rows = Rows::default();
                 for (&v, &i) in vs.iter().zip(is) {
                     row(&mut rows, v, i);
                 }
@@ -656,7 +668,7 @@ pub fn sweep(
     if failed > 0 {
         eprintln!("sweep: {failed} of {total} points failed (their rows carry the error)");
     }
-    Ok(())
+    Ok(failed)
 }
 
 /// The columns of an outcome: nested objects as `a.b`, numeric arrays as `a.0`, `a.1`;
@@ -868,6 +880,56 @@ mod tests {
         sweep(&scene, &few, Format::Text, false, &mut text_out).expect("runs");
         let text = String::from_utf8(text_out).expect("utf-8");
         assert_eq!(text.matches("impactor.v0 = ").count(), 3, "{text}");
+    }
+
+    /// A point whose run fails keeps its row, with its error, and is counted: the Hertz impact
+    /// written as text, swept over m = -1, -0.5, 0, 0.5, 1. By hand: with m < 0 the force
+    /// drives the indentation on (the step size collapses), with m = 0 the force over the mass
+    /// is 0/0 at first touch (not finite); 0.5 and 1 rebound. 3 of 5.
+    #[test]
+    fn a_sweep_counts_the_points_that_failed() {
+        let d = std::env::temp_dir().join(format!("impactcheck-cli-{}-fail", std::process::id()));
+        std::fs::create_dir_all(&d).expect("a temporary folder");
+        let f = d.join("hertz_ode.toml");
+        std::fs::write(
+            &f,
+            "model = \"ode\"\n[parameters]\nm = 0.05\nk = 3e8\n[units]\nt = \"s\"\nm = \"kg\"\n\
+             k = \"N/m^1.5\"\nz = \"m\"\nv = \"m/s\"\n[state]\nz = 0.0\nv = 1.0\n[equations]\n\
+             z = \"v\"\nv = \"-k*max(z, 0)^(3/2)/m\"\n[[event]]\nname = \"end\"\nwhen = \"z\"\n\
+             direction = \"down\"\naction = \"stop\"\n[solve]\nrtol = 1e-9\natol = 1e-16\nt_end = 1.0\n",
+        )
+        .expect("the scene written");
+        let sv = crate::scene::sweep::parse_vary("parameters.m=-1:1:5", false).expect("a range");
+        for format in [Format::Csv, Format::Json, Format::Text] {
+            let mut out = Vec::new();
+            let failed = sweep_counted(&f, &sv, format, false, &mut out).expect("the sweep runs");
+            assert_eq!(failed, 3, "{format:?}");
+            let text = String::from_utf8(out).expect("utf-8");
+            assert_eq!(text.matches("step size too small").count(), 2, "{text}");
+            assert_eq!(text.matches("non-finite").count(), 1, "{text}");
+        }
+    }
+
+    /// `impact merge` of a sweep's JSON gives the sweep's own CSV, byte for byte (the rows
+    /// through the outcome's tree, not through the outcome: a second path to the same cells),
+    /// warnings said once per wording alike; and its JSON holds every run once, in order.
+    #[test]
+    fn a_merged_json_sweep_is_the_sweeps_csv() {
+        let scene = hertz_scene("merge", "1e-6");
+        let sv = crate::scene::sweep::parse_vary("impactor.v0=0.5:2:7", false).expect("a range");
+        let (mut csv, mut json_out) = (Vec::new(), Vec::new());
+        sweep(&scene, &sv, Format::Csv, false, &mut csv).expect("runs");
+        sweep(&scene, &sv, Format::Json, false, &mut json_out).expect("runs");
+        let shard = scene.with_file_name("sweep.json");
+        std::fs::write(&shard, &json_out).expect("written");
+        let merged = merge(std::slice::from_ref(&shard), Format::Csv).expect("merges");
+        assert_eq!(merged, String::from_utf8(csv).expect("utf-8"));
+        assert!(merged.contains("like row 0"), "{merged}");
+        let all: Value =
+            serde_json::from_str(&merge(&[shard], Format::Json).expect("merges")).expect("JSON");
+        let runs = all["runs"].as_array().expect("runs");
+        assert!(runs.iter().enumerate().all(|(i, r)| r["index"] == json!(i)));
+        assert_eq!(runs.len(), 7);
     }
 
     /// The expected rows are written out by hand from the outcome's fields.

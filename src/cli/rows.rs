@@ -65,13 +65,6 @@ pub(super) struct Rows {
 }
 
 impl Rows {
-    pub fn with_capacity(bytes: usize) -> Rows {
-        Rows {
-            text: Vec::with_capacity(bytes),
-            ..Rows::default()
-        }
-    }
-
     /// Appends the CSV row of point `index` ([`csv_line`]).
     pub fn csv(&mut self, v: f64, index: usize, r: Result<Cells, String>, columns: usize) {
         self.failed += usize::from(r.is_err());
