@@ -556,15 +556,14 @@ fn sweep_counted(
                 // the outcome written from its light tree, as its `Value` would be
                 match scene_at(v).and_then(|scene| scene.run_node()) {
                     Ok(res) => {
-                        let mut line = Vec::with_capacity(512);
+                        let line = rows.open(",\n    ", false);
                         line.extend_from_slice(b"{\"index\":");
-                        let _ = serde_json::to_writer(&mut line, &i);
+                        let _ = serde_json::to_writer(&mut *line, &i);
                         line.extend_from_slice(b",\"value\":");
-                        let _ = serde_json::to_writer(&mut line, &v);
+                        let _ = serde_json::to_writer(&mut *line, &v);
                         line.extend_from_slice(b",\"result\":");
-                        res.write_json(&mut line);
+                        res.write_json(line);
                         line.push(b'}');
-                        rows.line(",\n    ", &String::from_utf8_lossy(&line), false);
                     }
                     Err(e) => rows.line(
                         ",\n    ",
@@ -811,12 +810,19 @@ mod tests {
 
     /// A Hertz scene in a fresh folder (`atol` loose enough that each run warns it was tightened).
     fn hertz_scene(name: &str, atol: &str) -> std::path::PathBuf {
+        scene_file(
+            name,
+            &format!(
+                "model = \"hertz\"\n[impactor]\nmass = 0.05\nv0 = 1.0\n[contact]\nk = 3e8\n[solve]\nrtol = 1e-9\natol = {atol}\n"
+            ),
+        )
+    }
+
+    /// A scene of `text` in a fresh folder.
+    fn scene_file(name: &str, text: &str) -> std::path::PathBuf {
         let d = std::env::temp_dir().join(format!("impactcheck-cli-{}-{name}", std::process::id()));
         std::fs::create_dir_all(&d).expect("a temporary folder");
-        let f = d.join("hertz.toml");
-        let text = format!(
-            "model = \"hertz\"\n[impactor]\nmass = 0.05\nv0 = 1.0\n[contact]\nk = 3e8\n[solve]\nrtol = 1e-9\natol = {atol}\n"
-        );
+        let f = d.join("scene.toml");
         std::fs::write(&f, text).expect("the scene written");
         f
     }
@@ -888,17 +894,13 @@ mod tests {
     /// is 0/0 at first touch (not finite); 0.5 and 1 rebound. 3 of 5.
     #[test]
     fn a_sweep_counts_the_points_that_failed() {
-        let d = std::env::temp_dir().join(format!("impactcheck-cli-{}-fail", std::process::id()));
-        std::fs::create_dir_all(&d).expect("a temporary folder");
-        let f = d.join("hertz_ode.toml");
-        std::fs::write(
-            &f,
+        let f = scene_file(
+            "fail",
             "model = \"ode\"\n[parameters]\nm = 0.05\nk = 3e8\n[units]\nt = \"s\"\nm = \"kg\"\n\
              k = \"N/m^1.5\"\nz = \"m\"\nv = \"m/s\"\n[state]\nz = 0.0\nv = 1.0\n[equations]\n\
              z = \"v\"\nv = \"-k*max(z, 0)^(3/2)/m\"\n[[event]]\nname = \"end\"\nwhen = \"z\"\n\
              direction = \"down\"\naction = \"stop\"\n[solve]\nrtol = 1e-9\natol = 1e-16\nt_end = 1.0\n",
-        )
-        .expect("the scene written");
+        );
         let sv = crate::scene::sweep::parse_vary("parameters.m=-1:1:5", false).expect("a range");
         for format in [Format::Csv, Format::Json, Format::Text] {
             let mut out = Vec::new();

@@ -74,11 +74,17 @@ impl Rows {
         }
     }
 
-    /// Appends a row of JSON or text, after `sep`; `bad` marks a failed point.
-    pub fn line(&mut self, sep: &str, line: &str, bad: bool) {
+    /// Opens a row of JSON or text after `sep` (`bad` marks a failed point): the buffer to write
+    /// the row's text to (UTF-8), in place.
+    pub fn open(&mut self, sep: &str, bad: bool) -> &mut Vec<u8> {
         self.failed += usize::from(bad);
         self.text.extend_from_slice(sep.as_bytes());
-        self.text.extend_from_slice(line.as_bytes());
+        &mut self.text
+    }
+
+    /// Appends a row of JSON or text, after `sep`; `bad` marks a failed point.
+    pub fn line(&mut self, sep: &str, line: &str, bad: bool) {
+        self.open(sep, bad).extend_from_slice(line.as_bytes());
     }
 
     /// Writes the rows to `out` from byte `skip` on (the separator before the first row of a
@@ -155,7 +161,7 @@ mod tests {
         assert_eq!((a.failed, b.failed), (0, 1));
         let mut j = Rows::default();
         j.line(",\n    ", "{\"index\":0}", false);
-        j.line(",\n    ", "{\"index\":1}", true);
+        j.open(",\n    ", true).extend_from_slice(b"{\"index\":1}");
         let mut out = Vec::new();
         j.write_to(&mut out, &mut said, 1).expect("writes");
         assert_eq!(out, b"\n    {\"index\":0},\n    {\"index\":1}");
