@@ -206,4 +206,44 @@ mod tests {
         assert!(sf.rejected > 0, "a run with rejections: {sf}");
         assert_eq!((yf, format!("{sf}")), (yd, format!("{sd}")));
     }
+
+    /// [`crate::integrate::solve_dop853_pair`] is [`crate::integrate::solve`]'s DOP853 to the
+    /// bit on two states, events included (the Hertz impact to its contact end), and refuses
+    /// another size or method with the field named.
+    #[test]
+    fn the_pairs_solve_is_the_solve() {
+        use crate::integrate::{Direction, Event, Method, Options, solve, solve_dop853_pair};
+        let gap = |_t: f64, y: &[f64]| y[0];
+        let opts = Options {
+            rtol: 1e-10,
+            atol: 1e-12,
+            method: Method::Dop853,
+            events: vec![Event::new("end", &gap, Direction::Falling, true).reading(0)],
+            ..Options::default()
+        };
+        let pair = solve_dop853_pair(&Hertz, 0.0, &[0.0, 1.0], 10.0, &opts).expect("solves");
+        let all = solve(&Hertz, 0.0, &[0.0, 1.0], 10.0, &opts).expect("solves");
+        assert!(
+            pair.t > 3.0 && pair.t < 4.0 && pair.events.len() == 1,
+            "{}",
+            pair.t
+        );
+        assert_eq!(
+            (pair.t.to_bits(), &pair.y, format!("{}", pair.stats)),
+            (all.t.to_bits(), &all.y, format!("{}", all.stats))
+        );
+        let four = solve_dop853_pair(&Coupled, 0.0, &[1.0, 0.0, 0.0, 0.0], 1.0, &opts);
+        let radau = Options {
+            method: Method::Radau5,
+            ..Options::default()
+        };
+        let implicit = solve_dop853_pair(&Hertz, 0.0, &[0.0, 1.0], 1.0, &radau);
+        for r in [four, implicit] {
+            let e = r.expect_err("refused").to_string();
+            assert!(
+                e.contains("method") && e.contains("dop853 for 2 states"),
+                "{e}"
+            );
+        }
+    }
 }

@@ -379,6 +379,30 @@ pub fn solve<S: OdeSystem>(
     }
 }
 
+/// [`solve`] with DOP853 for a system of two states, that one stepper instantiated: a caller
+/// that builds many systems the compiler sees whole (a text model's right sides of a known shape)
+/// pays one stepper for each, not every method's. The same solution as [`solve`], to the bit;
+/// any other method or size is refused.
+pub fn solve_dop853_pair<S: OdeSystem>(
+    sys: &S,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    opts: &Options,
+) -> Result<Solution, IntegrateError> {
+    let n = sys.dim();
+    check_options(opts, n, y0, t0, t_end)?;
+    if n != 2 || opts.method != Method::Dop853 {
+        return Err(IntegrateError::BadOption {
+            field: "method",
+            value: format!("{} for {n} states", opts.method.name()),
+            allowed: "dop853 for 2 states",
+        });
+    }
+    let st = dop853::Dop853::<2>::new(sys, t0, y0, t_end, opts);
+    drive(sys, st, (t0, y0, t_end), opts, None)
+}
+
 /// Makes a stepper with rtol = atol = `tol` and steps it to `t_end`: its end state and work
 /// (the tests that compare a stepper of a fixed size with the one of the run-time size).
 #[cfg(test)]

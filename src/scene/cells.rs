@@ -141,7 +141,7 @@ impl Walk<'_> {
 struct Inner<'w, 'c> {
     w: &'w mut Walk<'c>,
     next: usize,
-    key: Option<String>,
+    key: Option<usize>,
     back: Option<usize>,
 }
 
@@ -339,19 +339,144 @@ super::row::struct_shapes!(Inner<'_, '_>, ());
 impl ser::SerializeMap for Inner<'_, '_> {
     type Ok = ();
     type Error = NodeError;
+    /// The key appended to the path: a string written there straight (no node, no string made
+    /// per key: the text model's outcome has a dozen), any other through its [`Node`].
     fn serialize_key<T: Serialize + ?Sized>(&mut self, k: &T) -> Result<(), NodeError> {
-        self.key = Some(key_text(Node::of(k)?)?.into_owned());
+        let len = self.w.path.len();
+        if len > 0 {
+            self.w.path.push('.');
+        }
+        if k.serialize(KeyStr(&mut self.w.path)).is_err() {
+            self.w.path.truncate(len);
+            let text = key_text(Node::of(k)?)?;
+            self.w.enter(&text);
+        }
+        self.key = Some(len);
         Ok(())
     }
     fn serialize_value<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), NodeError> {
-        let k = self
+        let len = self
             .key
             .take()
             .ok_or_else(|| NodeError("a map value without its key".into()))?;
-        self.field(&k, v)
+        v.serialize(&mut *self.w)?;
+        self.w.path.truncate(len);
+        Ok(())
     }
     fn end(self) -> Result<(), NodeError> {
         self.done()
+    }
+}
+
+/// Writes a string key (or a newtype of one) at the end of a path; refuses every other value,
+/// untouched, so that the caller takes the general way ([`key_text`]).
+struct KeyStr<'p>(&'p mut String);
+
+/// The refusal: not a string.
+fn not_str<T>() -> Result<T, NodeError> {
+    Err(NodeError(String::new()))
+}
+
+macro_rules! refuse {
+    ($($method:ident($($arg:ty),*)),* $(,)?) => {
+        $(fn $method(self $(, _: $arg)*) -> Result<(), NodeError> {
+            not_str()
+        })*
+    };
+}
+
+impl ser::Serializer for KeyStr<'_> {
+    type Ok = ();
+    type Error = NodeError;
+    type SerializeSeq = ser::Impossible<(), NodeError>;
+    type SerializeTuple = ser::Impossible<(), NodeError>;
+    type SerializeTupleStruct = ser::Impossible<(), NodeError>;
+    type SerializeTupleVariant = ser::Impossible<(), NodeError>;
+    type SerializeMap = ser::Impossible<(), NodeError>;
+    type SerializeStruct = ser::Impossible<(), NodeError>;
+    type SerializeStructVariant = ser::Impossible<(), NodeError>;
+    fn serialize_str(self, v: &str) -> Result<(), NodeError> {
+        self.0.push_str(v);
+        Ok(())
+    }
+    fn serialize_newtype_struct<T: Serialize + ?Sized>(
+        self,
+        _name: &'static str,
+        v: &T,
+    ) -> Result<(), NodeError> {
+        v.serialize(self)
+    }
+    refuse!(
+        serialize_bool(bool),
+        serialize_i8(i8),
+        serialize_i16(i16),
+        serialize_i32(i32),
+        serialize_i64(i64),
+        serialize_u8(u8),
+        serialize_u16(u16),
+        serialize_u32(u32),
+        serialize_u64(u64),
+        serialize_f32(f32),
+        serialize_f64(f64),
+        serialize_char(char),
+        serialize_bytes(&[u8]),
+        serialize_none(),
+        serialize_unit(),
+        serialize_unit_struct(&'static str),
+        serialize_unit_variant(&'static str, u32, &'static str),
+    );
+    fn serialize_some<T: Serialize + ?Sized>(self, _: &T) -> Result<(), NodeError> {
+        not_str()
+    }
+    fn serialize_newtype_variant<T: Serialize + ?Sized>(
+        self,
+        _: &'static str,
+        _: u32,
+        _: &'static str,
+        _: &T,
+    ) -> Result<(), NodeError> {
+        not_str()
+    }
+    fn serialize_seq(self, _: Option<usize>) -> Result<Self::SerializeSeq, NodeError> {
+        not_str()
+    }
+    fn serialize_tuple(self, _: usize) -> Result<Self::SerializeTuple, NodeError> {
+        not_str()
+    }
+    fn serialize_tuple_struct(
+        self,
+        _: &'static str,
+        _: usize,
+    ) -> Result<Self::SerializeTupleStruct, NodeError> {
+        not_str()
+    }
+    fn serialize_tuple_variant(
+        self,
+        _: &'static str,
+        _: u32,
+        _: &'static str,
+        _: usize,
+    ) -> Result<Self::SerializeTupleVariant, NodeError> {
+        not_str()
+    }
+    fn serialize_map(self, _: Option<usize>) -> Result<Self::SerializeMap, NodeError> {
+        not_str()
+    }
+    fn serialize_struct(
+        self,
+        _: &'static str,
+        _: usize,
+    ) -> Result<Self::SerializeStruct, NodeError> {
+        not_str()
+    }
+    fn serialize_struct_variant(
+        self,
+        _: &'static str,
+        _: u32,
+        _: &'static str,
+        _: usize,
+    ) -> Result<Self::SerializeStructVariant, NodeError> {
+        not_str()
     }
 }
 
@@ -406,6 +531,20 @@ mod tests {
         (leaves, warnings)
     }
 
+    /// The cells of `out` (whose JSON is `value`) under `cols`, checked against the tree's
+    /// ([`by_node`]): leaves and warnings; and the tree's leaves.
+    fn walked_as_the_tree<T: Serialize>(
+        out: &T,
+        value: &serde_json::Value,
+        cols: &[String],
+    ) -> (Cells, Vec<Option<Leaf>>) {
+        let (want, warnings) = by_node(value, cols);
+        let got = of(out, cols, &[]).expect("walks");
+        assert_eq!(got.leaves, want);
+        assert_eq!(got.warnings, warnings);
+        (got, want)
+    }
+
     #[test]
     fn the_cells_are_those_of_the_outcomes_tree() {
         // objects (serialized as maps here, in their keys' order), nested arrays, negative
@@ -431,13 +570,9 @@ mod tests {
             "impulse.2.0",
             "contact.peak",
         ]
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
-        let (want, warnings) = by_node(&v, &cols);
-        let first = of(&v, &cols, &[]).expect("walks");
-        assert_eq!(first.leaves, want);
-        assert_eq!(first.warnings, warnings);
+        .map(String::from)
+        .to_vec();
+        let (first, want) = walked_as_the_tree(&v, &v, &cols);
         assert_eq!(first.warnings, ["atol tightened", "a, b"]);
         assert_eq!(first.leaves[1], Some(Leaf::U64(4)));
         assert_eq!(first.leaves[3], Some(Leaf::I64(-2)));
@@ -552,5 +687,62 @@ mod tests {
         let mut m = std::collections::BTreeMap::new();
         m.insert(vec![1u8], 2.0);
         assert!(of(&m, &[], &[]).is_err());
+    }
+
+    #[derive(Serialize, PartialEq, Eq, PartialOrd, Ord)]
+    struct Label(&'static str);
+
+    /// Maps keyed by every kind a key may be (strings, a newtype of one, integers of either
+    /// sign, booleans, chars), nested in a struct and in each other: each leaf lands where the
+    /// tree puts it, the path back where it was after each entry (the next field's column is
+    /// right), and the walk's path is the tree's text for each key.
+    #[test]
+    fn every_kind_of_map_key_lands_where_the_tree_puts_it() {
+        use std::collections::BTreeMap;
+        #[derive(Serialize)]
+        struct Keys {
+            named: BTreeMap<&'static str, BTreeMap<Label, f64>>,
+            signed: BTreeMap<i32, u64>,
+            unsigned: BTreeMap<u8, bool>,
+            flags: BTreeMap<bool, i64>,
+            letters: BTreeMap<char, f64>,
+            after: f64,
+        }
+        let out = Keys {
+            named: BTreeMap::from([
+                (
+                    "contact-end",
+                    BTreeMap::from([(Label("z"), 1.5), (Label("v"), -2.0)]),
+                ),
+                ("", BTreeMap::from([(Label("x.y"), 3.0)])),
+            ]),
+            signed: BTreeMap::from([(-3, 7), (12, 8)]),
+            unsigned: BTreeMap::from([(0, true), (255, false)]),
+            flags: BTreeMap::from([(false, -1), (true, 1)]),
+            letters: BTreeMap::from([('k', 0.25)]),
+            after: 9.5,
+        };
+        let value = serde_json::to_value(&out).expect("serializes");
+        let cols: Vec<String> = [
+            "named.contact-end.z",
+            "named.contact-end.v",
+            "named..x.y",
+            "signed.-3",
+            "signed.12",
+            "unsigned.0",
+            "unsigned.255",
+            "flags.false",
+            "flags.true",
+            "letters.k",
+            "after",
+        ]
+        .map(String::from)
+        .to_vec();
+        let (got, want) = walked_as_the_tree(&out, &value, &cols);
+        assert!(want.iter().all(Option::is_some), "{want:?}");
+        assert_eq!(got.leaves[1], Some(Leaf::F64(-2.0)));
+        assert_eq!(got.leaves[3], Some(Leaf::U64(7)));
+        assert_eq!(got.leaves[7], Some(Leaf::I64(-1)));
+        assert_eq!(got.leaves[10], Some(Leaf::F64(9.5)));
     }
 }

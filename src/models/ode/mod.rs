@@ -81,6 +81,7 @@ mod formulas;
 mod outcomes;
 pub mod program;
 mod scene;
+mod shapes;
 mod switch;
 mod taylor;
 mod units;
@@ -93,6 +94,7 @@ use super::{Curves, Model, RunError};
 use crate::algebra::expr::Expr;
 use crate::integrate::{Direction, Event, OdeSystem, Options, Stats, Stop};
 use program::Program;
+use smol_str::SmolStr;
 use std::collections::BTreeMap;
 
 /// The most jumps one run may apply.
@@ -229,7 +231,7 @@ pub struct OdeOutcome {
     /// `"ode"`.
     pub model: &'static str,
     /// The named outcomes (`null`: its event never fired).
-    pub outcome: BTreeMap<String, Option<f64>>,
+    pub outcome: BTreeMap<SmolStr, Option<f64>>,
     /// Each outcome's unit, derived from its formula.
     pub outcome_units: std::sync::Arc<BTreeMap<String, String>>,
     /// Where the run ended (s).
@@ -237,11 +239,11 @@ pub struct OdeOutcome {
     /// The event that stopped it, if one did.
     pub stopped_by: Option<String>,
     /// The states at the end.
-    pub state: BTreeMap<String, f64>,
+    pub state: BTreeMap<SmolStr, f64>,
     /// The unit of each state.
     pub state_units: std::sync::Arc<BTreeMap<String, String>>,
     /// How many times each event fired.
-    pub event_counts: BTreeMap<String, usize>,
+    pub event_counts: BTreeMap<SmolStr, usize>,
     /// Jumps applied.
     pub jumps: usize,
     /// Zeros of the formulas whose sign the right sides read, crossed ([`switch`]).
@@ -353,6 +355,19 @@ impl OdeScene {
     }
 }
 
+/// A run of the model, recorded or not: what [`shapes::run_shaped`] calls with the system built.
+struct Go<'a> {
+    m: &'a OdeScene,
+    record: bool,
+}
+
+impl shapes::Runner for Go<'_> {
+    type Out = Result<(OdeOutcome, Option<Trace>), RunError>;
+    fn run<S: shapes::Integrated>(&self, sys: S) -> Self::Out {
+        self.m.go_with(self.record, sys)
+    }
+}
+
 /// A text model with its switches held ([`switch`]): what the run integrates.
 struct Held<'a> {
     m: &'a OdeScene,
@@ -382,6 +397,21 @@ impl<'a> Held<'a> {
         self.m.sides(t, y, &mut self.held);
         let at = self.rest.len() - self.held.len();
         self.rest[at..].copy_from_slice(&self.held);
+    }
+}
+
+impl shapes::Integrated for Held<'_> {
+    fn set_held(&mut self, t: f64, y: &[f64]) {
+        Held::set_held(self, t, y);
+    }
+    fn solve(
+        &self,
+        t0: f64,
+        y0: &[f64],
+        t_end: f64,
+        opts: &Options,
+    ) -> Result<crate::integrate::Solution, crate::integrate::IntegrateError> {
+        crate::integrate::solve(self, t0, y0, t_end, opts)
     }
 }
 
@@ -505,35 +535,53 @@ impl OdeScene {
     /// The run, its path (every state at every accepted step, every event and switch) recorded
     /// when `record` is set.
     fn go(&self, record: bool) -> Result<(OdeOutcome, Option<Trace>), RunError> {
+        let go = Go { m: self, record };
+        shapes::run_shaped(self, &go).unwrap_or_else(|| shapes::Runner::run(&go, Held::new(self)))
+    }
+
+    /// [`OdeScene::go`] with the system `sys`.
+    fn go_with<S: shapes::Integrated>(
+        &self,
+        record: bool,
+        mut sys: S,
+    ) -> Result<(OdeOutcome, Option<Trace>), RunError> {
         let n = self.states.len();
         let mut y = self.initial_state()?;
         let user = self.events.len();
-        let gs: Vec<EventFn> = self
-            .events
-            .iter()
-            .map(|e| &e.when)
-            .chain(self.switches.iter().map(|s| &s.arg))
+        let formulas = || {
+            self.events
+                .iter()
+                .map(|e| &e.when)
+                .chain(self.switches.iter().map(|s| &s.arg))
+        };
+        // each formula's closure: a bare state read as it is, a formula of a known shape as
+        // its own closure ([`shapes`]), any other as nested closures reading t, the state and
+        // the parameters where they live ([`closures`]: no buffer written per evaluation);
+        // and the same formula at several points in one call where the program allows it and
+        // no closure of its shape does better
+        let mut batches: Vec<Option<BatchBox>> = Vec::new();
+        let gs: Vec<EventFn> = formulas()
             .map(|p| {
-                // t, the state and the parameters read where they live ([`closures`]: no
-                // buffer written per evaluation)
-                let (f, rest) = (p.slope(n), self.params.clone());
-                Box::new(move |t: f64, y: &[f64]| f(t, y, &rest)) as EventFn
-            })
-            .collect();
-        // the same formulas at several points in one call, where the program allows it
-        let batches: Vec<Option<BatchBox>> = self
-            .events
-            .iter()
-            .map(|e| &e.when)
-            .chain(self.switches.iter().map(|s| &s.arg))
-            .map(|p| {
-                p.batchable().then(|| {
+                let (g, batch) = match (p.variable(), shapes::event_fn(p, n, &self.params)) {
+                    (Some(slot), _) if (1..=n).contains(&slot) => (
+                        Box::new(move |_t: f64, y: &[f64]| y[slot - 1]) as EventFn,
+                        false,
+                    ),
+                    (_, Some(g)) => (g, false),
+                    _ => {
+                        let (f, rest) = (p.slope(n), self.params.clone());
+                        let g = Box::new(move |t: f64, y: &[f64]| f(t, y, &rest)) as EventFn;
+                        (g, p.batchable())
+                    }
+                };
+                batches.push(batch.then(|| {
                     let mut base = vec![0.0; 1 + n + self.params.len()];
                     base[1 + n..].copy_from_slice(&self.params);
                     Box::new(move |ts: &[f64], ys: &[f64], out: &mut [f64]| {
                         p.eval_batch(&base, n, ts, ys, out)
                     }) as BatchBox
-                })
+                }));
+                g
             })
             .collect();
         // the user's events, then each switch's zero (stopping, either way)
@@ -588,7 +636,6 @@ impl OdeScene {
                 .collect();
             Trace::new(("t", "s"), &names)
         });
-        let mut sys = Held::new(self);
         sys.set_held(0.0, &y);
         let mut r = Runs {
             t: 0.0,
@@ -601,7 +648,7 @@ impl OdeScene {
             accumulation: None,
         };
         while r.t < self.t_end {
-            let sol = match crate::integrate::solve(&sys, r.t, &y, self.t_end, &opts) {
+            let sol = match sys.solve(r.t, &y, self.t_end, &opts) {
                 Ok(sol) => sol,
                 Err(err) => {
                     // impacts that accumulate: the integrator cannot resolve the last flights
@@ -834,13 +881,18 @@ impl OdeScene {
             outcome_units: self.outcome_units.clone(),
             t_end: t,
             stopped_by,
-            state: self.states.iter().cloned().zip(y.iter().copied()).collect(),
+            state: self
+                .states
+                .iter()
+                .map(SmolStr::new)
+                .zip(y.iter().copied())
+                .collect(),
             state_units: self.state_units.clone(),
             event_counts: self
                 .events
                 .iter()
                 .zip(&hits)
-                .map(|(e, h)| (e.name.clone(), h.len()))
+                .map(|(e, h)| (SmolStr::new(&e.name), h.len()))
                 .collect(),
             jumps,
             switches,

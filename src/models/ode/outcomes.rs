@@ -14,6 +14,7 @@ use super::{EventSpec, Firing};
 use crate::algebra::expr::{Expr, parse};
 use crate::algebra::units::{Unit, dimension};
 use crate::models::params::SceneError;
+use smol_str::SmolStr;
 use std::collections::BTreeMap;
 
 /// One read of a formula at a firing: which event, which firing, before or after its jump, and
@@ -370,8 +371,8 @@ pub(super) fn evaluate(
     at: &dyn Fn(&Program, f64, &[f64]) -> f64,
     value: &dyn Fn(&str) -> Option<f64>,
     warnings: &mut Vec<String>,
-) -> BTreeMap<String, Option<f64>> {
-    let mut out: BTreeMap<String, Option<f64>> = BTreeMap::new();
+) -> BTreeMap<SmolStr, Option<f64>> {
+    let mut out: BTreeMap<SmolStr, Option<f64>> = BTreeMap::new();
     for o in outcomes {
         let mut read = |a: &AtRef| -> Option<f64> {
             let list = &hits[a.event];
@@ -417,7 +418,7 @@ pub(super) fn evaluate(
                 }
             }
         };
-        out.insert(o.name.clone(), v);
+        out.insert(SmolStr::new(&o.name), v);
     }
     out
 }
