@@ -30,8 +30,9 @@ pub enum Direction {
 
 /// An event function with its direction and whether it stops the solve.
 pub struct Event<'a> {
-    /// Name for reports.
-    pub name: String,
+    /// Name for reports (borrowed where the caller keeps it: a sweep makes a few events per
+    /// point).
+    pub name: std::borrow::Cow<'a, str>,
     /// $g(t, y)$.
     pub g: &'a (dyn Fn(f64, &[f64]) -> f64 + 'a),
     /// Which crossings count.
@@ -54,7 +55,7 @@ pub type BatchFn<'a> = &'a (dyn Fn(&[f64], &[f64], &mut [f64]) + 'a);
 impl<'a> Event<'a> {
     /// A new event.
     pub fn new(
-        name: &str,
+        name: impl Into<std::borrow::Cow<'a, str>>,
         g: &'a (dyn Fn(f64, &[f64]) -> f64 + 'a),
         direction: Direction,
         terminal: bool,

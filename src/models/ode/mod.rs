@@ -158,7 +158,8 @@ enum Firing {
 
 #[derive(Clone, Debug)]
 struct EventSpec {
-    name: String,
+    /// Its name (inline: a key of every run's counts).
+    name: SmolStr,
     when: Program,
     direction: Direction,
     stop: bool,
@@ -210,10 +211,11 @@ pub struct Compiled {
 #[derive(Clone, Debug)]
 pub struct OdeScene {
     c: std::sync::Arc<Compiled>,
-    /// Parameter values (SI), in the order of the names.
-    params: Vec<f64>,
+    /// Parameter values (SI), in the order of the names (inline: a sweep copies the scene for
+    /// every point).
+    params: smallvec::SmallVec<[f64; 8]>,
     /// Initial values set by a sweep (`state.x`), over the compiled formulas.
-    init_set: Vec<Option<f64>>,
+    init_set: smallvec::SmallVec<[Option<f64>; 4]>,
     /// Solver settings.
     pub solve: SolveSpec,
 }
@@ -237,7 +239,7 @@ pub struct OdeOutcome {
     /// Where the run ended (s).
     pub t_end: f64,
     /// The event that stopped it, if one did.
-    pub stopped_by: Option<String>,
+    pub stopped_by: Option<SmolStr>,
     /// The states at the end.
     pub state: BTreeMap<SmolStr, f64>,
     /// The unit of each state.
@@ -299,6 +301,30 @@ impl Vars<'_> {
         }
         f(&buf[..total])
     }
+}
+
+impl Vars<'_> {
+    /// `p` at `(t, y)`: a bare variable read as it is (an outcome's `t@event`, `z@event`: no
+    /// buffer filled), any other formula on the variables in one buffer ([`Vars::with`]).
+    fn eval(&self, p: &Program, t: f64, y: &[f64]) -> f64 {
+        let n = y.len();
+        match p.variable() {
+            Some(0) => t,
+            Some(s) if s <= n => y[s - 1],
+            Some(s) if s <= n + self.m.params.len() => self.m.params[s - 1 - n],
+            _ => self.with(t, y, |v| p.eval(v)),
+        }
+    }
+}
+
+/// A map of a few entries, inserted one by one (collecting sorts a vector of them first: a
+/// sweep builds these for every point).
+fn entries<V>(items: impl Iterator<Item = (SmolStr, V)>) -> BTreeMap<SmolStr, V> {
+    let mut map = BTreeMap::new();
+    for (k, v) in items {
+        map.insert(k, v);
+    }
+    map
 }
 
 impl OdeScene {
@@ -382,7 +408,7 @@ struct Held<'a> {
 impl<'a> Held<'a> {
     fn new(m: &'a OdeScene) -> Self {
         let n = m.states.len();
-        let mut rest = m.params.clone();
+        let mut rest = m.params.to_vec();
         rest.resize(m.params.len() + m.switches.len(), 0.0);
         Held {
             m,
@@ -474,11 +500,11 @@ impl OdeScene {
             let end = list[list.len() - 1].t + d[d.len() - 1] * r / (1.0 - r);
             if end <= self.t_end && best.as_ref().is_none_or(|b| end < b.t) {
                 best = Some(Accumulation {
-                    event: e.name.clone(),
+                    event: e.name.to_string(),
                     firings: list.len(),
                     t: end,
                     ratio: r,
-                    state: list[list.len() - 1].after.clone(),
+                    state: list[list.len() - 1].after().to_vec(),
                 });
             }
         }
@@ -606,7 +632,7 @@ impl OdeScene {
                         )
                     }
                 };
-                let event = Event::new(&name, g.as_ref(), direction, halts);
+                let event = Event::new(name, g.as_ref(), direction, halts);
                 // a bare state (`when = "z"`, slot 1 + i after t) is read without a call
                 match (when.variable(), &batches[i]) {
                     (Some(slot), _) if (1..=n).contains(&slot) => event.reading(slot - 1),
@@ -683,8 +709,8 @@ impl OdeScene {
                 } else if h.index < user {
                     r.hits[h.index].push(outcomes::Hit {
                         t: h.t,
-                        before: h.y.clone(),
-                        after: h.y,
+                        before: h.y,
+                        jumped: None,
                     });
                 }
             }
@@ -734,7 +760,7 @@ struct Runs {
     t: f64,
     hits: Vec<Vec<outcomes::Hit>>,
     stats: Stats,
-    stopped_by: Option<String>,
+    stopped_by: Option<SmolStr>,
     jumps: usize,
     switches: usize,
     warnings: Vec<String>,
@@ -821,7 +847,7 @@ impl OdeScene {
             r.hits[index].push(outcomes::Hit {
                 t,
                 before,
-                after: y.to_vec(),
+                jumped: (!ev.jump.is_empty()).then(|| y.to_vec()),
             });
             if ev.stop || ev.stop_after == Some(r.hits[index].len()) {
                 stop = true;
@@ -856,8 +882,8 @@ impl OdeScene {
             &self.outcomes,
             &hits,
             &self.event_names,
-            &|p| vars.with(t, &y, |v| p.eval(v)),
-            &|p, th, yh| vars.with(th, yh, |v| p.eval(v)),
+            &|p| vars.eval(p, t, &y),
+            &|p, th, yh| vars.eval(p, th, yh),
             &|s| {
                 if s == "t" {
                     Some(t)
@@ -881,19 +907,14 @@ impl OdeScene {
             outcome_units: self.outcome_units.clone(),
             t_end: t,
             stopped_by,
-            state: self
-                .states
-                .iter()
-                .map(SmolStr::new)
-                .zip(y.iter().copied())
-                .collect(),
+            state: entries(self.states.iter().map(SmolStr::new).zip(y.iter().copied())),
             state_units: self.state_units.clone(),
-            event_counts: self
-                .events
-                .iter()
-                .zip(&hits)
-                .map(|(e, h)| (SmolStr::new(&e.name), h.len()))
-                .collect(),
+            event_counts: entries(
+                self.events
+                    .iter()
+                    .zip(&hits)
+                    .map(|(e, h)| (e.name.clone(), h.len())),
+            ),
             jumps,
             switches,
             accumulation,

@@ -41,19 +41,28 @@ pub(super) enum Rule {
 
 #[derive(Clone, Debug)]
 pub(super) struct OutcomeSpec {
-    pub(super) name: String,
+    /// Its name (inline: a key of every run's outcome).
+    pub(super) name: SmolStr,
     pub(super) text: String,
     pub(super) rule: Rule,
     /// Its unit, as the JSON writes it.
     pub(super) unit_text: String,
 }
 
-/// One firing: its time and the states before and after its jump.
+/// One firing: its time and the states before and after its jump (`None`: no jump, the state
+/// before; a firing that goes on keeps one copy, not two).
 #[derive(Clone, Debug)]
 pub(super) struct Hit {
     pub(super) t: f64,
     pub(super) before: Vec<f64>,
-    pub(super) after: Vec<f64>,
+    pub(super) jumped: Option<Vec<f64>>,
+}
+
+impl Hit {
+    /// The state just after the firing's jump.
+    pub(super) fn after(&self) -> &[f64] {
+        self.jumped.as_deref().unwrap_or(&self.before)
+    }
 }
 
 const ALLOWED: &str = "allowed: formula, formula@event, formula@+event (just after its jump), formula@event[k] (k >= 1), formula@event[last], hits@event; in a formula, name@event[k] and (group)@event[k] for reads at firings, and other outcomes by name";
@@ -96,7 +105,7 @@ pub(super) fn read_outcomes(
         let (rule, unit) = p.finish(r, &field, &text, &done)?;
         done.insert(k.clone(), unit);
         out.push(OutcomeSpec {
-            name: k,
+            name: k.into(),
             text,
             rule,
             unit_text: unit.to_string(),
@@ -384,7 +393,7 @@ pub(super) fn evaluate(
                 _ => list.last(),
             };
             match hit {
-                Some(h) => Some(at(p, h.t, if a.after { &h.after } else { &h.before })),
+                Some(h) => Some(at(p, h.t, if a.after { h.after() } else { &h.before })),
                 None => {
                     warnings.push(format!(
                         "outcome.{} = \"{}\": the event {} fired {} time(s), so it has no value",
@@ -418,7 +427,7 @@ pub(super) fn evaluate(
                 }
             }
         };
-        out.insert(SmolStr::new(&o.name), v);
+        out.insert(o.name.clone(), v);
     }
     out
 }

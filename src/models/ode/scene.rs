@@ -107,7 +107,7 @@ pub(super) fn read(root: &toml::Table, path: &str) -> Result<OdeScene, SceneErro
     };
     let events = read_events(&r, raw.event.as_ref(), &states)?;
     let outcomes = read_outcomes(&r, t.outcome, &events)?;
-    let event_names = events.iter().map(|e| e.name.clone()).collect();
+    let event_names = events.iter().map(|e| e.name.to_string()).collect();
     let state_units: std::sync::Arc<BTreeMap<String, String>> = std::sync::Arc::new(
         states
             .iter()
@@ -117,7 +117,7 @@ pub(super) fn read(root: &toml::Table, path: &str) -> Result<OdeScene, SceneErro
     let outcome_units = std::sync::Arc::new(
         outcomes
             .iter()
-            .map(|o| (o.name.clone(), o.unit_text.clone()))
+            .map(|o| (o.name.to_string(), o.unit_text.clone()))
             .collect(),
     );
     let n = states.len();
@@ -139,7 +139,7 @@ pub(super) fn read(root: &toml::Table, path: &str) -> Result<OdeScene, SceneErro
             rhs_exprs,
         }),
         params: params.iter().map(|(_, v)| *v).collect(),
-        init_set: vec![None; n],
+        init_set: smallvec::smallvec![None; n],
         solve,
     })
 }
@@ -509,7 +509,7 @@ fn read_event(
     };
     Ok(EventSpec {
         stop_after,
-        name,
+        name: name.into(),
         when: r.compile(&when, &format!("{at}.when"))?,
         direction,
         stop: action == "stop",
