@@ -389,6 +389,26 @@ t_end = 1.0
                 };
                 let d = duration.expect("the contact ends");
                 assert!((d - exact).abs() < 1e-8 * exact, "{d} against {exact}");
+                // no damping: e = 1, the rebound at the speed it came in with (energy
+                // conserved); the outcome `peak` is k z^(3/2) where the rate is zero, at the
+                // largest indentation z_max: (5 m v0^2/(4 k))^(2/5) for Hertz, v0 sqrt(m/k)
+                // for the spring
+                let out_speed = out["state"][u].as_f64().expect("the rate at the end");
+                assert!(
+                    (out_speed + v0).abs() < 1e-7 * v0,
+                    "{out_speed} against -{v0}"
+                );
+                let peak = out["outcome"]["peak"].as_f64().expect("the peak fires");
+                let zmax = if law != linear {
+                    (5.0 * m * v0 * v0 / (4.0 * k)).powf(0.4)
+                } else {
+                    v0 * (m / k).sqrt()
+                };
+                let force = k * zmax.powf(1.5);
+                assert!(
+                    zmax > 0.0 && (peak - force).abs() < 1e-7 * force,
+                    "{peak} against {force}"
+                );
             }
         }
     }
