@@ -337,9 +337,11 @@ fn write_made(out: &std::path::Path, arg: &str, text: String) -> Result<(), RunE
 }
 
 mod rows;
+mod sweep;
 mod trace;
 
 use rows::{Rows, csv_quote};
+pub use sweep::sweep;
 use trace::trace_kind;
 pub use trace::{TRACED, Trace, run_scene_traced, run_traced, trace_csv};
 
@@ -407,7 +409,12 @@ pub fn merge(paths: &[std::path::PathBuf], format: Format) -> Result<String, Run
             for (r, res) in runs.iter().zip(&results) {
                 let v = r["value"].as_f64().unwrap_or(f64::NAN);
                 let i = r["index"].as_u64().unwrap_or(0) as usize;
-                rows.csv(v, i, node_cells(res, &cols), cols.len());
+                rows.csv(
+                    v,
+                    i,
+                    node_cells(res, &cols).as_ref().map_err(Clone::clone),
+                    cols.len(),
+                );
             }
             let mut text = csv_header(&param, &cols).into_bytes();
             let mut said = crate::scene::warnings::Said::default();
@@ -417,257 +424,6 @@ pub fn merge(paths: &[std::path::PathBuf], format: Format) -> Result<String, Run
         _ => serde_json::to_string_pretty(&json!({"param": param, "total": total, "runs": runs}))
             .unwrap_or_default(),
     })
-}
-
-/// Points run per block: results are formatted and written block by block, in index order, so
-/// memory stays bounded at any sweep size.
-const SWEEP_BLOCK: usize = 8192;
-
-/// Consecutive points run by one thread with their rows in one buffer.
-const SWEEP_RUN: usize = 64;
-
-/// A varied `parameters.X` or `state.X` of a text model (`model = "ode"`) that the scene does
-/// not have: an error naming it and listing what the scene has (setting it would add a
-/// parameter without a unit, and the message would be about its unit).
-fn unknown_text_field(table: &toml::Table, param: &str, label: &str) -> Result<(), RunError> {
-    if table.get("model").and_then(toml::Value::as_str) != Some("ode") {
-        return Ok(());
-    }
-    let Some((section, key)) = param.split_once('.') else {
-        return Ok(());
-    };
-    if !matches!(section, "parameters" | "state") {
-        return Ok(());
-    }
-    let have: Vec<&str> = table
-        .get(section)
-        .and_then(toml::Value::as_table)
-        .map(|t| t.keys().map(String::as_str).collect())
-        .unwrap_or_default();
-    if have.contains(&key) {
-        return Ok(());
-    }
-    Err(RunError::BadArgument {
-        arg: "--vary".into(),
-        message: format!(
-            "`{param}` is not in {label}: its {section}: {}",
-            have.iter()
-                .map(|k| format!("{section}.{k}"))
-                .collect::<Vec<_>>()
-                .join(", ")
-        ),
-    })
-}
-
-/// Runs `scene` once per value of the varied field, in parallel, and writes the rows to `out`
-/// as they finish (in index order, one block of [`SWEEP_BLOCK`] points at a time). The base
-/// scene is validated once; a model that sets the field on its typed parameters
-/// ([`crate::models::Model::set_number`]) skips the scene table, others re-read it per point.
-pub fn sweep(
-    path: &std::path::Path,
-    sv: &SweepValues,
-    format: Format,
-    progress: bool,
-    out: &mut dyn std::io::Write,
-) -> Result<(), RunError> {
-    sweep_counted(path, sv, format, progress, out).map(|_| ())
-}
-
-/// [`sweep`], returning the number of points whose run failed (each has its row, with the
-/// error).
-fn sweep_counted(
-    path: &std::path::Path,
-    sv: &SweepValues,
-    format: Format,
-    progress: bool,
-    out: &mut dyn std::io::Write,
-) -> Result<usize, RunError> {
-    use rayon::prelude::*;
-    let base_table = crate::scene::read_table(path)?;
-    let label = path.display().to_string();
-    let param = sv.param.as_str();
-    let base = crate::scene::parse_table(&base_table, &label)?;
-    unknown_text_field(&base_table, param, &label)?;
-    let scene_at = |v: f64| -> Result<crate::scene::Scene, RunError> {
-        let at = || format!("{label} with {param} = {v}");
-        if let Some(r) = base.with_number(param, v, &label) {
-            return Ok(r?);
-        }
-        let mut t = base_table.clone();
-        crate::scene::set_field(&mut t, param, v, &label)?;
-        Ok(crate::scene::parse_table(&t, &at())?)
-    };
-    // a bad value is an error before anything runs, as for a single run (on the typed
-    // parameters this is a range check per point)
-    // (checked on every core; the first bad value in order is the one reported)
-    if let Some(bad) = sv
-        .values
-        .par_iter()
-        .position_first(|v| scene_at(*v).is_err())
-    {
-        scene_at(sv.values[bad])?;
-    }
-    let total = sv.values.len();
-    let bar = if progress {
-        let b = indicatif::ProgressBar::new(total as u64);
-        b.set_style(
-            indicatif::ProgressStyle::with_template(&format!(
-                "sweep {param} [{{bar:40}}] {{human_pos}}/{{human_len}} ({{msg}}, {{eta}} left)"
-            ))
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        b
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
-    let io = |e: std::io::Error| RunError::BadArgument {
-        arg: "output".into(),
-        message: format!("writing the sweep failed: {e}"),
-    };
-    // the CSV columns: those of the first point's outcome (every point of a model has them)
-    let columns = if format == Format::Csv {
-        let first = sv.values.first().map(|&v| {
-            scene_at(v)
-                .and_then(|scene| scene.run_node())
-                .map_err(|e| e.to_string())
-        });
-        // an outcome that echoes the swept field (balls-wall's `wall_stiffness_ratio`) is not
-        // written twice: the first column holds it
-        let mut cols = csv_columns(first.as_slice());
-        cols.retain(|c| c != param);
-        cols
-    } else {
-        Vec::new()
-    };
-    // where the first point's leaves went: the other points' walks check against it first
-    let plan: Vec<usize> = match (format, sv.values.first()) {
-        (Format::Csv, Some(&v)) => scene_at(v)
-            .and_then(|scene| scene.run_cells(&columns, &[]))
-            .map(|c| c.order)
-            .unwrap_or_default(),
-        _ => Vec::new(),
-    };
-    // one point, formatted where it ran (in parallel) and appended to the rows of its run of
-    // points: for CSV its warnings apart (said once per wording, in index order)
-    let row = |rows: &mut Rows, v: f64, i: usize| {
-        match format {
-            Format::Json => {
-                // one run per line (compact): a sweep of 10^7 runs stays greppable and small;
-                // the outcome written from its light tree, as its `Value` would be
-                match scene_at(v).and_then(|scene| scene.run_node()) {
-                    Ok(res) => {
-                        let line = rows.open(",\n    ", false);
-                        line.extend_from_slice(b"{\"index\":");
-                        let _ = serde_json::to_writer(&mut *line, &i);
-                        line.extend_from_slice(b",\"value\":");
-                        let _ = serde_json::to_writer(&mut *line, &v);
-                        line.extend_from_slice(b",\"result\":");
-                        res.write_json(line);
-                        line.push(b'}');
-                    }
-                    Err(e) => rows.line(
-                        ",\n    ",
-                        &json!({"index": i, "value": v, "error": e.to_string()}).to_string(),
-                        true,
-                    ),
-                }
-            }
-            Format::Csv => {
-                // the cells straight from the outcome (no tree), the first point's walk as plan
-                let r = scene_at(v)
-                    .and_then(|scene| scene.run_cells(&columns, &plan))
-                    .map_err(|e| e.to_string());
-                rows.csv(v, i, r, columns.len());
-            }
-            _ => match scene_at(v).and_then(|scene| run_validated(&scene)) {
-                Ok((res, _)) => {
-                    let text = render_run(&res, Format::Text);
-                    rows.line("\n", &format!("{param} = {}\n{text}\n", json!(v)), false);
-                }
-                Err(e) => rows.line("\n", &format!("{param} = {}\nerror: {e}\n", json!(v)), true),
-            },
-        }
-        if progress {
-            bar.inc(1);
-        }
-    };
-    let mut said = crate::scene::warnings::Said::default();
-    let started = std::time::Instant::now();
-    let mut failed = 0;
-    if format == Format::Json {
-        write!(
-            out,
-            "{{\n  \"param\": {},\n  \"total\": {},\n  \"runs\": [",
-            serde_json::to_string(param).unwrap_or_default(),
-            sv.total
-        )
-        .map_err(io)?;
-    }
-    if format == Format::Csv {
-        out.write_all(csv_header(param, &columns).as_bytes())
-            .map_err(io)?;
-    }
-    let blocks: Vec<(&[f64], &[usize])> = sv
-        .values
-        .chunks(SWEEP_BLOCK)
-        .zip(sv.indices.chunks(SWEEP_BLOCK))
-        .collect();
-    // a block as runs of consecutive points, each run's rows in one buffer
-    let compute = |(block_v, block_i): (&[f64], &[usize])| -> Vec<Rows> {
-        block_v
-            .par_chunks(SWEEP_RUN)
-            .zip(block_i.par_chunks(SWEEP_RUN))
-            .map(|(vs, is)| {
-                let mut rows = Rows::default();
-                for (&v, &i) in vs.iter().zip(is) {
-                    row(&mut rows, v, i);
-                }
-                rows
-            })
-            .collect()
-    };
-    // the separator before the first row of the sweep is left out (JSON and text rows open
-    // with one; a CSV row does not)
-    let mut skip = usize::from(format != Format::Csv);
-    // the next block runs on the pool while this thread writes the one before: the cores do
-    // not wait on the writing between blocks
-    let mut pending: Option<Vec<Rows>> = blocks.first().map(|b| compute(*b));
-    for k in 0..blocks.len() {
-        let runs = pending.take().unwrap_or_default();
-        let mut next: Option<Vec<Rows>> = None;
-        let written: Result<(), RunError> = rayon::in_place_scope(|scope| {
-            if let Some(b) = blocks.get(k + 1) {
-                let (compute, next) = (&compute, &mut next);
-                scope.spawn(move |_| *next = Some(compute(*b)));
-            }
-            for rows in &runs {
-                failed += rows.failed;
-                rows.write_to(out, &mut said, skip).map_err(io)?;
-                skip = 0;
-            }
-            Ok(())
-        });
-        written?;
-        pending = next;
-        // the rate as a reader says it: whole points per second (indicatif's `per_sec` prints
-        // "83,589.898/s")
-        let secs = started.elapsed().as_secs_f64();
-        if secs > 0.0 {
-            bar.set_message(format!("{:.0} points/s", bar.position() as f64 / secs));
-        }
-    }
-    if format == Format::Json {
-        out.write_all(b"\n  ]\n}\n").map_err(io)?;
-    }
-    out.flush().map_err(io)?;
-    bar.finish_and_clear();
-    for line in said.summary() {
-        eprintln!("sweep: {line}");
-    }
-    if failed > 0 {
-        eprintln!("sweep: {failed} of {total} points failed (their rows carry the error)");
-    }
-    Ok(failed)
 }
 
 /// The columns of an outcome: nested objects as `a.b`, numeric arrays as `a.0`, `a.1`;
@@ -769,7 +525,14 @@ fn csv_cells<'v>(
 #[cfg(test)]
 fn csv_row(v: f64, index: usize, r: &Result<Node, String>, cols: &[String]) -> String {
     let mut line = Vec::new();
-    let (at, warnings) = rows::csv_line(&mut line, v, index, node_cells(r, cols), cols.len());
+    let cells = node_cells(r, cols);
+    let (at, warnings) = rows::csv_line(
+        &mut line,
+        v,
+        index,
+        cells.as_ref().map_err(Clone::clone),
+        cols.len(),
+    );
     let (head, tail) = line.split_at(at);
     let (head, tail) = (String::from_utf8_lossy(head), String::from_utf8_lossy(tail));
     format!("{head}{}{tail}", csv_quote(&warnings.join("; ")))
@@ -800,12 +563,13 @@ fn node_cells(r: &Result<Node, String>, cols: &[String]) -> Result<Cells, String
     Ok(Cells {
         leaves: found.into_iter().map(|n| n.and_then(Leaf::of)).collect(),
         warnings,
-        order: Vec::new(),
+        trail: Default::default(),
     })
 }
 
 #[cfg(test)]
 mod tests {
+    use super::sweep::{SWEEP_RUN, SWEEP_WINDOW, sweep_counted};
     use super::*;
 
     /// A Hertz scene in a fresh folder (`atol` loose enough that each run warns it was tightened).
@@ -833,7 +597,7 @@ mod tests {
     #[test]
     fn a_sweep_writes_each_point_as_its_outcome_says_across_blocks() {
         let scene = hertz_scene("blocks", "1e-6");
-        let n = 2 * SWEEP_BLOCK + 5;
+        let n = 2 * SWEEP_WINDOW * SWEEP_RUN + 5;
         let sv = crate::scene::sweep::parse_vary(&format!("impactor.v0=0.5:2:{n}"), false)
             .expect("a range");
         let mut out = Vec::new();
@@ -862,7 +626,9 @@ mod tests {
                     .run_node()
                     .map_err(|e| e.to_string());
                 let mut want = Vec::new();
-                let (at, _) = rows::csv_line(&mut want, v, i, node_cells(&tree, cols), cols.len());
+                let cells = node_cells(&tree, cols);
+                let cells = cells.as_ref().map_err(Clone::clone);
+                let (at, _) = rows::csv_line(&mut want, v, i, cells, cols.len());
                 let (head, tail) = want.split_at(at);
                 let (head, tail) = (String::from_utf8_lossy(head), String::from_utf8_lossy(tail));
                 assert!(row.starts_with(&*head), "row {i}: {row} against {head}");

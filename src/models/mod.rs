@@ -91,7 +91,8 @@ pub trait Model: Sized + Clone + Send + Sync + 'static {
     }
     /// Sets a numeric scene field on the validated parameters, with the same check and message
     /// as reading it from a table; `None` when this model does not set that field this way (a
-    /// sweep then re-reads the scene table with the field changed).
+    /// sweep then re-reads the scene table with the field changed). It sets that field alone,
+    /// and a bad value changes nothing: a sweep sets one copy of the scene point after point.
     fn set_number(&mut self, _field: &str, _v: f64, _path: &str) -> Option<Result<(), SceneError>> {
         None
     }
