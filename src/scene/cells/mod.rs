@@ -136,29 +136,9 @@ pub fn fill<'r, T: Serialize + ?Sized>(
     Ok(&reuse.cells)
 }
 
-/// Two short texts equal, compared in words inline: a leaf's path is a few dozen bytes, and a
-/// call to `memcmp` per leaf was about a hundredth of a Hertz sweep.
-fn same(a: &str, b: &str) -> bool {
-    let (a, b) = (a.as_bytes(), b.as_bytes());
-    if a.len() != b.len() {
-        return false;
-    }
-    let (mut x, mut y) = (a.chunks_exact(8), b.chunks_exact(8));
-    let word = |c: &[u8]| u64::from_ne_bytes(c.try_into().unwrap_or_default());
-    if !x.by_ref().zip(y.by_ref()).all(|(p, q)| word(p) == word(q)) {
-        return false;
-    }
-    x.remainder().iter().zip(y.remainder()).all(|(p, q)| p == q)
-}
-
 /// The digits of `i` in decimal.
-fn digits(mut i: usize) -> usize {
-    let mut n = 1;
-    while i >= 10 {
-        i /= 10;
-        n += 1;
-    }
-    n
+fn digits(i: usize) -> usize {
+    i.checked_ilog10().map_or(1, |d| d as usize + 1)
 }
 
 /// Where a walk that is off its plan (or has none) is on it.
@@ -229,7 +209,7 @@ impl Walk<'_> {
             _ => false,
         }) {
             // off the plan (or leaving it here): the column the path names
-            at = self.cols.iter().position(|c| same(c, self.path));
+            at = self.cols.iter().position(|c| c == self.path.as_str());
         }
         if let Some(cell) = at.and_then(|i| self.cells.leaves.get_mut(i)) {
             *cell = Some(leaf);
